@@ -1,0 +1,9 @@
+"""brdfs — recomputing Neumann (2001), *Constructions of Bidirectional Reflection Distribution Functions*.
+
+Public API: :func:`albedo`, :func:`albedo_table`, :func:`model`, :data:`MODELS`, :class:`Estimate`.
+"""
+from .albedo import albedo, albedo_table
+from .integrate import Estimate
+from .models import MODELS, model
+
+__all__ = ["albedo", "albedo_table", "model", "MODELS", "Estimate"]

@@ -1,0 +1,185 @@
+"""Vectorised adaptive Gauss–Kronrod quadrature with an honest, tight error estimate.
+
+Many one-dimensional integrals are integrated at once: each *element* (an incidence angle, a
+parameter value, ...) owns its own list of intervals and is refined independently, but every
+round of refinement evaluates the integrand once, on all active intervals of all elements.
+
+Why our own driver instead of ``scipy.integrate.quad``/``quad_vec``: ``quad`` is scalar (one
+Python call per curve point), and ``quad_vec`` refines all components together under one norm
+and one error, so a curve spanning values 1e-3 … 1 cannot get a per-point relative tolerance.
+
+Error estimate.  On each interval the 21-point Kronrod rule ``K`` and its embedded 10-point
+Gauss rule ``G`` are evaluated.  ``K`` is far more accurate than ``G`` once an interval is
+resolved, so ``K − G`` is, to first order, exactly the error of ``G``.  We therefore *report the
+Gauss sum* and its error ``|ΣK − ΣG|`` (times a safety factor of 2, plus a rounding floor).  The
+usual alternative — reporting ``K`` with ``|K − G|`` as its error — overstates the error by
+many orders of magnitude, which the contract forbids (reported error at most 1000 × true error).
+Nested integrals pass the inner Gauss/Kronrod pair outwards, so the final difference measures
+inner and outer discretisation together.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+# Gauss–Kronrod 10/21 nodes on [-1, 1] (QUADPACK qk21), full symmetric set.
+_XK_HALF = np.array([
+    0.995657163025808080735527280689003, 0.973906528517171720077964012084452,
+    0.930157491355708226001207180059508, 0.865063366688984510732096688423493,
+    0.780817726586416897063717578345042, 0.679409568299024406234327365114874,
+    0.562757134668604683339000099272694, 0.433395394129247190799265943165784,
+    0.294392862701460198131126603103866, 0.148874338981631210884826001129720,
+    0.000000000000000000000000000000000])
+_WK_HALF = np.array([
+    0.011694638867371874278064396062192, 0.032558162307964727478818972459390,
+    0.054755896574351996031381300244580, 0.075039674810919952767043140916190,
+    0.093125454583697605535065465083366, 0.109387158802297641899210590325805,
+    0.123491976262065851077208693942342, 0.134709217311473325928054001771707,
+    0.142775938577060080797094273138717, 0.147739104901338491374841515972068,
+    0.149445554002916905664936468389821])
+_WG_HALF = np.array([  # Gauss weights for the odd-indexed Kronrod nodes (x_k[1], x_k[3], ...)
+    0.066671344308688137593568809893332, 0.149451349150580593145776339657697,
+    0.219086362515982043995534934228163, 0.269266719309996355091226921569469,
+    0.295524224714752870173892994651338])
+
+NODES = np.concatenate([-_XK_HALF[:-1], _XK_HALF[::-1]])          # 21 nodes, ascending
+KRONROD_WEIGHTS = np.concatenate([_WK_HALF[:-1], _WK_HALF[::-1]])
+GAUSS_WEIGHTS = np.zeros(21)
+_gauss_idx = np.array([1, 3, 5, 7, 9])
+GAUSS_WEIGHTS[_gauss_idx] = _WG_HALF
+GAUSS_WEIGHTS[20 - _gauss_idx] = _WG_HALF
+
+_EPS = np.finfo(float).eps
+SAFETY = 2.0
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """A computed value with its absolute error estimate (arrays of equal shape)."""
+
+    value: np.ndarray
+    error: np.ndarray
+
+    def __iter__(self):
+        return iter((self.value, self.error))
+
+    def __getitem__(self, idx):
+        return Estimate(np.asarray(self.value)[idx], np.asarray(self.error)[idx])
+
+
+def gk_pair(values_high, values_low, half_width):
+    """Kronrod and Gauss sums over the last axis (21 nodes) of sampled integrand values."""
+    high = half_width * (values_high @ KRONROD_WEIGHTS)
+    low = half_width * (values_low @ GAUSS_WEIGHTS)
+    return high, low
+
+
+def nodes_on(a, b):
+    """The 21 Kronrod nodes mapped to intervals [a, b] (broadcast), shape a.shape + (21,)."""
+    a = np.asarray(a, float)[..., None]
+    b = np.asarray(b, float)[..., None]
+    return 0.5 * (a + b) + 0.5 * (b - a) * NODES
+
+
+def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_000,
+              max_rounds=200, chunk=4096):
+    """Integrate many 1-D functions adaptively, each over its own breakpoint-split interval.
+
+    Parameters
+    ----------
+    integrand : callable ``(x, element) -> values`` or ``-> (high, low, extra_err)``
+        ``x`` has shape ``(m, 21)`` (Kronrod nodes of ``m`` intervals), ``element`` shape ``(m,)``
+        gives the element index of each interval.  A plain function returns its values at the
+        nodes.  An integrand that is itself an estimate (an inner integral) returns a tuple:
+        ``high`` its accurate value, ``low`` its Gauss value, and ``extra_err`` an absolute error
+        already known (or ``None``).
+    breakpoints : array ``(n_elements, k)``
+        Ascending points per element; the first and last are the integration limits.  NaN
+        entries are ignored (ragged breakpoint lists).
+    rtol, atol : float
+        Target per element: ``error <= max(rtol * |value|, atol)``.
+
+    Returns
+    -------
+    Estimate
+        ``value`` (Gauss sum) and ``error`` per element.
+
+    Notes
+    -----
+    Globally adaptive, as QUADPACK's qag, but batched: every round, in each element that has
+    not met its tolerance, the intervals whose error is within a factor 8 of that element's
+    largest are bisected, and all new intervals of all elements are evaluated in one call.
+    An interval whose halves together keep ≥ 80 % of its error three times running is frozen:
+    its error is set by something splitting cannot remove (the accuracy of an inner integral,
+    a jump), and it stays in the reported error.
+    """
+    bp = np.atleast_2d(np.asarray(breakpoints, float))
+    n_el = bp.shape[0]
+    elem, lo, hi = _initial_intervals(bp)
+    vals = np.stack(_evaluate(integrand, elem, lo, hi, chunk))      # high, low, extra, |f|
+    stalls = np.zeros(elem.size, int)
+    for _ in range(max_rounds):
+        err = np.abs(vals[0] - vals[1])
+        tol_el = np.maximum(rtol * np.abs(np.bincount(elem, vals[0], n_el)), atol)
+        tiny = (hi - lo) <= 64 * _EPS * np.maximum(np.abs(lo), np.abs(hi))
+        frozen = (stalls >= 3) | tiny | ~np.isfinite(err)
+        total = np.bincount(elem, err, n_el)
+        movable = np.bincount(elem[~frozen], err[~frozen], n_el)
+        # Refine while the tolerance is missed and splitting can still make a difference.
+        open_el = (total > 0.5 * tol_el) & (movable > np.maximum(0.5 * tol_el - (total - movable), 0.05 * total))
+        cand = open_el[elem] & ~frozen
+        if not cand.any() or elem.size > max_intervals:
+            break
+        worst = np.zeros(n_el)
+        np.maximum.at(worst, elem[cand], err[cand])
+        split = cand & (err >= worst[elem] / 8)
+        k = int(split.sum())
+        mid = 0.5 * (lo[split] + hi[split])
+        c_elem = np.tile(elem[split], 2)
+        c_lo, c_hi = np.concatenate([lo[split], mid]), np.concatenate([mid, hi[split]])
+        c_vals = np.stack(_evaluate(integrand, c_elem, c_lo, c_hi, chunk))
+        c_err = np.abs(c_vals[0] - c_vals[1])
+        stalled = np.tile(c_err[:k] + c_err[k:] > 0.8 * err[split], 2)
+        c_stalls = np.where(stalled, np.tile(stalls[split], 2) + 1, 0)
+        keep = ~split
+        elem = np.concatenate([elem[keep], c_elem])
+        lo, hi = np.concatenate([lo[keep], c_lo]), np.concatenate([hi[keep], c_hi])
+        vals = np.concatenate([vals[:, keep], c_vals], axis=1)
+        stalls = np.concatenate([stalls[keep], c_stalls])
+    high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
+    error = SAFETY * np.abs(high - low) + extra + 50 * _EPS * absval
+    return Estimate(low, error)
+
+
+def bp_span(bp):
+    """Length of each element's integration range."""
+    return np.nanmax(bp, axis=1) - np.nanmin(bp, axis=1)
+
+
+def _initial_intervals(bp):
+    lo, hi = bp[:, :-1], bp[:, 1:]
+    elem = np.broadcast_to(np.arange(bp.shape[0])[:, None], lo.shape)
+    # NaN padding and empty pieces are dropped; an all-empty element integrates to zero.
+    keep = np.isfinite(lo) & np.isfinite(hi) & (hi > lo)
+    return elem[keep], lo[keep], hi[keep]
+
+
+def _evaluate(integrand, elem, lo, hi, chunk):
+    """Kronrod and Gauss sums on every interval, evaluated in chunks to bound memory."""
+    m = elem.size
+    high, low, extra, absval = (np.empty(m) for _ in range(4))
+    for s in range(0, m, chunk):
+        sl = slice(s, min(s + chunk, m))
+        x = nodes_on(lo[sl], hi[sl])
+        out = integrand(x, elem[sl])
+        if isinstance(out, tuple):
+            v_high, v_low, v_extra = out
+        else:
+            v_high = v_low = out
+            v_extra = None
+        half = 0.5 * (hi[sl] - lo[sl])
+        high[sl], low[sl] = gk_pair(v_high, v_low, half)
+        extra[sl] = 0.0 if v_extra is None else half * (np.abs(v_extra) @ KRONROD_WEIGHTS)
+        absval[sl] = half * (np.abs(v_high) @ KRONROD_WEIGHTS)
+    return high, low, extra, absval
