@@ -1,0 +1,58 @@
+"""Every comparison row, recomputed in-process, against the committed baseline.
+
+After a deliberate, reviewed change of numbers (or a new artifact), re-record with
+``python -m brdfs.regression --write tests/data/regression_baseline.csv`` (``make baseline``).
+"""
+
+import pytest
+
+from brdfs import regression
+from brdfs.artifacts import compute_all_comparisons
+from brdfs.config import load_config
+
+
+@pytest.fixture(scope="module")
+def comparison():
+    return compute_all_comparisons(load_config())
+
+
+@pytest.fixture(scope="module")
+def baseline():
+    return regression.read_baseline(regression.BASELINE_CSV)
+
+
+def test_comparison_matches_the_baseline(comparison, baseline):
+    problems = regression.compare_to_baseline(comparison, baseline)
+    assert not problems, "rows moved beyond tolerance, flipped or missing:\n" + "\n".join(problems)
+
+
+def test_baseline_states_its_tolerance_rule():
+    first = regression.BASELINE_CSV.read_text().splitlines()[0]
+    assert first.startswith("# tolerance = max(3 * computed_err, 1e-12 * |computed|)")
+
+
+def test_a_moved_value_is_reported(comparison, baseline):
+    moved = comparison.copy()
+    moved.loc[0, "computed"] += 10 * baseline.loc[0, "tolerance"]
+    assert [p for p in regression.compare_to_baseline(moved, baseline) if "moved by" in p] != []
+    within = comparison.copy()
+    within.loc[0, "computed"] += 0.5 * baseline.loc[0, "tolerance"]
+    assert regression.compare_to_baseline(within, baseline) == []
+
+
+def test_a_flipped_verdict_is_reported(comparison, baseline):
+    flipped = comparison.copy()
+    flipped.loc[0, "verdict"] = "differs" if flipped.loc[0, "verdict"] == "reproduces" else "reproduces"
+    assert any("verdict flipped" in p for p in regression.compare_to_baseline(flipped, baseline))
+
+
+def test_rows_in_only_one_of_baseline_and_comparison_are_reported(comparison, baseline):
+    assert any("not in the comparison" in p for p in regression.compare_to_baseline(comparison.iloc[1:], baseline))
+    assert any("not in the baseline" in p for p in regression.compare_to_baseline(comparison, baseline.iloc[1:]))
+
+
+def test_baseline_round_trip(tmp_path, comparison):
+    path = tmp_path / "baseline.csv"
+    regression.write_baseline(comparison, path)
+    assert regression.compare_to_baseline(comparison, regression.read_baseline(path)) == []
+    assert regression.read_baseline(path)["computed"].tolist() == comparison["computed"].tolist()
