@@ -31,4 +31,9 @@ def model(name: str, **params) -> BRDF:
         raise ValueError(f"bad parameters {params!r} for model {name!r}: {exc}") from None
 
 
+from .patch import GeneralizedLambertian, PatchBasic, PatchElliptical, PatchExponential, PatchMixture  # noqa: E402
+
+for _patch_model in (PatchBasic, PatchMixture, PatchExponential, PatchElliptical, GeneralizedLambertian):
+    register(_patch_model)
+
 __all__ = ["BRDF", "MODELS", "model", "register", "phong_constant", *[c.__name__ for c in MODELS.values()]]
