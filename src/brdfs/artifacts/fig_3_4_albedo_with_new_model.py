@@ -1,0 +1,22 @@
+"""Figure 3.4: the curves of Figure 2.1 and the new model ``phong_cosmin`` (n = 150), F = 1 (Sec. 3.2.4)."""
+
+from __future__ import annotations
+
+import pandas as pd
+
+from brdfs import albedo_curves
+from brdfs.artifacts import figure
+from brdfs.grazing import incidence_grid
+
+
+@figure("fig_3_4_albedo_with_new_model", config=("grazing",))
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    """The curves, columns as Figure 2.1's."""
+    g = cfg["grazing"]
+    theta = incidence_grid(g["theta_step_deg"], g["approach_from"], g["approach_to"], g["per_decade"])
+    return albedo_curves.curves(g["fig_3_4_models"], theta, cfg["tolerance"])
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    """Figure 3.4, with a log panel showing the approach to 90°."""
+    albedo_curves.plot_curves(df, path, albedo_curves.figure_title("3.4", df))
