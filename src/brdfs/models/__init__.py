@@ -3,13 +3,14 @@ from __future__ import annotations
 
 from .base import BRDF
 from .blinn import Blinn, BlinnCosmin, BlinnOriginal
+from .he_torrance import HeTorrance
 from .microfacet import CookTorrance, Ward, WardCosmin
 from .phong import Phong, PhongCosmin, PhongOriginal, PModel, phong_constant
 
 MODELS: dict[str, type[BRDF]] = {
     cls.name: cls
     for cls in (Phong, PhongOriginal, PhongCosmin, PModel, Blinn, BlinnOriginal, BlinnCosmin,
-                Ward, WardCosmin, CookTorrance)
+                Ward, WardCosmin, CookTorrance, HeTorrance)
 }
 
 
