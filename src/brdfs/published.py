@@ -416,3 +416,23 @@ def merge_frames(frames: Sequence[pd.DataFrame], published: pd.DataFrame | None 
     for artifact, fragment in merged.groupby("artifact", sort=False):
         _check_verdicts(str(artifact), fragment)
     return merged
+
+
+def explain_with_readings(printed: str, computed: float, readings: dict[str, float], context: str,
+                          evidence: str) -> dict:
+    """Reason, reading and value for a print that ``computed`` does not reproduce.
+
+    ``readings`` maps each alternative interpretation, fixed before looking at the print, to
+    its value.  The first (in the given order) that rounds to the print is named; otherwise the
+    reason says that none does.  ``context`` is one sentence on what ``computed`` is.
+    """
+    for name, value in readings.items():
+        if np.isfinite(value) and rounds_to(printed, value):
+            return {"reason": f"{context}; the reading '{name}' gives {value:.6g}, which rounds to the print",
+                    "reading": name, "value_under_reading": value, "evidence": evidence}
+    if truncates_to(printed, computed):
+        return {"reason": f"truncated, not rounded: {context}", "evidence": evidence}
+    tried = ", ".join(f"{k} = {v:.5g}" for k, v in readings.items())
+    return {"reason": f"{context}; no reading tried reproduces the print ({tried}): "
+                      f"the printed value is {100 * (float(printed) / computed - 1):+.2g} % off",
+            "evidence": evidence}

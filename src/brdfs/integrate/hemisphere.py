@@ -40,7 +40,9 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     if index is None:
         raise ValueError("albedo_many needs one model per angle")
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    bp = np.vstack([_radial_breakpoints(models[i], mu[i], st[i], theta_deg[i]) for i in range(len(models))])
+    rows = [_radial_breakpoints(models[i], mu[i], st[i], theta_deg[i]) for i in range(len(models))]
+    width = max(r.size for r in rows)
+    bp = np.vstack([np.pad(r, (0, width - r.size), constant_values=np.nan) for r in rows])
 
     def integrand(t, elem):
         high = np.empty_like(t)
@@ -54,7 +56,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=192)
 
 
-def _radial_breakpoints(model, mu, st, theta_deg, width=8):
+def _radial_breakpoints(model, mu, st, theta_deg):
     """Breakpoints in t for one (model, θ): range ends and the radii where level sets touch."""
     lobe = model.lobe
     theta = np.radians(theta_deg)
@@ -67,10 +69,7 @@ def _radial_breakpoints(model, mu, st, theta_deg, width=8):
         cand += [scale * (a - theta), scale * (theta - a), scale * (a + theta)]
     cand = [b for b in cand if 0 < b < beta_max]
     t_pts = np.unique(np.concatenate([[0.0], lobe.t_of(np.array(cand + [beta_max]))]))
-    t_pts = t_pts[t_pts <= lobe.t_of(beta_max)]
-    out = np.full(width, np.nan)
-    out[: t_pts.size] = t_pts
-    return out
+    return t_pts[t_pts <= lobe.t_of(beta_max)]
 
 
 def _phi_level(A, B, c):

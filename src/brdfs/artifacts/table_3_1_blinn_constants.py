@@ -1,0 +1,80 @@
+"""Table 3.1 (and its Blinn half, Table 1.1): maximal constants C_n = 1 / max_θ a(θ) of the
+reciprocal Blinn model (eq. 1.34) and the corrected Blinn model (eq. 3.34), computed with C = 1.
+
+Besides the true maximum (located by :func:`brdfs.quantities.max_albedo`), the table carries
+the readings fixed in advance for prints that do not reproduce: the constant obtained from the
+albedo at normal incidence only, and from maxima over coarse θ grids (1°, 5°, 10°, 15°, 30°).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs import plotting, published
+from brdfs.albedo import albedo_table
+from brdfs.artifacts import comparison, get_artifact, table
+from brdfs.models import model
+from brdfs.quantities import maximal_constant
+
+NAME = "table_3_1_blinn_constants"
+MODELS = ("blinn", "blinn_cosmin")
+GRID_STEPS_DEG = (1, 5, 10, 15, 30)
+
+
+def blinn_normal_incidence_albedo(n):
+    """a(0) of C (N·H)^n with C = 1 in closed form: with L = N, N·H = cos(θ_V/2), and x = cos(θ_V/2),
+    a(0) = 2π ∫ x^n (2x² − 1) 4x dx over [1/√2, 1]
+         = 8π [2 (1 − 2^(−(n+4)/2)) / (n+4) − (1 − 2^(−(n+2)/2)) / (n+2)]."""
+    n = np.asarray(n, float)
+    return 8 * np.pi * (2 * (1 - 2 ** (-(n + 4) / 2)) / (n + 4) - (1 - 2 ** (-(n + 2) / 2)) / (n + 2))
+
+
+@table(NAME, config=("blinn_cn",))
+def compute(cfg: dict, deps: dict) -> pd.DataFrame:
+    ns = [float(n) for n in cfg["blinn_cn"]["n"]]
+    models = [model(name, n=n) for name in MODELS for n in ns]
+    C, theta = maximal_constant(models, cfg["tolerance"]["rtol"])
+    grid = np.arange(0.0, 90.0 + 1e-9, 1.0)
+    on_grid = albedo_table(models, grid, tol=1e-9).value
+    df = pd.DataFrame({"model": np.repeat(MODELS, len(ns)), "n": np.tile(ns, len(MODELS)),
+                       "C": C.value, "C_err": C.error, "theta_max_deg": theta,
+                       "C_normal_incidence": 1 / on_grid[:, 0]})
+    for step in GRID_STEPS_DEG:
+        df[f"C_grid_{step}deg"] = 1 / on_grid[:, ::step].max(axis=1)
+    return df
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    printed = published.published_rows("blinn_cn")
+    shown = df.assign(printed=[_printed(printed, r.model, r.n) for r in df.itertuples()])
+    plotting.save_table_png(shown[["model", "n", "printed", "C", "C_err", "theta_max_deg"]], path,
+                            "Table 3.1: maximal C_n of Blinn and Blinn/cos(theta_min), printed and computed")
+
+
+def _printed(printed: pd.DataFrame, model_name: str, n: float) -> str:
+    hit = printed[(printed["model"] == model_name) & (printed["param_value"].astype(float) == n)]
+    return hit["published"].iloc[0] if len(hit) else ""
+
+
+def readings_of(row) -> dict:
+    """The readings fixed in advance, by name, for one row of the table."""
+    out = {"albedo at normal incidence only": row.C_normal_incidence}
+    out |= {f"maximum over a {s} deg grid of theta": getattr(row, f"C_grid_{s}deg") for s in GRID_STEPS_DEG}
+    return out
+
+
+@comparison("blinn_cn", tables=(NAME,))
+def rows(cfg: dict, tables: dict) -> pd.DataFrame:
+    df = tables[NAME]
+    prints = published.published_rows("blinn_cn")
+    records = []
+    for r in df.itertuples():
+        rec = {"model": r.model, "param_value": f"{r.n:g}", "quantity": "C_max", "computed": r.C, "computed_err": r.C_err}
+        printed = _printed(prints, r.model, r.n)
+        if printed and published.verdict(printed, r.C, r.C_err) == published.DIFFERS:
+            context = (f"the maximal albedo (C = 1) is {1 / r.C:.6f} at theta = {r.theta_max_deg:.3g} deg, so C_n = {r.C:.5f}"
+                       + (f" (at normal incidence a(0) has the closed form 8π[2(1−2^−(n+4)/2)/(n+4) − (1−2^−(n+2)/2)/(n+2)] "
+                          f"= {blinn_normal_incidence_albedo(r.n):.6f})" if r.theta_max_deg < 1e-3 else ""))
+            rec |= published.explain_with_readings(printed, r.C, readings_of(r), context, get_artifact(NAME).csv)
+        records.append(rec)
+    return pd.DataFrame.from_records(records)

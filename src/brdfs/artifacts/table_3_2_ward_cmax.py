@@ -1,0 +1,58 @@
+"""Table 3.2: C_max = 1 / max_θ a(θ) of the corrected Ward model (eq. 3.36), computed with C = 1."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+from scipy.integrate import quad
+
+from brdfs import plotting, published
+from brdfs.artifacts import comparison, get_artifact, table
+from brdfs.models import model
+from brdfs.quantities import maximal_constant
+
+NAME = "table_3_2_ward_cmax"
+
+
+def ward_cosmin_normal_incidence_albedo(m):
+    """a(0) of eq. 3.36 with C = 1 as a 1-D integral: with L = N, t = tan(θ_V/2) and x = t²/m²,
+    a(0) = ∫₀^(1/m²) e^(−x) (1 − m²x) / (1 + m²x)³ dx = 1 − 4m² + O(m⁴), so C_max → 1 as m → 0.
+    The range is cut at x = 60 (e^(−60) ≈ 1e-26) where 1/m² is larger."""
+    upper = min(1 / m ** 2, 60.0)
+    val, err = quad(lambda x: np.exp(-x) * (1 - m * m * x) / (1 + m * m * x) ** 3, 0, upper,
+                    epsabs=0, epsrel=1e-13, limit=200)
+    return val, err
+
+
+@table(NAME, config=("ward_cmax",))
+def compute(cfg: dict, deps: dict) -> pd.DataFrame:
+    ms = [float(m) for m in cfg["ward_cmax"]["m"]]
+    C, theta = maximal_constant([model("ward_cosmin", m=m) for m in ms], cfg["tolerance"]["rtol"])
+    a0 = np.array([ward_cosmin_normal_incidence_albedo(m)[0] for m in ms])
+    return pd.DataFrame({"model": "ward_cosmin", "m": ms, "C": C.value, "C_err": C.error,
+                         "theta_max_deg": theta, "C_normal_incidence_closed_form": 1 / a0,
+                         "C_series_1_plus_4m2": 1 + 4 * np.asarray(ms) ** 2})
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    prints = published.published_rows("ward_cmax").set_index("param_value")["published"]
+    shown = df.assign(printed=[prints.get(f"{m:g}", "") for m in df["m"]])
+    plotting.save_table_png(shown[["m", "printed", "C", "C_err", "theta_max_deg", "C_normal_incidence_closed_form"]],
+                            path, "Table 3.2: C_max of the corrected Ward model, printed and computed")
+
+
+@comparison("ward_cmax", tables=(NAME,))
+def rows(cfg: dict, tables: dict) -> pd.DataFrame:
+    df = tables[NAME]
+    prints = published.published_rows("ward_cmax").set_index("param_value")["published"]
+    records = []
+    for r in df.itertuples():
+        rec = {"model": "ward_cosmin", "param_value": f"{r.m:g}", "quantity": "C_max", "computed": r.C, "computed_err": r.C_err}
+        printed = prints.get(f"{r.m:g}")
+        if printed and published.verdict(printed, r.C, r.C_err) == published.DIFFERS:
+            context = (f"the albedo is maximal at theta = {r.theta_max_deg:.2g} deg; the closed form a(0) = "
+                       f"(1/m²)∫₀¹e^(−s/m²)(1−s)/(1+s)³ds gives C_max = {r.C_normal_incidence_closed_form:.6f} "
+                       f"≈ 1 + 4m² = {r.C_series_1_plus_4m2:.6f}")
+            readings = {"albedo at normal incidence only": r.C_normal_incidence_closed_form}
+            rec |= published.explain_with_readings(printed, r.C, readings, context, get_artifact(NAME).csv)
+        records.append(rec)
+    return pd.DataFrame.from_records(records)

@@ -1,0 +1,94 @@
+"""Table 3.3: mean albedo (eq. 3.37) of the reciprocal Phong, the new model, Blinn and corrected
+Blinn for n = 1 … 512 (Blinn columns with this project's C_n of Table 3.1), the n → ∞ row from
+the derived limits (:mod:`brdfs.quantities`), and rows at growing n that confirm the limits."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs import plotting, published
+from brdfs.artifacts import comparison, get_artifact, table
+from brdfs.models import model
+from brdfs.quantities import limit_mean_albedo, mean_albedo, phong_mean_albedo
+from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
+
+NAME = "table_3_3_mean_albedo"
+CONSTANTS = "table_3_1_blinn_constants"
+MODELS = ("phong", "phong_cosmin", "blinn", "blinn_cosmin")
+
+
+def _blinn_constants(ns, constants: pd.DataFrame):
+    """C_n from Table 3.1 where it was computed; beyond it (the limit check, n ≫ 512) the maximum
+    is at normal incidence, where both Blinn models coincide and a(0) has a closed form."""
+    out = {}
+    for name in ("blinn", "blinn_cosmin"):
+        table31 = constants[constants["model"] == name].set_index("n")
+        for n in ns:
+            if n in table31.index:
+                out[name, n] = (table31.at[n, "C"], table31.at[n, "C_err"])
+            else:
+                out[name, n] = (1 / float(blinn_normal_incidence_albedo(n)), 0.0)
+    return out
+
+
+@table(NAME, deps=(CONSTANTS,), config=("mean_albedo",))
+def compute(cfg: dict, deps: dict) -> pd.DataFrame:
+    sec = cfg["mean_albedo"]
+    ns = [float(n) for n in sec["n"]] + [float(n) for n in sec["limit_check_n"]]
+    C = _blinn_constants(ns, deps[CONSTANTS])
+    models = [model(name, n=n) if name.startswith("phong") else model(name, n=n, C=1.0) for name in MODELS for n in ns]
+    est = mean_albedo(models, sec["rtol"])
+    rows = []
+    for i, (name, n) in enumerate((name, n) for name in MODELS for n in ns):
+        c, c_err = C.get((name, n), ((n + 2) / (2 * np.pi), 0.0))
+        scale = 1.0 if name.startswith("phong") else c
+        value, err = scale * est.value[i], scale * est.error[i] + (0.0 if name.startswith("phong") else c_err * est.value[i])
+        engine = value
+        if name == "phong":   # exact where the engine's ±4e-11 would straddle a rounding tie (A(4) = 11/16)
+            value, err = phong_mean_albedo(n)
+        rows.append({"model": name, "n": n, "C": c, "C_err": c_err, "mean_albedo": value, "mean_albedo_err": err,
+                     "mean_albedo_engine": engine, "role": "table" if n in sec["n"] else "limit_check"})
+    for name in MODELS:
+        rows.append({"model": name, "n": np.inf, "C": np.nan, "C_err": np.nan, "mean_albedo": limit_mean_albedo(name),
+                     "mean_albedo_err": 0.0, "mean_albedo_engine": np.nan, "role": "limit"})
+    return pd.DataFrame(rows)
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    prints = published.published_rows("mean_albedo")
+    wide = df[df["role"] != "limit_check"].pivot(index="n", columns="model", values="mean_albedo")[list(MODELS)]
+    shown = pd.DataFrame({"n": [f"{n:g}" for n in wide.index]})
+    for name in MODELS:
+        p = prints[prints["model"] == name].set_index("param_value")["published"]
+        shown[f"{name} printed"] = [p.get(f"{n:g}", "") for n in wide.index]
+        shown[f"{name} computed"] = [f"{v:.4f}" for v in wide[name]]
+    plotting.save_table_png(shown, path, "Table 3.3: mean albedo, printed and computed (Blinn with this project's C_n)")
+
+
+def _reason(name, n, computed, printed, df):
+    evidence = get_artifact(NAME).csv
+    if np.isinf(n):
+        checks = df[(df["model"] == name) & (df["role"] == "limit_check")]
+        trend = ", ".join(f"n={r.n:g}: {r.mean_albedo:.4f}" for r in checks.itertuples())
+        return {"reason": (f"the derived limit is {computed:.6g} (a(θ) → cos^k θ as n → ∞, A = 2/(k+2)), confirmed by "
+                           f"growing n ({trend}) and by the column's own finite-n prints; the printed {printed} is "
+                           f"inconsistent with them"), "evidence": evidence}
+    return {"reason": (f"eq. 3.37 gives {computed:.5f} (nested adaptive integration with an error below 1e-9, "
+                       f"the engine checked against closed forms); the print is {100 * (float(printed) / computed - 1):+.2f} % high, "
+                       "and the print's excess grows with n, as a fixed-resolution integration of an ever narrower lobe would "
+                       "produce; no reading of eq. 3.37 gives the print"), "evidence": evidence}
+
+
+@comparison("mean_albedo", tables=(NAME,))
+def rows(cfg: dict, tables: dict) -> pd.DataFrame:
+    df = tables[NAME]
+    prints = published.published_rows("mean_albedo")
+    records = []
+    for r in df[df["role"] != "limit_check"].itertuples():
+        rec = {"model": r.model, "param_value": f"{r.n:g}", "quantity": "mean_albedo",
+               "computed": r.mean_albedo, "computed_err": r.mean_albedo_err}
+        hit = prints[(prints["model"] == r.model) & (prints["param_value"] == f"{r.n:g}")]
+        if len(hit) and published.verdict(hit["published"].iloc[0], r.mean_albedo, r.mean_albedo_err) == published.DIFFERS:
+            rec |= _reason(r.model, r.n, r.mean_albedo, hit["published"].iloc[0], df)
+        records.append(rec)
+    return pd.DataFrame.from_records(records)
