@@ -338,3 +338,42 @@ def centred_ellipse_area(b, ratio):
 def elliptical_constant(b, ratio):
     """c(b) = 1 / Area(E(O, v, b))  (eq. 4.36: 1/(abπ) while the ellipse fits in the disk)."""
     return 1.0 / centred_ellipse_area(b, ratio)
+
+
+def limit_small_patch_albedo(theta_deg):
+    """lim_{R→0} a_R(θ) (eq. 4.8): 1 for θ < 90°, 1/2 at θ = 90°.
+
+    For θ < 90° the disk of radius R → 0 around L'_P lies inside the unit disk; at θ = 90° its
+    centre is on the unit circle, which cuts it in half as R → 0.  The exponential profile's
+    p(R) concentrates at R → 0 as s → ∞ (F(R) → 1 for every R > 0, eq. 4.27), so this is also
+    lim_{s→∞} a^p(θ), and the mean albedo tends to 1 (Table 4.2).
+    """
+    theta = np.asarray(theta_deg, float)
+    return np.where(theta < 90.0, 1.0, 0.5)
+
+
+def inverse_cdf(profile, r, iterations=64):
+    """F⁻¹(r) of the exponential weight (eq. 4.27; Figure 4.13), by bisection on the closed-form F.
+
+    F rises continuously to 1 − p_Diffuse at R = 2⁻ and jumps to 1 there (the Dirac part), so
+    F⁻¹(r) = 2 for r ≥ 1 − p_Diffuse.
+
+    Returns
+    -------
+    Estimate
+        R with its error: the final bracket plus the rounding of F divided by the slope p(R).
+    """
+    r = np.asarray(r, float)
+    if np.any((r < 0) | (r > 1)):
+        raise ValueError(f"inverse_cdf: r must lie in [0, 1], got {r[(r < 0) | (r > 1)][:5]!r}")
+    lo, hi = np.zeros_like(r), np.full_like(r, 2.0)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        below = profile.cdf(mid) < r
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    R = 0.5 * (lo + hi)
+    slope = weight(profile, R, profile.c_max)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        err = 0.5 * (hi - lo) + np.where(r > 0, CLOSED_FORM_RTOL * r / slope, 0.0)
+    at_top = r >= 1.0 - diffuse_weight(profile, profile.c_max)
+    return Estimate(np.where(at_top, 2.0, np.where(r > 0, R, 0.0)), np.where(at_top | (r == 0), 0.0, err))

@@ -5,8 +5,10 @@ from __future__ import annotations
 from decimal import Decimal
 
 import numpy as np
+import pandas as pd
 
 from brdfs import published
+from brdfs.geometry import direction, light_direction
 from brdfs.integrate.gauss_kronrod import Estimate, integrate
 
 SECTION = "patch"
@@ -46,3 +48,16 @@ def _digits(printed: str) -> int:
     """Decimal places of a numeric print (0 for '41721.')."""
     return max(0, -Decimal(printed).as_tuple().exponent)
 
+
+
+def plane_of_incidence(brdf, theta_deg: float, step_deg: float) -> pd.DataFrame:
+    """f(L, V) for V in the plane of incidence, θ_V signed (positive on the mirror side, φ = 180°)."""
+    theta_v = np.linspace(-90.0, 90.0, int(round(180.0 / step_deg)) + 1)
+    L = light_direction(np.full_like(theta_v, theta_deg))
+    V = direction(np.abs(theta_v), np.where(theta_v >= 0, 180.0, 0.0))
+    return pd.DataFrame({"theta_deg": theta_deg, "theta_v_deg": theta_v, "brdf": brdf(L, V)})
+
+
+def grid(start: float, stop: float, step: float) -> np.ndarray:
+    """``start, start + step, …, stop`` with both ends exact (``step`` rounded to divide the range)."""
+    return np.linspace(start, stop, int(round((stop - start) / step)) + 1)
