@@ -249,3 +249,25 @@ def test_albedo_of_each_term_and_their_sum():
 def test_energy_closure_at_normal_incidence(lam, low, high):
     a = float(albedo(HeTorrance(**ALBEDO_HT, lambda_um=lam), 0.0).value)
     assert low <= a <= high
+
+
+# --- artifacts ----------------------------------------------------------------------------------
+
+def test_figure_3_3_calibration_and_lobes():
+    from brdfs.artifacts import get_artifact
+    from brdfs.artifacts.fig_3_3_specular_lobes import NORMAL, lobe_models
+    from brdfs.config import load_config
+
+    cfg = load_config()
+    df = get_artifact("fig_3_3_specular_lobes").compute(cfg, {})
+    models = lobe_models(cfg["he_torrance"]["fig_3_3"], cfg["he_torrance"]["lambda_um"])
+    phong_peak = float(models[0][2](NORMAL, NORMAL))
+    scales = df.groupby("model")["scale"].first()
+    for name, _, brdf in models:       # calibrated: every f(N, N) equals Phong's
+        assert scales[name] * float(brdf(NORMAL, NORMAL)) == pytest.approx(phong_peak, rel=1e-13)
+    lobes = df[(df["quantity"] == "brdf") & (df["phi_deg"] == 180.0)]
+    peaks = lobes.loc[lobes.groupby("model")["value"].idxmax()].set_index("model")["theta_v_deg"]
+    assert peaks["phong"] == 42.0 and abs(peaks["he_torrance"] - 42.0) <= 1.0
+    rho = df[df["quantity"] == "specular_albedo"]
+    assert float(rho["value"].iloc[0]) == pytest.approx(scales["he_torrance"] * 0.051247, rel=1e-5)
+    assert np.all(df["value_err"].dropna() <= 1e-11 * np.abs(df["value"].dropna()) + 1e-300)
