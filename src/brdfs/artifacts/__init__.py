@@ -324,7 +324,7 @@ def compute_tables(cfg: dict, names: Iterable[str], cache: dict[str, pd.DataFram
     return {name: resolve(name, ()) for name in names}
 
 
-def compute_all_comparisons(cfg: dict) -> pd.DataFrame:
+def compute_all_comparisons(cfg: dict, only: Iterable[str] | None = None) -> pd.DataFrame:
     """Every registered comparison, computed in-process and merged.
 
     Parameters
@@ -341,6 +341,8 @@ def compute_all_comparisons(cfg: dict) -> pd.DataFrame:
     with tempfile.TemporaryDirectory() as tmp:
         paths = []
         for c in comparisons().values():
+            if only is not None and c.artifact not in set(only):
+                continue
             paths.append(Path(tmp) / Path(c.fragment_csv).name)
             io.write_csv(c.fragment(cfg, compute_tables(cfg, c.tables, cache)), paths[-1])
         return published.merge_fragments(paths)

@@ -1,0 +1,54 @@
+"""The albedo toward grazing incidence, 80°–89.9999°, on log–log axes against cos θ_L, with the
+asymptotic law of each model (Sec. 2.2.1; laws derived in :mod:`brdfs.grazing`)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs import albedo_curves, plotting
+from brdfs.artifacts import figure
+from brdfs.grazing import approach_angles, asymptotic_law
+
+
+@figure("extra_grazing_divergence", config=("grazing",))
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    """Albedo curves with the law's exponent, constant (and its error) and value at each angle.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Curve columns (:func:`brdfs.albedo_curves.curves`) plus ``law_exponent, law_constant,
+        law_constant_err, law_albedo, law``: a ~ law_constant cos^(−law_exponent) θ_L.
+    """
+    g = cfg["grazing"]
+    theta = approach_angles(max(g["approach_from"], -1.0), g["approach_to"], g["per_decade"])
+    df = albedo_curves.curves(g["divergence_models"], theta, cfg["tolerance"])
+    laws = []
+    for spec in g["divergence_models"]:
+        law = asymptotic_law(albedo_curves.build(spec), cfg["tolerance"]["rtol"])
+        laws.append({"label": albedo_curves.label(albedo_curves.build(spec)),
+                     "law_exponent": law.exponent if law else np.nan,
+                     "law_constant": float(law.constant.value) if law else np.nan,
+                     "law_constant_err": float(law.constant.error) if law else np.nan,
+                     "law": law.derivation if law else "none derived"})
+    df = df.merge(pd.DataFrame(laws), on="label", how="left")
+    return df.assign(law_albedo=df["law_constant"] * df["cos_theta"] ** -df["law_exponent"])
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    """Computed points (markers) and laws (lines), log–log against cos θ_L."""
+    fig, ax = plotting.new_axes("cos θ_L (log)", "albedo a(θ_L) (log)")
+    fig.set_size_inches(8.5, 6)
+    for name, g in df.groupby("label", sort=False):
+        dots, = ax.loglog(g["cos_theta"], g["albedo"], ".", ms=3, label=f"{name}")
+        law = g["law"].iloc[0]
+        ax.loglog(g["cos_theta"], g["law_albedo"], "-", lw=0.8, color=dots.get_color(),
+                  label=f"   law: {law}, constant {g['law_constant'].iloc[0]:.6g}")
+    ax.axhline(1.0, color="k", lw=0.6, ls=":")
+    ax.invert_xaxis()
+    ax.set_title("Albedo toward grazing incidence (80°–89.9999°), points: engine; lines: asymptotic laws\n"
+                 "diverging: Ward ~ K/√cos θ_L, Cook–Torrance with G = 1 ~ m/(2√π cos θ_L); "
+                 "G of eq. 2.10 and Smith's G: bounded", fontsize=8)
+    ax.legend(fontsize=6, loc="upper left")
+    plotting.savefig(fig, path)

@@ -1,0 +1,81 @@
+"""Stability of the albedo engine toward 90°: every model at the thesis's range of n and m at
+90° − 10^(−x), checked for NaN, negative values and errors that lie — the hard points against the
+independent projected-disk integration (:func:`brdfs.integrate.disk.disk_albedo`)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs import albedo_curves, plotting
+from brdfs.albedo import albedo_table
+from brdfs.artifacts import figure
+from brdfs.integrate.disk import disk_albedo
+from brdfs.models import MODELS, model
+
+#: Models parameterised by a roughness m (the others by an exponent n).
+ROUGH = ("ward", "ward_cosmin", "cook_torrance")
+
+
+def sweep_models(stability: dict) -> list:
+    """Every listed (and registered) model at every n or m of the sweep."""
+    out = []
+    for name in stability["models"]:
+        if name not in MODELS:
+            raise ValueError(f"grazing.stability.models: unknown model {name!r}; known: {sorted(MODELS)}")
+        key, values = ("m", stability["m_values"]) if name in ROUGH else ("n", stability["n_values"])
+        out += [model(name, **{key: v}) for v in values]
+    return out
+
+
+def sweep(stability: dict, tol: dict) -> pd.DataFrame:
+    """The albedo of every sweep model at 90° − 10^(−x); flags for finiteness and sign."""
+    theta = 90.0 - 10.0 ** -np.asarray(stability["exponents"], float)
+    models = sweep_models(stability)
+    est = albedo_table(models, theta, tol=tol["rtol"], atol=tol["atol"])
+    frames = [pd.DataFrame({"check": "sweep", "model": m.name, **albedo_curves.param_columns(m), "theta_deg": theta,
+                            "albedo": est.value[i], "albedo_err": est.error[i]}) for i, m in enumerate(models)]
+    df = pd.concat(frames, ignore_index=True)
+    return df.assign(finite=np.isfinite(df["albedo"]) & np.isfinite(df["albedo_err"]), nonnegative=df["albedo"] >= 0)
+
+
+def disk_points(stability: dict, tol: dict) -> pd.DataFrame:
+    """The hard points: engine and disk integration side by side; ``consistent`` when they agree
+    within the sum of their reported errors."""
+    records = []
+    for spec in stability["disk_points"]:
+        m = albedo_curves.build(spec)
+        (a, a_err), (d, d_err) = albedo_table([m], [spec["theta_deg"]], tol["rtol"], tol["atol"])[0, 0], \
+            disk_albedo(m, spec["theta_deg"])
+        records.append({"check": "disk", "model": m.name, **albedo_curves.param_columns(m),
+                        "theta_deg": spec["theta_deg"], "albedo": a, "albedo_err": a_err, "disk_albedo": float(d),
+                        "disk_albedo_err": float(d_err), "difference": abs(a - float(d))})
+    df = pd.DataFrame.from_records(records)
+    return df.assign(consistent=df["difference"] <= df["albedo_err"] + df["disk_albedo_err"],
+                     finite=np.isfinite(df["albedo"]), nonnegative=df["albedo"] >= 0)
+
+
+@figure("extra_stability_grazing", config=("grazing",))
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    """Sweep rows and disk cross-check rows (``check`` = ``sweep`` or ``disk``)."""
+    s = cfg["grazing"]["stability"]
+    return pd.concat([sweep(s, cfg["tolerance"]), disk_points(s, cfg["tolerance"])], ignore_index=True)
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    """Reported relative error against 90° − θ for every swept model, cross-checks marked."""
+    fig, ax = plotting.new_axes("90° − θ_L [deg]", "reported error / albedo")
+    fig.set_size_inches(8.5, 5.5)
+    sweep_rows = df[df["check"] == "sweep"]
+    for name, g in sweep_rows.groupby("model", sort=False):
+        ax.loglog(90.0 - g["theta_deg"], g["albedo_err"] / g["albedo"].abs(), ".", label=name)
+    disk = df[df["check"] == "disk"]
+    ax.loglog(90.0 - disk["theta_deg"], disk["difference"] / disk["albedo"].abs(), "kx", ms=8,
+              label="|engine − disk integration| / albedo at the hard points")
+    ax.invert_xaxis()
+    bad = int((~sweep_rows["finite"] | ~sweep_rows["nonnegative"]).sum())
+    inconsistent = int((~disk["consistent"].astype(bool)).sum())
+    ax.set_title(f"Stability toward 90°: {len(sweep_rows)} sweep values ({bad} NaN or negative), "
+                 f"{len(disk)} disk cross-checks ({inconsistent} outside the reported errors)", fontsize=8)
+    ax.legend(fontsize=6)
+    plotting.savefig(fig, path)
