@@ -1,30 +1,34 @@
-# Chapter 2 / section 3.7: albedo curves of the classical models (Figures 2.1, 3.4), the
-# divergence near grazing, the readings of the printed divergence numbers, Ward's range
-# claim and the stability sweep, with their comparisons (grazing_divergence, ward_in_range).
+# Figures 2.1 and 3.4 (albedo curves), the divergence at grazing angles with its asymptotic
+# laws, the readings of the printed divergence numbers, Ward's in-range claim, the stability
+# sweep toward 90 deg, and the comparisons grazing_divergence and ward_in_range.
 
-GRAZING_ARTIFACTS = [n for n in ("fig_2_1_albedo_classical", "fig_3_4_albedo_with_new_model",
-                                 "extra_divergence_readings", "extra_grazing_divergence",
-                                 "extra_stability_grazing", "extra_ward_in_range")
-                     if n in registry.artifacts()]
-GRAZING_COMPARISONS = [a for a in ("grazing_divergence", "ward_in_range") if a in registry.comparisons()]
+GRAZING_ARTIFACTS = [
+    "fig_2_1_albedo_classical",
+    "fig_3_4_albedo_with_new_model",
+    "extra_grazing_divergence",
+    "extra_divergence_readings",
+    "extra_ward_in_range",
+    "extra_stability_grazing",
+]
+GRAZING_COMPARISONS = ["grazing_divergence", "ward_in_range"]
 
 for _name in GRAZING_ARTIFACTS:
     ALL_TARGETS.extend(artifact_outputs(_name).values())
-FRAGMENTS.extend(f"results/checks/published/{a}.csv" for a in GRAZING_COMPARISONS)
+FRAGMENTS.extend(f"results/checks/published/{c}.csv" for c in GRAZING_COMPARISONS)
 
 
 rule grazing_artifact:
     input:
-        unpack(lambda wc: artifact_inputs(wc.name)),
+        unpack(lambda wildcards: artifact_inputs(wildcards.name)),
     output:
         csv="results/{kind}/{name}.csv",
         png="results/{kind}/{name}.png",
     params:
-        artifact=lambda wc: wc.name,
-        config=lambda wc: artifact_params(wc.name)["config"],
+        artifact=lambda wildcards: wildcards.name,
+        config=lambda wildcards: artifact_params(wildcards.name)["config"],
     wildcard_constraints:
-        name="|".join(GRAZING_ARTIFACTS),
         kind="tables|figures",
+        name="|".join(GRAZING_ARTIFACTS),
     log:
         "results/logs/{kind}_{name}.log",
     benchmark:
@@ -33,19 +37,19 @@ rule grazing_artifact:
         "../scripts/table.py"
 
 
-rule grazing_check:
+rule check_grazing:
     input:
-        unpack(lambda wc: comparison_inputs(wc.artifact)),
+        unpack(lambda wildcards: comparison_inputs(wildcards.comparison)),
     output:
-        "results/checks/published/{artifact}.csv",
+        "results/checks/published/{comparison}.csv",
     params:
-        comparison=lambda wc: wc.artifact,
-        config=lambda wc: comparison_params(wc.artifact)["config"],
+        comparison=lambda wildcards: wildcards.comparison,
+        config=lambda wildcards: comparison_params(wildcards.comparison)["config"],
     wildcard_constraints:
-        artifact="|".join(GRAZING_COMPARISONS),
+        comparison="|".join(GRAZING_COMPARISONS),
     log:
-        "results/logs/check_{artifact}.log",
+        "results/logs/check_{comparison}.log",
     benchmark:
-        "results/benchmarks/check_{artifact}.tsv"
+        "results/benchmarks/check_{comparison}.tsv"
     script:
         "../scripts/fragment.py"
