@@ -10,7 +10,7 @@ from .geometry import cos_incidence
 from .models import model
 
 #: Wide parameter columns of every curve table (contract: one column per parameter).
-PARAM_COLUMNS = ("G", "n", "m", "sigma0_um", "tau_um", "term", "C")
+PARAM_COLUMNS = ("G", "n", "m", "sigma0_um", "tau_um", "lambda_um", "term", "C")
 
 
 def build(spec: dict):
@@ -22,13 +22,13 @@ def build(spec: dict):
 def label(brdf) -> str:
     """A legend label naming the model and its parameters, e.g. ``cook_torrance (m=0.1, G=none)``."""
     shown = ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
-                      for k, v in brdf.params.items() if k != "C")
+                      for k, v in brdf.params.items() if k != "C" and v is not None)
     return f"{brdf.name} ({shown})"
 
 
 def param_columns(brdf) -> dict:
     """The wide parameter columns of ``brdf`` (empty where a parameter does not apply)."""
-    return {c: brdf.params.get(c, "") for c in PARAM_COLUMNS}
+    return {c: "" if brdf.params.get(c) is None else brdf.params[c] for c in PARAM_COLUMNS}
 
 
 def curves(specs, theta_deg, tol) -> pd.DataFrame:
@@ -57,7 +57,7 @@ def plot_curves(df: pd.DataFrame, path, title: str, ymax: float = 3.0) -> None:
     ax_log.invert_xaxis()
     ax_log.set(xlabel="90° − θ_L [deg] (log)", ylabel="albedo (log)")
     fig.suptitle(title, fontsize=9)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="lower left")
     plotting.savefig(fig, path)
 
 
@@ -67,5 +67,6 @@ def figure_title(number: str, df: pd.DataFrame) -> str:
     theta = np.unique(df["theta_deg"])
     step = np.min(np.diff(theta[theta < 80.0]))
     grid = f"step {step:g}° on [0°, 90°) plus {np.sum(theta > 80.0)} points up to 90° − {90.0 - theta[-1]:.0e}°"
-    missing = "" if (df["model"] == "he_torrance").any() else " He–Torrance not drawn (model not yet available)."
+    missing = (" He–Torrance: wavelength lambda_um a choice (the thesis gives none)." if (df["model"] == "he_torrance").any()
+               else " He–Torrance not drawn (model not available).")
     return f"Figure {number}: albedo with F = 1 of {models}.\nIncidence grid (a choice): {grid}.{missing}"
