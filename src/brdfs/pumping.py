@@ -265,7 +265,9 @@ class Pumped(BRDF):
         segments = self.table.segments
         bounds = list(zip(segments[:-1], segments[1:]))
         a_l = self.table(nl)
-        levels = [*self.base.nv_levels(nl), nl, *(self.table.solve(a_l, lo, hi) for lo, hi in bounds)]
+        levels = [*self.base.nv_levels(nl), nl]
+        if len(bounds) > 1:            # a monotone table has the single root a(V) = a(L) at N·V = N·L
+            levels += [self.table.solve(a_l, lo, hi) for lo, hi in bounds]
         levels += list(self.table.edges[1:-1])
         if self.correction == "g2":
             levels += [a_l, *(self.table.solve(nl, lo, hi) for lo, hi in bounds)]
