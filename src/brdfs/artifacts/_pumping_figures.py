@@ -102,12 +102,18 @@ def distance_to_new_model(cfg: dict, df: pd.DataFrame) -> pd.DataFrame:
 def _level_summary(df: pd.DataFrame) -> str:
     """Measured statements for the caption: a(60°) and max L_out/C per level."""
     parts = []
-    for level, g in df[df["model"] != "phong_cosmin"].groupby("level"):
+    curves = df[df["albedo"].notna() | df["radiance"].notna()]
+    for level, g in curves[curves["model"] != "phong_cosmin"].groupby("level"):
         a60 = g.loc[g["theta_deg"] == 60.0, "albedo"]
         peak = (g["radiance"] / g["C"]).max()
-        a60_text = f"a(60°)={a60.iloc[0]:.3f}, " if not a60.empty else ""
-        parts.append(f"k={level}: {a60_text}max L/C={peak:.3f}")
-    return "; ".join(parts)
+        a60_text = f"a(60°)={a60.dropna().iloc[0]:.3f}, " if not a60.dropna().empty else ""
+        parts.append(f"k={int(level)}: {a60_text}max L/C={peak:.3f}")
+    text = "; ".join(parts)
+    if "distance_to_eq_2_22" in df:
+        dist = df.dropna(subset=["distance_to_eq_2_22"])
+        text += "\nmax rel. distance of albedo to eq. 2.22 with c fitted to each level: " + "; ".join(
+            f"k={int(r.level)}: {r.distance_to_eq_2_22:.3f} (c={r.c_fit:.3f})" for r in dist.itertuples())
+    return text
 
 
 def plot_curves(df: pd.DataFrame, path, title: str) -> None:
@@ -117,8 +123,8 @@ def plot_curves(df: pd.DataFrame, path, title: str) -> None:
     for level, g in pumped.groupby("level"):
         a = g[g["albedo"].notna()]
         r = g[g["radiance"].notna()]
-        left.plot(a["theta_deg"], a["albedo"], label=f"level {level}")
-        right.plot(r["theta_deg"], r["radiance"] / r["C"], label=f"level {level}")
+        left.plot(a["theta_deg"], a["albedo"], label=f"level {int(level)}")
+        right.plot(r["theta_deg"], r["radiance"] / r["C"], label=f"level {int(level)}")
     new = df[df["model"] == "phong_cosmin"]
     if not new.empty:
         left.plot(new["theta_deg"], new["albedo"], "k--", label="eq. 2.22, c = (n+2)/2π")

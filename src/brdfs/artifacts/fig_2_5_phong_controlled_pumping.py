@@ -22,4 +22,5 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 def plot(df: pd.DataFrame, path) -> None:
     """Albedo and radiance / C against incidence angle, one curve per level."""
-    shared.plot_curves(df, path, "Fig. 2.5: Controlled pumping-up of the reciprocal Phong model")
+    shared.plot_curves(df, path, "Fig. 2.5: Controlled pumping-up of the reciprocal Phong model "
+                       "(Phong's a(θ) ≥ cos θ, so g2 = g1: the same curves as Fig. 2.3)")
