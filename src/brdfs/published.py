@@ -436,3 +436,17 @@ def explain_with_readings(printed: str, computed: float, readings: dict[str, flo
     return {"reason": f"{context}; no reading tried reproduces the print ({tried}): "
                       f"the printed value is {100 * (float(printed) / computed - 1):+.2g} % off",
             "evidence": evidence}
+
+
+def printed_lookup(artifact: str):
+    """``lookup(param_value, quantity, model=None) -> str``: the printed value of a row of
+    ``artifact`` ('' where the thesis prints none), for tables that show print beside computed."""
+    table = {}
+    for r in published_rows(artifact).itertuples():
+        key = (normalise_param_value(r.param_value), r.quantity)
+        table[key + (r.model,)] = table[key + (None,)] = r.published
+
+    def lookup(param_value, quantity, model=None):
+        return table.get((normalise_param_value(param_value), quantity, model), "")
+
+    return lookup

@@ -45,15 +45,10 @@ def compute(cfg: dict, deps: dict) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    printed = published.published_rows("blinn_cn")
-    shown = df.assign(printed=[_printed(printed, r.model, r.n) for r in df.itertuples()])
+    printed = published.printed_lookup("blinn_cn")
+    shown = df.assign(printed=[printed(r.n, "C_max", r.model) for r in df.itertuples()])
     plotting.save_table_png(shown[["model", "n", "printed", "C", "C_err", "theta_max_deg"]], path,
                             "Table 3.1: maximal C_n of Blinn and Blinn/cos(theta_min), printed and computed")
-
-
-def _printed(printed: pd.DataFrame, model_name: str, n: float) -> str:
-    hit = printed[(printed["model"] == model_name) & (printed["param_value"].astype(float) == n)]
-    return hit["published"].iloc[0] if len(hit) else ""
 
 
 def readings_of(row) -> dict:
@@ -66,11 +61,11 @@ def readings_of(row) -> dict:
 @comparison("blinn_cn", tables=(NAME,))
 def rows(cfg: dict, tables: dict) -> pd.DataFrame:
     df = tables[NAME]
-    prints = published.published_rows("blinn_cn")
+    printed_of = published.printed_lookup("blinn_cn")
     records = []
     for r in df.itertuples():
         rec = {"model": r.model, "param_value": f"{r.n:g}", "quantity": "C_max", "computed": r.C, "computed_err": r.C_err}
-        printed = _printed(prints, r.model, r.n)
+        printed = printed_of(r.n, "C_max", r.model)
         if printed and published.verdict(printed, r.C, r.C_err) == published.DIFFERS:
             context = (f"the maximal albedo (C = 1) is {1 / r.C:.6f} at theta = {r.theta_max_deg:.3g} deg, so C_n = {r.C:.5f}"
                        + (f" (at normal incidence a(0) has the closed form 8π[2(1−2^−(n+4)/2)/(n+4) − (1−2^−(n+2)/2)/(n+2)] "

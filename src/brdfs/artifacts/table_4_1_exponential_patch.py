@@ -81,11 +81,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 def plot(df: pd.DataFrame, path) -> None:
     """Table 4.1 as printed beside the recomputed values."""
-    printed = published.published_rows(ARTIFACT)
-    lookup = {(published.normalise_param_value(r.param_value), r.quantity): r.published for r in printed.itertuples()}
-
-    def shown(s, quantity):
-        return lookup.get((published.normalise_param_value(s), quantity), "")
+    shown = published.printed_lookup(ARTIFACT)
 
     table_df = pd.DataFrame(
         {
