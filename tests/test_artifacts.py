@@ -4,7 +4,6 @@ import pandas as pd
 import pytest
 
 from brdfs import artifacts
-from brdfs.config import load_config
 from brdfs.published import COMPARISON_COLUMNS
 
 
@@ -112,7 +111,7 @@ def test_compute_must_return_a_dataframe(toy_registry):
         artifacts.get_artifact("extra_empty").compute({"seed": 0, "tolerance": {}}, {})
 
 
-def test_compute_all_comparisons_gives_the_merged_comparison():
-    merged = artifacts.compute_all_comparisons(load_config())
+def test_compute_all_comparisons_gives_the_merged_comparison(all_comparisons):
+    merged = all_comparisons
     assert tuple(merged.columns) == COMPARISON_COLUMNS
     assert set(merged["artifact"]) == set(artifacts.comparisons())

@@ -11,7 +11,7 @@ from scipy.integrate import quad
 from brdfs import albedo, albedo_table, model
 from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
 from brdfs.integrate.disk import disk_albedo
-from brdfs.quantities import grazing_albedo_new_model, max_albedo, mean_albedo, phong_mean_albedo
+from brdfs.quantities import grazing_albedo_new_model, max_albedo, mean_albedo, mean_albedo_nested, phong_mean_albedo
 
 
 def assert_honest(est_value, est_error, truth, rel_floor=1e-13):
@@ -56,6 +56,16 @@ def test_mean_albedo_of_phong_matches_closed_form():
     est = mean_albedo([model("phong", n=n) for n in ns], tol=1e-9)
     truth = np.array([phong_mean_albedo(n)[0] for n in ns])
     assert_honest(est.value, est.error, truth)
+
+
+@pytest.mark.parametrize("name", ["phong", "phong_cosmin", "blinn", "blinn_cosmin"])
+def test_mean_albedo_reduction_agrees_with_the_nested_albedo_integration(name):
+    """The 2-D reduction (closed-form azimuth) against ∫ a(θ) 2 cos θ d cos θ over the engine."""
+    models = [model(name, n=n) for n in (2, 32)]
+    reduced = mean_albedo(models, tol=1e-10)
+    nested = mean_albedo_nested(models, tol=1e-9)
+    assert np.all(np.abs(reduced.value - nested.value) <= reduced.error + nested.error)
+    assert np.all(reduced.error <= 2e-10 * reduced.value)
 
 
 @pytest.mark.parametrize("name, params, theta", [

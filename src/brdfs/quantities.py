@@ -7,6 +7,7 @@ import numpy as np
 from .albedo import DEFAULT_ATOL, DEFAULT_RTOL
 from .integrate.gauss_kronrod import Estimate, integrate
 from .integrate.hemisphere import albedo_many
+from .integrate.mean import mean_albedo_lobe
 
 _GOLD = (np.sqrt(5.0) - 1.0) / 2.0
 
@@ -59,14 +60,42 @@ def maximal_constant(models, tol=None):
 
 
 def mean_albedo(models, tol=None):
-    """A = (1/π) ∫ a(L) cos θ_L dω_L = ∫₀¹ a(θ(v)) 2v dv with v = cos θ_L  (eq. 1.20 / 3.37).
+    """A = (1/π) ∫ a(L) cos θ_L dω_L  (eq. 1.20 / 3.37) for each model.
+
+    The cosine-lobe models (reciprocal Phong, the new model, Blinn, corrected Blinn) take the
+    two-dimensional reduction of :mod:`brdfs.integrate.mean`; any other model the nested
+    integration of its albedo, :func:`mean_albedo_nested`.
+    """
+    rtol = tol or DEFAULT_RTOL
+    models = list(models)
+    lobe_models = [_lobe_reduction(m) for m in models]
+    if any(r is None for r in lobe_models):
+        return mean_albedo_nested(models, rtol)
+    value, error = np.empty(len(models)), np.empty(len(models))
+    for key in set(lobe_models):
+        idx = [i for i, r in enumerate(lobe_models) if r == key]
+        est = mean_albedo_lobe([models[i].n for i in idx], [models[i].C for i in idx], *key,
+                               rtol=rtol, atol=DEFAULT_ATOL)
+        value[idx], error[idx] = est.value, est.error
+    return Estimate(value, error)
+
+
+def _lobe_reduction(brdf):
+    """(frame, cosmin) of the models :func:`mean_albedo_lobe` covers, else None."""
+    from .models.blinn import Blinn, BlinnCosmin
+    from .models.phong import Phong, PhongCosmin
+    # exact types: a pumped model reports its base model's name but is not a cosine lobe
+    return {Phong: ("mirror", False), PhongCosmin: ("mirror", True),
+            Blinn: ("half", False), BlinnCosmin: ("half", True)}.get(type(brdf))
+
+
+def mean_albedo_nested(models, tol=None):
+    """A = ∫₀¹ a(θ(v)) 2v dv with v = cos θ_L, the albedo from the engine at every node.
 
     The variable v = cos θ (not cos²θ) keeps the integrand smooth at grazing incidence, where
-    the albedo of the Phong family varies linearly in cos θ.
-
-    One nested adaptive integration for all models: the outer Gauss–Kronrod rule in u calls
-    the albedo engine at all its nodes at once, and the inner albedo errors are carried as
-    known errors of the integrand.
+    the albedo of the Phong family varies linearly in cos θ.  One nested adaptive integration
+    for all models: the outer Gauss–Kronrod rule in v calls the albedo engine at all its nodes
+    at once, and the inner albedo errors are carried as known errors of the integrand.
     """
     rtol = tol or DEFAULT_RTOL
     models = list(models)

@@ -22,6 +22,23 @@ from .gauss_kronrod import Estimate
 _DECADES = 10.0 ** -np.arange(8, 0, -1)
 
 
+def _integrated(errors):
+    """∫ err(ψ) dψ of the rays' own error estimates, by the trapezoid rule over the sampled ψ
+    (quad samples densely wherever the rays are hard); π · max err overstated it 100-fold."""
+    psi, err = np.array(sorted(errors)).T
+    return float(np.sum(0.5 * (err[1:] + err[:-1]) * np.diff(psi)))
+
+
+def _tangent_points(mu):
+    """ψ breakpoints around the ray tangent to the rim (ψ = π/2).  Near grazing the centre c lies
+    within 1 − sin θ of the rim, and the ray length ρ(ψ) changes from ~cos²θ to ~2 over
+    |ψ − π/2| ~ cos θ; without points there quad's error estimate missed a 4e-10 relative bias
+    of corrected Ward at 89.99° (checked against a Cartesian integration over the disk)."""
+    offsets = mu * 10.0 ** np.arange(-2, 4)
+    pts = np.concatenate([np.pi / 2 - offsets, [np.pi / 2], np.pi / 2 + offsets])
+    return sorted(p for p in pts if 0 < p < np.pi)
+
+
 def disk_albedo(model, theta_deg, rtol=1e-11):
     """a(θ) by nested adaptive quadrature over the projected disk; returns a scalar Estimate."""
     st, mu = float(sin_incidence(theta_deg)), float(cos_incidence(theta_deg))
@@ -46,10 +63,10 @@ def disk_albedo(model, theta_deg, rtol=1e-11):
         pts = sorted({float(np.sqrt(1 - x)) for x in _DECADES} |
                      ({float(np.sqrt(1 - kink / rho))} if 0 < kink < rho else set()))
         val, err = quad(integrand, 0.0, 1.0, points=pts, epsabs=0, epsrel=rtol, limit=400)
-        errors.append(err)
+        errors.append((psi, err))
         return val
 
     val, err_outer = quad(ray, 0.0, np.pi, epsabs=0, epsrel=rtol, limit=400,
-                          points=[np.pi / 2])
-    inner = np.pi * max(errors) if errors else 0.0
+                          points=_tangent_points(mu))
+    inner = _integrated(errors)
     return Estimate(np.array(2 * val), np.array(2 * (err_outer + inner)))

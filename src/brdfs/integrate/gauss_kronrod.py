@@ -55,6 +55,10 @@ SAFETY = 2.0
 # Splits without gain before an interval is frozen; 3 froze resolvable intervals of pumped Blinn
 # models (a smooth but poorly resolved start looks like a jump three splits running).
 STALL_LIMIT = 5
+# A split whose error stays in one half (≥ this share) has localised a feature — a boundary layer
+# narrower than the interval (blinn_cosmin, n = 1, near 90°: a layer 1e-6 wide in t) or a jump —
+# and does not count as a stall: bisection resolves the layer or narrows the jump to rounding width.
+LOCALISED = 0.9
 
 
 @dataclass(frozen=True)
@@ -113,9 +117,11 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     Globally adaptive, as QUADPACK's qag, but batched: every round, in each element that has
     not met its tolerance, the intervals whose error is within a factor 8 of that element's
     largest are bisected, and all new intervals of all elements are evaluated in one call.
-    An interval whose halves together keep ≥ 80 % of its error three times running is frozen:
-    its error is set by something splitting cannot remove (the accuracy of an inner integral,
-    a jump), and it stays in the reported error.
+    An interval whose halves together keep ≥ 80 % of its error, spread over both halves,
+    ``STALL_LIMIT`` times running is frozen: its error is set by something splitting cannot
+    remove (the accuracy of an inner integral), and it stays in the reported error.  Error that
+    stays in one half is a localised feature (a boundary layer, a jump) and is split further,
+    down to rounding width.
     """
     bp = np.atleast_2d(np.asarray(breakpoints, float))
     n_el = bp.shape[0]
@@ -143,7 +149,9 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         c_lo, c_hi = np.concatenate([lo[split], mid]), np.concatenate([mid, hi[split]])
         c_vals = np.stack(_evaluate(integrand, c_elem, c_lo, c_hi, chunk))
         c_err = np.abs(c_vals[0] - c_vals[1])
-        stalled = np.tile(c_err[:k] + c_err[k:] > 0.8 * err[split], 2)
+        kept = c_err[:k] + c_err[k:]
+        localised = np.maximum(c_err[:k], c_err[k:]) >= LOCALISED * kept
+        stalled = np.tile((kept > 0.8 * err[split]) & ~localised, 2)
         c_stalls = np.where(stalled, np.tile(stalls[split], 2) + 1, 0)
         keep = ~split
         elem = np.concatenate([elem[keep], c_elem])

@@ -30,6 +30,7 @@ _U = 0.5 * (NODES + 1.0)            # Kronrod nodes on [0, 1]
 _WK = 0.5 * KRONROD_WEIGHTS
 _WG = 0.5 * GAUSS_WEIGHTS
 SUBPIECES = 2
+_EPS = np.finfo(float).eps
 
 
 def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
@@ -47,11 +48,13 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     def integrand(t, elem):
         high = np.empty_like(t)
         low = np.empty_like(t)
+        rounding = np.empty_like(t)     # the lobe's evaluation error, which no rule refines away
         for k in np.unique(index[elem]):
             rows = index[elem] == k
             e = elem[rows]
             high[rows], low[rows] = _azimuthal(models[k], t[rows], mu[e, None], st[e, None])
-        return high, low, None
+            rounding[rows] = models[k].lobe.rounding * _EPS * np.abs(high[rows])
+        return high, low, rounding
 
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=192)
 

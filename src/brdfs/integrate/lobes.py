@@ -23,6 +23,11 @@ class PowerCosine:
     n: float
     frame: str
 
+    @property
+    def rounding(self):
+        """Relative rounding error of the weight, in ulps: cos β carries ~1 ulp, cos^n β n of them."""
+        return self.n + 1.0
+
     def angle(self, t):
         """(cos β, sin β) at t, computed without cancellation for small β."""
         y = np.log1p(-t) / (self.n + 1.0)
@@ -46,6 +51,8 @@ class Beckmann:
 
     m: float
     frame: str = "half"
+    # exp(−x) carries x ulps of the rounding of x; the weight matters up to x ≈ ln(1/ε) ≈ 36.
+    rounding = 40.0
 
     def angle(self, t):
         tan_b = self.m * np.sqrt(-np.log1p(-t))
