@@ -15,6 +15,8 @@ def test_registered_artifacts_and_their_paths():
     assert "src/brdfs/artifacts/table_1_2_metal_reflectance.py" in table.sources
     assert "src/brdfs/artifacts/extra_metal_a0_readings.py" not in table.sources
     assert "src/brdfs/fresnel.py" in table.sources
+    assert "src/brdfs/artifacts/_pumping_figures.py" in table.sources      # shared helpers are code inputs
+    assert "src/brdfs/artifacts/__init__.py" in table.sources
     check = artifacts.get_comparison("metal_a0")
     assert check.fragment_csv == "results/checks/published/metal_a0.csv"
 

@@ -12,12 +12,15 @@ from .integrate.mean import mean_albedo_lobe
 _GOLD = (np.sqrt(5.0) - 1.0) / 2.0
 
 
-def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-7):
-    """max over θ ∈ [0°, 90°] of a(θ) for each model, and where it is attained.
+def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.0, grid_values=None):
+    """max over θ ∈ [0°, theta_max_deg] of a(θ) for each model, and where it is attained.
 
     A grid of step ``grid_deg`` brackets the maximum; a golden-section search, run for all
     models at once, then shrinks each bracket to ``xtol_deg``.  The maximum need not lie at
-    normal incidence (Table 1.1: corrected Blinn with small n).
+    normal incidence (Table 1.1: corrected Blinn with small n).  At an interior maximum a
+    bracket of 1e-5° moves a by ~a''·1e-14: the default resolves the value, not just the angle.
+    ``grid_values`` (models × grid points), when the caller has the grid already, saves its
+    recomputation.
 
     Returns
     -------
@@ -27,9 +30,10 @@ def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-7):
     """
     rtol = tol or DEFAULT_RTOL
     models = list(models)
-    grid = np.arange(0.0, 90.0 + 1e-9, grid_deg)
-    coarse = albedo_many([m for m in models for _ in grid], np.tile(grid, len(models)), rtol=1e-8)
-    best = np.nanargmax(coarse.value.reshape(len(models), grid.size), axis=1)
+    grid = np.append(np.arange(0.0, theta_max_deg, grid_deg), theta_max_deg)
+    if grid_values is None:
+        grid_values = albedo_many([m for m in models for _ in grid], np.tile(grid, len(models)), rtol=1e-8).value
+    best = np.nanargmax(np.reshape(grid_values, (len(models), grid.size)), axis=1)
     lo = grid[np.maximum(best - 1, 0)]
     hi = grid[np.minimum(best + 1, grid.size - 1)]
     value = lambda th: albedo_many(models, th, rtol=rtol, atol=DEFAULT_ATOL).value
@@ -43,19 +47,20 @@ def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-7):
         f_new = value(np.where(left, new_x1, new_x2))
         f1, f2 = np.where(left, f_new, f2), np.where(left, f1, f_new)
         x1, x2 = new_x1, new_x2
-    theta = 0.5 * (lo + hi)
-    est = albedo_many(models * 3, np.concatenate([theta, lo, hi]), rtol=rtol, atol=DEFAULT_ATOL)
-    n = len(models)
-    a, a_lo, a_hi = est.value[:n], est.value[n:2 * n], est.value[2 * n:]
-    bracket = np.abs(a - np.minimum(a_lo, a_hi))
-    return Estimate(a, est.error[:n] + bracket), theta
+    points = np.stack([0.5 * (lo + hi), lo, hi])           # (3, models): centre and bracket ends
+    est = albedo_many(models * 3, points.ravel(), rtol=rtol, atol=DEFAULT_ATOL)
+    values, errors = est.value.reshape(3, -1), est.error.reshape(3, -1)
+    pick = np.argmax(values, axis=0)     # an end wins at a boundary maximum (θ = 0 exactly)
+    cols = np.arange(len(models))
+    bracket = values[pick, cols] - values[1:].min(axis=0)
+    return Estimate(values[pick, cols], errors[pick, cols] + bracket), points[pick, cols]
 
 
-def maximal_constant(models, tol=None):
+def maximal_constant(models, tol=None, **search):
     """C_max = 1 / max_θ a(θ) of models evaluated with C = 1 (Tables 1.1, 3.1, 3.2).
 
     Returns (Estimate of C_max, angle of the maximal albedo in degrees)."""
-    amax, theta = max_albedo(models, tol)
+    amax, theta = max_albedo(models, tol, **search)
     return Estimate(1.0 / amax.value, amax.error / amax.value ** 2), theta
 
 

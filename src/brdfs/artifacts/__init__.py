@@ -67,13 +67,14 @@ def config_subset(cfg: dict, sections: Iterable[str]) -> dict:
 def _sources_of(fn: Callable) -> list[str]:
     """The source files ``fn``'s results can depend on, relative to the repository root.
 
-    That is the module defining ``fn`` and every module of the package outside
-    this subpackage (artifacts exchange numbers only through their CSVs).
+    That is the module defining ``fn``, every module of the package outside this subpackage
+    and the subpackage's private helper modules (``_*.py``, shared by several artifacts);
+    artifacts exchange numbers only through their CSVs, so other artifact modules are not in.
     """
-    package = Path(__file__).resolve().parents[1]
+    here = Path(__file__).resolve().parent
     own = Path(inspect.getsourcefile(fn)).resolve()
-    shared = [p for p in package.rglob("*.py") if p.parent != Path(__file__).parent]
-    return sorted(p.relative_to(io.REPO_ROOT).as_posix() for p in {own, Path(__file__).resolve(), *shared})
+    shared = [p for p in here.parent.rglob("*.py") if p.parent != here or p.name.startswith("_")]
+    return sorted(p.relative_to(io.REPO_ROOT).as_posix() for p in {own, *shared})
 
 
 @dataclass(frozen=True)

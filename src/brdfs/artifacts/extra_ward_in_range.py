@@ -5,44 +5,27 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import minimize_scalar
 
 from brdfs import plotting, published
-from brdfs.albedo import albedo
 from brdfs.artifacts import comparison, get_artifact, table
 from brdfs.models import model
+from brdfs.quantities import max_albedo
 
 ARTIFACT = "ward_in_range"
 GRID_STEP_DEG = 0.25
 
 
-def max_albedo_on(brdf, theta_max, tol) -> tuple[float, float, float]:
-    """max of a(θ) on [0, theta_max]: a grid bracket refined by a bounded scalar search.
-
-    The error adds the albedo error and the variation of a across the final tolerance in θ.
-    """
-    grid = np.append(np.arange(0.0, theta_max, GRID_STEP_DEG), theta_max)
-    coarse = albedo(brdf, grid, tol["rtol"], tol["atol"]).value
-    i = int(np.argmax(coarse))
-    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-    res = minimize_scalar(lambda t: -float(albedo(brdf, t, tol["rtol"], tol["atol"]).value),
-                          bounds=(lo, hi), method="bounded", options={"xatol": 1e-7})
-    best = res.x if -res.fun > coarse[i] else grid[i]
-    est = albedo(brdf, [best, max(best - 1e-7, 0.0), min(best + 1e-7, theta_max)], tol["rtol"], tol["atol"])
-    spread = float(np.max(np.abs(est.value - est.value[0])))
-    return float(est.value[0]), float(est.error.max()) + spread, float(best)
-
-
 @table("extra_ward_in_range", config=("grazing",))
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """Columns ``model, m, C, theta_max_deg, max_albedo, max_albedo_err, theta_at_max_deg``."""
+    """Columns ``model, m, C, theta_max_deg, max_albedo, max_albedo_err, theta_at_max_deg``.
+
+    The maximum over [0°, theta_max] by :func:`brdfs.quantities.max_albedo` on a 0.25° bracket grid."""
     w = cfg["grazing"]["ward_in_range"]
-    records = []
-    for m in w["m_values"]:
-        value, err, at = max_albedo_on(model("ward", m=m), w["theta_max_deg"], cfg["tolerance"])
-        records.append({"model": "ward", "m": m, "C": 1.0, "theta_max_deg": w["theta_max_deg"],
-                        "max_albedo": value, "max_albedo_err": err, "theta_at_max_deg": at})
-    return pd.DataFrame.from_records(records)
+    ms = [float(m) for m in w["m_values"]]
+    amax, at = max_albedo([model("ward", m=m) for m in ms], cfg["tolerance"]["rtol"], grid_deg=GRID_STEP_DEG,
+                          theta_max_deg=w["theta_max_deg"])
+    return pd.DataFrame({"model": "ward", "m": ms, "C": 1.0, "theta_max_deg": w["theta_max_deg"],
+                         "max_albedo": amax.value, "max_albedo_err": amax.error, "theta_at_max_deg": at})
 
 
 def plot(df: pd.DataFrame, path) -> None:

@@ -19,6 +19,7 @@ from brdfs.quantities import maximal_constant
 NAME = "table_3_1_blinn_constants"
 MODELS = ("blinn", "blinn_cosmin")
 GRID_STEPS_DEG = (1, 5, 10, 15, 30)
+READINGS_RTOL = 1e-7     # the grid readings are compared with 4–6 printed digits
 
 
 def blinn_normal_incidence_albedo(n):
@@ -33,9 +34,9 @@ def blinn_normal_incidence_albedo(n):
 def compute(cfg: dict, deps: dict) -> pd.DataFrame:
     ns = [float(n) for n in cfg["blinn_cn"]["n"]]
     models = [model(name, n=n) for name in MODELS for n in ns]
-    C, theta = maximal_constant(models, cfg["tolerance"]["rtol"])
     grid = np.arange(0.0, 90.0 + 1e-9, 1.0)
-    on_grid = albedo_table(models, grid, tol=1e-9).value
+    on_grid = albedo_table(models, grid, tol=READINGS_RTOL).value        # brackets the maximum too
+    C, theta = maximal_constant(models, cfg["tolerance"]["rtol"], grid_deg=1.0, grid_values=on_grid)
     df = pd.DataFrame({"model": np.repeat(MODELS, len(ns)), "n": np.tile(ns, len(MODELS)),
                        "C": C.value, "C_err": C.error, "theta_max_deg": theta,
                        "C_normal_incidence": 1 / on_grid[:, 0]})

@@ -34,8 +34,8 @@ def compute(cfg: dict, deps: dict) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    prints = published.published_rows("ward_cmax").set_index("param_value")["published"]
-    shown = df.assign(printed=[prints.get(f"{m:g}", "") for m in df["m"]])
+    printed = published.printed_lookup("ward_cmax")
+    shown = df.assign(printed=[printed(m, "C_max") for m in df["m"]])
     plotting.save_table_png(shown[["m", "printed", "C", "C_err", "theta_max_deg", "C_normal_incidence_closed_form"]],
                             path, "Table 3.2: C_max of the corrected Ward model, printed and computed")
 
@@ -43,11 +43,11 @@ def plot(df: pd.DataFrame, path) -> None:
 @comparison("ward_cmax", tables=(NAME,))
 def rows(cfg: dict, tables: dict) -> pd.DataFrame:
     df = tables[NAME]
-    prints = published.published_rows("ward_cmax").set_index("param_value")["published"]
+    printed_of = published.printed_lookup("ward_cmax")
     records = []
     for r in df.itertuples():
         rec = {"model": "ward_cosmin", "param_value": f"{r.m:g}", "quantity": "C_max", "computed": r.C, "computed_err": r.C_err}
-        printed = prints.get(f"{r.m:g}")
+        printed = printed_of(r.m, "C_max")
         if printed and published.verdict(printed, r.C, r.C_err) == published.DIFFERS:
             context = (f"the albedo is maximal at theta = {r.theta_max_deg:.2g} deg; the closed form a(0) = "
                        f"(1/m²)∫₀¹e^(−s/m²)(1−s)/(1+s)³ds gives C_max = {r.C_normal_incidence_closed_form:.6f} "

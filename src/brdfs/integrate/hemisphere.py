@@ -136,13 +136,17 @@ def _split_pieces(cuts, k):
 def _directions(frame, cb, sb, mu, st, phi):
     """V at azimuth φ (m, 21, P, 21) on the circle of radius β; returns V and the extra Jacobian."""
     cb, sb, mu, st = (x[..., None, None] for x in (cb, sb, mu, st))
-    cp, sp = np.cos(phi), np.sin(phi)
+    sin_cos, sin_sin = sb * np.cos(phi), sb * np.sin(phi)
+    V = np.empty(phi.shape + (3,))
     if frame == "mirror":
         # V = cos α R + sin α (cos φ i + sin φ j), R = (−sin θ, 0, cos θ), i = (cos θ, 0, sin θ)
-        V = np.stack([-cb * st + sb * cp * mu, sb * sp, cb * mu + sb * cp * st], -1)
+        V[..., 0] = sin_cos * mu - cb * st
+        V[..., 1] = sin_sin
+        V[..., 2] = cb * mu + sin_cos * st
         return V, 1.0
-    H = np.stack(np.broadcast_arrays(sb * cp, sb * sp, cb), -1)
-    lh = st * sb * cp + mu * cb
-    L = np.stack(np.broadcast_arrays(st, 0.0 * st, mu), -1)
-    V = 2 * lh[..., None] * H - L
+    # V = 2 (L·H) H − L, H = (sin δ cos φ, sin δ sin φ, cos δ)
+    lh = st * sin_cos + mu * cb
+    V[..., 0] = 2 * lh * sin_cos - st
+    V[..., 1] = 2 * lh * sin_sin
+    V[..., 2] = 2 * lh * cb - mu
     return V, 4 * lh
