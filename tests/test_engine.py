@@ -71,8 +71,7 @@ def test_mean_albedo_reduction_agrees_with_the_nested_albedo_integration(name):
 @pytest.mark.parametrize("name, params, theta", [
     ("phong_cosmin", {"n": 512}, 89.9995),
     ("phong", {"n": 512}, 89.9995),
-    ("ward", {"m": 0.1}, 89.9995),
-    ("ward_cosmin", {"m": 0.005}, 89.9995),
+    ("ward_cosmin", {"m": 0.005}, 89.9995),     # Ward itself: test_grazing, at 89.9999°
     ("blinn", {"n": 512}, 89.9995),
     ("cook_torrance", {"m": 0.1}, 89.9),
 ])
