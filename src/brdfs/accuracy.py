@@ -24,10 +24,11 @@ import numpy as np
 from scipy.integrate import IntegrationWarning, dblquad
 
 from .albedo import DEFAULT_ATOL
-from .geometry import cos_incidence, sin_incidence
-from .grazing import ward_cosmin_limit
+from .geometry import light_direction
+from .grazing import monte_carlo_albedo, ward_cosmin_limit
 from .integrate.hemisphere import albedo_many
 from .models import model
+from .quantities import grazing_albedo_new_model
 
 
 @dataclass(frozen=True)
@@ -40,7 +41,7 @@ class Case:
         if self.model == "phong":
             return 1.0                                            # eq. 3.6
         if self.model == "phong_cosmin":
-            return (value + 2.0) / (2.0 * (value + 1.0))          # eq. 3.27
+            return float(grazing_albedo_new_model(value))        # eq. 3.27
         return float(ward_cosmin_limit(value).value)
 
 
@@ -68,10 +69,6 @@ class CountingBRDF:
         return self.brdf(L, V)
 
 
-def light(theta_deg):
-    return np.array([float(sin_incidence(theta_deg)), 0.0, float(cos_incidence(theta_deg))])
-
-
 def engine(brdf, theta_deg, rtol):
     counted = CountingBRDF(brdf)
     est = albedo_many([counted], [theta_deg], rtol=rtol, atol=DEFAULT_ATOL)
@@ -93,13 +90,13 @@ def _grid_sum(brdf, theta_deg, n):
     U, P = np.meshgrid(u, phi, indexing="ij")
     s = np.sqrt((1 - U) * (1 + U))
     V = np.stack([s * np.cos(P), s * np.sin(P), U], -1)
-    f = brdf(light(theta_deg), V)
+    f = brdf(light_direction(theta_deg), V)
     return float(2 * np.einsum("i,j,ij->", wu, wphi, f * U))
 
 
 def scipy_dblquad(brdf, theta_deg, epsrel):
     counted = CountingBRDF(brdf)
-    L = light(theta_deg)
+    L = light_direction(theta_deg)
 
     def integrand(phi, theta):
         st = np.sin(theta)
@@ -111,13 +108,10 @@ def scipy_dblquad(brdf, theta_deg, epsrel):
     return 2 * value, 2 * err, counted.count
 
 
-def monte_carlo(brdf, theta_deg, n, rng):
-    """Cosine-weighted V: a = E[π f]."""
-    u1, u2 = rng.random(n), rng.random(n)
-    r = np.sqrt(u1)
-    V = np.stack([r * np.cos(2 * np.pi * u2), r * np.sin(2 * np.pi * u2), np.sqrt(1 - u1)], -1)
-    g = np.pi * brdf(light(theta_deg), V)
-    return float(g.mean()), float(g.std(ddof=1) / np.sqrt(n)), n
+def monte_carlo(brdf, theta_deg, n, seed_sequence):
+    """Cosine-weighted sampling of V (:func:`brdfs.grazing.monte_carlo_albedo`); error = standard error."""
+    est, stderr = monte_carlo_albedo(brdf, theta_deg, "cosine", n, seed_sequence)
+    return float(est.value), float(stderr), n
 
 
 def accuracy_cost(cases, engine_rtol, grid_n, dblquad_epsrel, mc_samples, seed):
@@ -131,8 +125,7 @@ def accuracy_cost(cases, engine_rtol, grid_n, dblquad_epsrel, mc_samples, seed):
         runs = ([("engine", r, engine(brdf, case.theta_deg, r)) for r in engine_rtol]
                 + [("product_grid", n, product_grid(brdf, case.theta_deg, n)) for n in grid_n]
                 + [("dblquad", e, scipy_dblquad(brdf, case.theta_deg, e)) for e in dblquad_epsrel])
-        rng = np.random.default_rng([seed, k])
-        runs += [("monte_carlo", n, monte_carlo(brdf, case.theta_deg, n, rng)) for n in mc_samples]
+        runs += [("monte_carlo", n, monte_carlo(brdf, case.theta_deg, n, [seed, k, n])) for n in mc_samples]
         for method, setting, (v, err, count) in runs:
             rows.append({"case": spec["case"], "model": case.model, "parameter": case.parameter,
                          "parameter_value": value, "theta_deg": case.theta_deg, "method": method,

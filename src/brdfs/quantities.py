@@ -8,6 +8,8 @@ from .albedo import DEFAULT_ATOL, DEFAULT_RTOL
 from .integrate.gauss_kronrod import Estimate, integrate
 from .integrate.hemisphere import albedo_many
 from .integrate.mean import mean_albedo_lobe
+from .models.blinn import Blinn, BlinnCosmin
+from .models.phong import Phong, PhongCosmin
 
 _GOLD = (np.sqrt(5.0) - 1.0) / 2.0
 
@@ -87,8 +89,6 @@ def mean_albedo(models, tol=None):
 
 def _lobe_reduction(brdf):
     """(frame, cosmin) of the models :func:`mean_albedo_lobe` covers, else None."""
-    from .models.blinn import Blinn, BlinnCosmin
-    from .models.phong import Phong, PhongCosmin
     # exact types: a pumped model reports its base model's name but is not a cosine lobe
     return {Phong: ("mirror", False), PhongCosmin: ("mirror", True),
             Blinn: ("half", False), BlinnCosmin: ("half", True)}.get(type(brdf))

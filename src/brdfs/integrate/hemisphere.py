@@ -37,9 +37,10 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     """Albedo of ``models[i]`` at ``theta_deg[i]`` for every i, in one adaptive run."""
     theta_deg = np.asarray(theta_deg, float).ravel()
     models = list(models)
-    index = np.array([models.index(m) for m in models]) if len(models) == len(theta_deg) else None
-    if index is None:
+    if len(models) != theta_deg.size:
         raise ValueError("albedo_many needs one model per angle")
+    first = {}                       # the same model object at many angles is evaluated together
+    index = np.array([first.setdefault(id(m), i) for i, m in enumerate(models)])
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     rows = [_radial_breakpoints(models[i], mu[i], st[i], theta_deg[i]) for i in range(len(models))]
     width = max(r.size for r in rows)

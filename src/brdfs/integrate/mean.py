@@ -47,9 +47,9 @@ def mean_albedo_lobe(n, C, frame, cosmin, rtol=1e-10, atol=1e-14):
 
 
 def _inner_integrals(inner, beta, cosmin, rtol, atol):
-    kinks = np.pi / 2 - beta if inner is _half_inner else np.stack([np.pi / 2 - beta, np.pi / 2 - beta / 2], 1)
-    bp = np.column_stack([np.zeros_like(beta), np.sort(np.atleast_2d(kinks.T).T, axis=1),
-                          np.full_like(beta, np.pi / 2)])
+    # half frame: α = π/2 − δ; mirror frame: θ = π/2 − α and π/2 − α/2 (ascending)
+    kinks = [np.pi / 2 - beta] if inner is _half_inner else [np.pi / 2 - beta, np.pi / 2 - beta / 2]
+    bp = np.column_stack([np.zeros_like(beta), *kinks, np.full_like(beta, np.pi / 2)])
     return integrate(lambda x, e: inner(beta[e, None], x, cosmin), bp, rtol=rtol, atol=atol)
 
 
