@@ -25,7 +25,7 @@ benchmark: $(STAMP)
 
 # Re-record the regression baseline after a deliberate, reviewed change of numbers.
 baseline: $(STAMP)
-	$(BIN)/python -m brdfs.regression --write tests/data/regression_baseline.csv
+	$(BIN)/python -m brdfs.pipeline.regression --write tests/data/regression_baseline.csv
 
 clean:
 	rm -rf results .snakemake

@@ -1,30 +1,18 @@
 # Recomputes the tables and figures of Neumann (2001), "Constructions of BRDFs".
-# Layout and contract: README.md. Run `make all` (or plain `snakemake`).
-from pathlib import Path
-
-from snakemake.utils import validate
+# Every rule is derived from the artifact registry (brdfs.pipeline.registry); README.md
+# explains the layout. Run `make all` (or plain `snakemake`).
 
 
 configfile: "config.yaml"
 
 
-validate(config, "workflow/schemas/config.schema.yaml")
-
-
-# common.smk first (target lists and helpers), then every other rules file.
 include: "workflow/rules/common.smk"
-
-
-for rules_file in sorted(Path(workflow.basedir, "workflow", "rules").glob("*.smk")):
-    if rules_file.name != "common.smk":
-
-        include: str(rules_file)
-
-
-check_targets()
+include: "workflow/rules/artifacts.smk"
+include: "workflow/rules/checks.smk"
 
 
 rule all:
     default_target: True
     input:
-        ALL_TARGETS,
+        ARTIFACT_OUTPUTS,
+        COMPARISON,

@@ -7,8 +7,8 @@ import time
 
 import yaml
 
-from brdfs import artifacts
-from brdfs.io import REPO_ROOT
+from brdfs.pipeline import registry as artifacts
+from brdfs.pipeline.io import REPO_ROOT
 
 TABLES = ["table_1_2_metal_reflectance", "table_3_1_blinn_constants", "table_1_1_blinn_constants",
           "table_3_2_ward_cmax", "table_3_3_mean_albedo", "extra_chapter3_claims"]

@@ -1,8 +1,8 @@
 """Fixtures shared across test modules."""
 import pytest
 
-from brdfs.artifacts import compute_all_comparisons
-from brdfs.config import load_config
+from brdfs.pipeline.registry import compute_all_comparisons
+from brdfs.pipeline.config import load_config
 
 
 @pytest.fixture(scope="session")

@@ -4,7 +4,7 @@ import pandas as pd
 import pytest
 
 from brdfs import model
-from brdfs.accuracy import CASES, CountingBRDF, accuracy_cost, engine, monte_carlo, product_grid
+from brdfs.artifacts._accuracy import CASES, CountingBRDF, accuracy_cost, engine, monte_carlo, product_grid
 
 SMALL = dict(engine_rtol=[1e-4, 1e-8, 1e-11], grid_n=[16, 64], dblquad_epsrel=[1e-3], mc_samples=[1000], seed=7)
 ALL_CASES = [{"case": "phong_normal_incidence", "n": 512}, {"case": "new_model_at_90", "n": 20},

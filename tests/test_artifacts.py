@@ -3,8 +3,8 @@
 import pandas as pd
 import pytest
 
-from brdfs import artifacts
-from brdfs.published import COMPARISON_COLUMNS
+from brdfs.pipeline import registry as artifacts
+from brdfs.pipeline.published import COMPARISON_COLUMNS
 
 
 def test_registered_artifacts_and_their_paths():
@@ -14,9 +14,13 @@ def test_registered_artifacts_and_their_paths():
     assert table.png == "results/tables/table_1_2_metal_reflectance.png"
     assert "src/brdfs/artifacts/table_1_2_metal_reflectance.py" in table.sources
     assert "src/brdfs/artifacts/extra_metal_a0_readings.py" not in table.sources
-    assert "src/brdfs/fresnel.py" in table.sources
-    assert "src/brdfs/artifacts/_pumping_figures.py" in table.sources      # shared helpers are code inputs
-    assert "src/brdfs/artifacts/__init__.py" in table.sources
+    assert "src/brdfs/physics/fresnel.py" in table.sources                  # imported, transitively
+    assert "src/brdfs/artifacts/_pumping_figures.py" not in table.sources  # not imported
+    readings = artifacts.get_artifact("extra_metal_a0_readings")
+    assert "src/brdfs/artifacts/table_1_2_metal_reflectance.py" in readings.sources  # a sibling it imports
+    pumping = artifacts.get_artifact("fig_2_3_phong_pumping")
+    assert "src/brdfs/artifacts/_pumping_figures.py" in pumping.sources
+    assert "src/brdfs/numerics/pumping.py" in pumping.sources
     check = artifacts.get_comparison("metal_a0")
     assert check.fragment_csv == "results/checks/published/metal_a0.csv"
 

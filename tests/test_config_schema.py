@@ -11,8 +11,8 @@ import jsonschema
 import pytest
 import yaml
 
-from brdfs.config import CONFIG_YAML, load_config, validate_config
-from brdfs.io import REPO_ROOT
+from brdfs.pipeline.config import CONFIG_YAML, load_config, validate_config
+from brdfs.pipeline.io import REPO_ROOT
 
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
 

@@ -5,7 +5,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from brdfs import fresnel
+from brdfs.physics import fresnel
 
 INDICES = [(0.93, 6.33), (0.331, 2.324), (2.97, 4.58), (1.5, 0.0), (1.0001, 0.0), (0.2, 0.0), (3.0, 30.0)]
 

@@ -8,13 +8,14 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import beta, gamma, hyperu
 
-from brdfs import albedo, model
-from brdfs.albedo_curves import build
-from brdfs.geometry import cos_incidence
-from brdfs.grazing import (NORMALISATION_FACTORS, SmithGrazingLimit, approach_angles, asymptotic_law,
+from brdfs import model
+from brdfs.numerics import albedo
+from brdfs.artifacts._albedo_curves import build
+from brdfs.physics.geometry import cos_incidence
+from brdfs.numerics.grazing import (NORMALISATION_FACTORS, SmithGrazingLimit, approach_angles, asymptotic_law,
                            grid_albedo, incidence_grid, monte_carlo_albedo, ward_constant, ward_cosmin_limit)
-from brdfs.integrate.disk import disk_albedo
-from brdfs.models import MODELS
+from brdfs.numerics.integrate.disk import disk_albedo
+from brdfs.physics.models import MODELS
 
 M = 0.1
 

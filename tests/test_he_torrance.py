@@ -9,9 +9,10 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import erfc, gammaln
 
-from brdfs import albedo, model
-from brdfs.geometry import direction
-from brdfs.models.he_torrance import (
+from brdfs import model
+from brdfs.numerics import albedo
+from brdfs.physics.geometry import direction
+from brdfs.physics.models.he_torrance import (
     HeTorrance,
     effective_roughness,
     kirchhoff_series,
@@ -254,9 +255,9 @@ def test_energy_closure_at_normal_incidence(lam, low, high):
 # --- artifacts ----------------------------------------------------------------------------------
 
 def test_figure_3_3_calibration_and_lobes():
-    from brdfs.artifacts import get_artifact
+    from brdfs.pipeline.registry import get_artifact
     from brdfs.artifacts.fig_3_3_specular_lobes import NORMAL, lobe_models
-    from brdfs.config import load_config
+    from brdfs.pipeline.config import load_config
 
     cfg = load_config()
     df = get_artifact("fig_3_3_specular_lobes").compute(cfg, {})

@@ -4,7 +4,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from brdfs import io, plotting
+from brdfs.pipeline import io
+from brdfs.pipeline import plotting
 
 
 def test_failed_write_leaves_no_partial_output(tmp_path):

@@ -6,9 +6,9 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import gammainc
 
-from brdfs import patch
-from brdfs.geometry import direction, light_direction
-from brdfs.models import model
+from brdfs.numerics import patch_geometry as patch
+from brdfs.physics.geometry import direction, light_direction
+from brdfs.physics.models import model
 
 RNG = np.random.default_rng(20010101)
 

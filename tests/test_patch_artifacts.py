@@ -5,8 +5,8 @@ import copy
 import numpy as np
 import pytest
 
-from brdfs import artifacts
-from brdfs.config import load_config
+from brdfs.pipeline import registry as artifacts
+from brdfs.pipeline.config import load_config
 
 TABLES = ["table_4_1_exponential_patch", "table_4_2_limit_comparison", "table_4_3_generalized_lambert",
           "fig_4_5_basic_albedo"]

@@ -1,4 +1,4 @@
-"""Verdict rules, fragments and the merge of brdfs.published."""
+"""Verdict rules, fragments and the merge of brdfs.pipeline.published."""
 
 import math
 
@@ -6,8 +6,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from brdfs import io, published
-from brdfs.published import (
+from brdfs.pipeline import io
+from brdfs.pipeline import published
+from brdfs.pipeline.published import (
     AMBIGUOUS,
     COMPARISON_COLUMNS,
     DIFFERS,

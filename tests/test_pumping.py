@@ -3,10 +3,10 @@ symmetries, the inequalities of eq. 2.19 and honest interpolation errors."""
 import numpy as np
 import pytest
 
-from brdfs import pumping
-from brdfs.albedo import albedo
-from brdfs.geometry import cos_incidence, direction, light_direction, mirror
-from brdfs.models import model
+from brdfs.numerics import pumping
+from brdfs.numerics.albedo import albedo
+from brdfs.physics.geometry import cos_incidence, direction, light_direction, mirror
+from brdfs.physics.models import model
 
 N_EXP = 20
 BLINN_C = 1.0503713367425989   # 1/max a of Blinn n = 20 (the pipeline recomputes it; only a constant here)

@@ -1,12 +1,13 @@
 """Every comparison row, recomputed in-process, against the committed baseline.
 
 After a deliberate, reviewed change of numbers (or a new artifact), re-record with
-``python -m brdfs.regression --write tests/data/regression_baseline.csv`` (``make baseline``).
+``python -m brdfs.pipeline.regression --write tests/data/regression_baseline.csv`` (``make baseline``).
 """
 
 import pytest
 
-from brdfs import artifacts, regression
+from brdfs.pipeline import registry as artifacts
+from brdfs.pipeline import regression
 
 
 @pytest.fixture(scope="module")

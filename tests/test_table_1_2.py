@@ -5,9 +5,9 @@ from fractions import Fraction
 import pandas as pd
 import pytest
 
-from brdfs import artifacts
+from brdfs.pipeline import registry as artifacts
 from brdfs.artifacts.extra_metal_a0_readings import adjacent_transpositions, rounding_corners
-from brdfs.config import load_config
+from brdfs.pipeline.config import load_config
 
 # Table 1.2 as printed: metal, lambda [nm], n, k, a0 [%]
 THESIS_TABLE_1_2 = [

@@ -2,8 +2,8 @@
 
 Public API: :func:`albedo`, :func:`albedo_table`, :func:`model`, :data:`MODELS`, :class:`Estimate`.
 """
-from .albedo import albedo, albedo_table
-from .integrate import Estimate
-from .models import MODELS, model
+from brdfs.numerics.albedo import albedo, albedo_table
+from brdfs.numerics.integrate import Estimate
+from brdfs.physics.models import MODELS, model
 
 __all__ = ["albedo", "albedo_table", "model", "MODELS", "Estimate"]

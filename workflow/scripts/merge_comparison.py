@@ -1,6 +1,6 @@
 """Merge every comparison fragment into results/checks/published_comparison.csv (atomically)."""
 
-from brdfs import io, published
+from brdfs.pipeline import io, published
 
 with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
     merged = published.merge_fragments(snakemake.input.fragments)  # noqa: F821

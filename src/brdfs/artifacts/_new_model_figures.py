@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting
-from brdfs.albedo import albedo
+from brdfs.pipeline import plotting
+from brdfs.numerics.albedo import albedo
 from brdfs.artifacts._pumping_figures import ROUNDING_RTOL
-from brdfs.geometry import cos_incidence, direction, light_direction, mirror
-from brdfs.models import model
+from brdfs.physics.geometry import cos_incidence, direction, light_direction, mirror
+from brdfs.physics.models import model
 
 
 def albedo_curves(ns, theta_step_deg: float, rtol: float) -> pd.DataFrame:

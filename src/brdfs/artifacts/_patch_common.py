@@ -7,9 +7,9 @@ from decimal import Decimal
 import numpy as np
 import pandas as pd
 
-from brdfs import published
-from brdfs.geometry import direction, light_direction
-from brdfs.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.pipeline import published
+from brdfs.physics.geometry import direction, light_direction
+from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
 
 SECTION = "patch"
 

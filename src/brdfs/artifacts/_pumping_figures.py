@@ -1,7 +1,7 @@
 """Shared parts of the albedo tables and Figures 2.3-2.6 (section 2.3, albedo pumping-up).
 
 The tables (``extra_pumping_albedo_<model>``) hold, level by level, the albedo of the model
-pumped 0 ... K times as a piecewise Chebyshev interpolant (:mod:`brdfs.pumping`); the figures
+pumped 0 ... K times as a piecewise Chebyshev interpolant (:mod:`brdfs.numerics.pumping`); the figures
 rebuild the pumped models from them (no integration) and draw the albedo and the radiance
 L_out(V) = f(L, V) cos θ_L of a point light of intensity 4π at distance 1 (eq. 2.3), V = R.
 """
@@ -10,10 +10,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting, pumping
-from brdfs.geometry import cos_incidence, light_direction, mirror
-from brdfs.models import model, phong_constant
-from brdfs.quantities import maximal_constant
+from brdfs.pipeline import plotting
+from brdfs.numerics import pumping
+from brdfs.physics.geometry import cos_incidence, light_direction, mirror
+from brdfs.physics.models import model, phong_constant
+from brdfs.numerics.quantities import maximal_constant
 
 #: Relative rounding bound of one BRDF evaluation (powers n ≤ 100 of a rounded dot product).
 ROUNDING_RTOL = 256 * np.finfo(float).eps
@@ -84,7 +85,7 @@ def distance_to_new_model(cfg: dict, df: pd.DataFrame) -> pd.DataFrame:
     albedo_rows = df[df["albedo"].notna()]
     theta = np.sort(albedo_rows["theta_deg"].unique())
     new = model("phong_cosmin", n=n)
-    from brdfs.albedo import albedo
+    from brdfs.numerics.albedo import albedo
     est = albedo(new, theta, tol=cfg["tolerance"]["rtol"])
     rows = [pd.DataFrame({"theta_deg": theta, "albedo": est.value, "albedo_err": est.error})
             .assign(model="phong_cosmin", n=n, C=new.C, pumping="none")]

@@ -1,5 +1,5 @@
 """Accuracy against cost of four albedo integration methods on albedos with closed forms
-(:mod:`brdfs.accuracy`): the lobe-following engine, a product Gauss grid, scipy's dblquad over
+(:mod:`brdfs.artifacts._accuracy`): the lobe-following engine, a product Gauss grid, scipy's dblquad over
 (θ_V, φ_V) and cosine-weighted Monte Carlo. Cost in BRDF evaluations, accuracy as true error."""
 
 from __future__ import annotations
@@ -7,9 +7,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting
-from brdfs.accuracy import METHODS, accuracy_cost
-from brdfs.artifacts import figure
+from brdfs.pipeline import plotting
+from brdfs.artifacts._accuracy import METHODS, accuracy_cost
+from brdfs.pipeline.registry import figure
 
 NAME = "extra_accuracy_cost"
 SECTION = "accuracy_cost"

@@ -6,11 +6,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting, published
-from brdfs.albedo import albedo
-from brdfs.artifacts import comparison, get_artifact, table
-from brdfs.models import model
-from brdfs.quantities import grazing_albedo_new_model, limit_albedo_90, max_albedo
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.numerics.albedo import albedo
+from brdfs.pipeline.registry import comparison, get_artifact, table
+from brdfs.physics.models import model
+from brdfs.numerics.quantities import grazing_albedo_new_model, limit_albedo_90, max_albedo
 
 NAME = "extra_chapter3_claims"
 CONSTANTS = "table_3_1_blinn_constants"

@@ -14,11 +14,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting, published
-from brdfs.albedo import albedo
-from brdfs.artifacts import comparison, get_artifact, table
-from brdfs.grazing import NORMALISATION_FACTORS, grid_albedo, monte_carlo_albedo
-from brdfs.models import model
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.numerics.albedo import albedo
+from brdfs.pipeline.registry import comparison, get_artifact, table
+from brdfs.numerics.grazing import NORMALISATION_FACTORS, grid_albedo, monte_carlo_albedo
+from brdfs.physics.models import model
 
 ARTIFACT = "grazing_divergence"
 #: The reading the thesis's own formulas prescribe: eq. 2.9 with G of eq. 2.10, integrated exactly.
@@ -65,7 +66,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
         the reading (quadrature error for ``exact``, rounding for a grid or a seeded Monte Carlo
         sum); ``mc_stderr`` is the Monte Carlo estimator's own standard error, its distance from
         the exact integral.  Normalisations other than eq. 2.9 are the eq. 2.9 values times
-        their constant factor (:data:`brdfs.grazing.NORMALISATION_FACTORS`).
+        their constant factor (:data:`brdfs.numerics.grazing.NORMALISATION_FACTORS`).
     """
     r = cfg["grazing"]["readings"]
     records = []

@@ -1,14 +1,15 @@
 """The albedo toward grazing incidence, 80°–89.9999°, on log–log axes against cos θ_L, with the
-asymptotic law of each model (Sec. 2.2.1; laws derived in :mod:`brdfs.grazing`)."""
+asymptotic law of each model (Sec. 2.2.1; laws derived in :mod:`brdfs.numerics.grazing`)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
 
-from brdfs import albedo_curves, plotting
-from brdfs.artifacts import figure
-from brdfs.grazing import approach_angles, asymptotic_law
+from brdfs.artifacts import _albedo_curves as albedo_curves
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import figure
+from brdfs.numerics.grazing import approach_angles, asymptotic_law
 
 
 @figure("extra_grazing_divergence", config=("grazing",))
@@ -18,7 +19,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Curve columns (:func:`brdfs.albedo_curves.curves`) plus ``law_exponent, law_constant,
+        Curve columns (:func:`brdfs.artifacts._albedo_curves.curves`) plus ``law_exponent, law_constant,
         law_constant_err, law_albedo, law``: a ~ law_constant cos^(−law_exponent) θ_L.
     """
     g = cfg["grazing"]

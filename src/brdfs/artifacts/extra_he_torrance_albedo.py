@@ -3,7 +3,7 @@ without the specular delta: which of the two is the thesis's "badly decreasing" 
 
 The thesis does not say whether its He–Torrance albedo includes the specular term (a Monte Carlo
 integration over the hemisphere would miss the delta).  Every term is computed through
-:func:`brdfs.albedo.albedo`: 'dd' (directional diffuse), 'specular' (ρ_s, the delta's closed-form
+:func:`brdfs.numerics.albedo.albedo`: 'dd' (directional diffuse), 'specular' (ρ_s, the delta's closed-form
 albedo) and 'total' (their sum).
 """
 from __future__ import annotations
@@ -11,10 +11,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting
-from brdfs.albedo import albedo
-from brdfs.artifacts import figure
-from brdfs.models.he_torrance import TERMS, HeTorrance
+from brdfs.pipeline import plotting
+from brdfs.numerics.albedo import albedo
+from brdfs.pipeline.registry import figure
+from brdfs.physics.models.he_torrance import TERMS, HeTorrance
 
 
 def incidence_grid(step_deg: float, extra_deg) -> np.ndarray:

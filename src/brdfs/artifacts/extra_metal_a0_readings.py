@@ -13,8 +13,8 @@ from decimal import Decimal
 
 import pandas as pd
 
-from brdfs import plotting
-from brdfs.artifacts import table
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import table
 from brdfs.artifacts.table_1_2_metal_reflectance import a0_percent
 
 

@@ -1,7 +1,7 @@
 """Albedo tables of the reciprocal Phong model (n = 20) pumped 0 ... K times with g1 and g2 (eqs. 2.20, 2.21).
 
 One piecewise Chebyshev interpolant in cos θ per level, its error measured against the engine
-(:func:`brdfs.pumping.tabulate_albedo`); each level's table builds the next level's model.
+(:func:`brdfs.numerics.pumping.tabulate_albedo`); each level's table builds the next level's model.
 Figures 2.3 and 2.5 read them.
 """
 from __future__ import annotations
@@ -9,7 +9,7 @@ from __future__ import annotations
 import pandas as pd
 
 from brdfs.artifacts import _pumping_figures as shared
-from brdfs.artifacts import table
+from brdfs.pipeline.registry import table
 
 
 @table("extra_pumping_albedo_phong", config=("pumping",))

@@ -1,17 +1,18 @@
 """Stability of the albedo engine toward 90°: every model at the thesis's range of n and m at
 90° − 10^(−x), checked for NaN, negative values and errors that lie — the hard points against the
-independent projected-disk integration (:func:`brdfs.integrate.disk.disk_albedo`)."""
+independent projected-disk integration (:func:`brdfs.numerics.integrate.disk.disk_albedo`)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
 
-from brdfs import albedo_curves, plotting
-from brdfs.albedo import albedo_table
-from brdfs.artifacts import figure
-from brdfs.integrate.disk import disk_albedo
-from brdfs.models import MODELS, model
+from brdfs.artifacts import _albedo_curves as albedo_curves
+from brdfs.pipeline import plotting
+from brdfs.numerics.albedo import albedo_table
+from brdfs.pipeline.registry import figure
+from brdfs.numerics.integrate.disk import disk_albedo
+from brdfs.physics.models import MODELS, model
 
 #: Models parameterised by a roughness m (the others by an exponent n).
 ROUGH = ("ward", "ward_cosmin", "cook_torrance")

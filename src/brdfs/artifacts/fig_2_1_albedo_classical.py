@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import pandas as pd
 
-from brdfs import albedo_curves
-from brdfs.artifacts import figure
-from brdfs.grazing import incidence_grid
+from brdfs.artifacts import _albedo_curves as albedo_curves
+from brdfs.pipeline.registry import figure
+from brdfs.numerics.grazing import incidence_grid
 
 
 @figure("fig_2_1_albedo_classical", config=("grazing",))

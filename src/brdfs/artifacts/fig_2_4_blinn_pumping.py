@@ -8,7 +8,7 @@ from __future__ import annotations
 import pandas as pd
 
 from brdfs.artifacts import _pumping_figures as shared
-from brdfs.artifacts import figure
+from brdfs.pipeline.registry import figure
 
 TABLE = "extra_pumping_albedo_blinn"
 

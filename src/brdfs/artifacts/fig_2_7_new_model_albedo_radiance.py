@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pandas as pd
 
-from brdfs import plotting
+from brdfs.pipeline import plotting
 from brdfs.artifacts import _new_model_figures as shared
-from brdfs.artifacts import figure
+from brdfs.pipeline.registry import figure
 
 
 @figure("fig_2_7_new_model_albedo_radiance", config=("new_model_albedo",))

@@ -8,11 +8,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting
-from brdfs.artifacts import figure
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import figure
 from brdfs.artifacts._pumping_figures import ROUNDING_RTOL
-from brdfs.geometry import direction, light_direction
-from brdfs.models import model
+from brdfs.physics.geometry import direction, light_direction
+from brdfs.physics.models import model
 
 
 @figure("fig_3_2_p_model_ratio", config=("p_model_ratio",))

@@ -14,12 +14,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting
-from brdfs.artifacts import figure
-from brdfs.fresnel import unpolarised_reflectance
-from brdfs.geometry import direction, light_direction
-from brdfs.models import model
-from brdfs.models.he_torrance import EVAL_RTOL, HeTorrance
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import figure
+from brdfs.physics.fresnel import unpolarised_reflectance
+from brdfs.physics.geometry import direction, light_direction
+from brdfs.physics.models import model
+from brdfs.physics.models.he_torrance import EVAL_RTOL, HeTorrance
 
 PARAM_COLUMNS = ("n", "m", "G", "sigma0_um", "tau_um", "lambda_um", "ior_re", "ior_im", "term")
 NORMAL = np.array([0.0, 0.0, 1.0])

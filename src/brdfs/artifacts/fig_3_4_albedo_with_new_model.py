@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pandas as pd
 
-from brdfs import albedo_curves
-from brdfs.artifacts import figure
-from brdfs.grazing import incidence_grid
+from brdfs.artifacts import _albedo_curves as albedo_curves
+from brdfs.pipeline.registry import figure
+from brdfs.numerics.grazing import incidence_grid
 
 
 @figure("fig_3_4_albedo_with_new_model", config=("grazing",))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pandas as pd
 
 from brdfs.artifacts import _new_model_figures as shared
-from brdfs.artifacts import figure
+from brdfs.pipeline.registry import figure
 
 
 @figure("fig_3_5_phong_new_brdf_slices", config=("new_model_lobes",))

@@ -10,11 +10,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import patch, plotting
-from brdfs.artifacts import figure
+from brdfs.numerics import patch_geometry as patch
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import figure
 from brdfs.artifacts._patch_common import SECTION
-from brdfs.geometry import light_direction
-from brdfs.models import model
+from brdfs.physics.geometry import light_direction
+from brdfs.physics.models import model
 
 NAME = "fig_4_10_elliptical_brdf"
 

@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import pandas as pd
 
-from brdfs import patch, plotting
-from brdfs.artifacts import figure
+from brdfs.numerics import patch_geometry as patch
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import figure
 from brdfs.artifacts._patch_common import SECTION, grid
 
 NAME = "fig_4_12_weight_density"

@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import pandas as pd
 
-from brdfs import patch, plotting
-from brdfs.artifacts import figure
+from brdfs.numerics import patch_geometry as patch
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import figure
 from brdfs.artifacts._patch_common import SECTION, plane_of_incidence
-from brdfs.models import model
+from brdfs.physics.models import model
 
 NAME = "fig_4_15_exponential_brdf"
 

@@ -11,8 +11,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import patch, plotting
-from brdfs.artifacts import comparison, figure, get_artifact
+from brdfs.numerics import patch_geometry as patch
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import comparison, figure, get_artifact
 from brdfs.artifacts._patch_common import SECTION, grid
 
 NAME = "fig_4_5_basic_albedo"

@@ -1,13 +1,14 @@
 """Figure 4.6: mean albedo of the basic BRDF against R (closed form, see
-:func:`brdfs.patch.basic_mean_albedo`); the thesis: minimal at R = 1. The R grid is an open
+:func:`brdfs.numerics.patch_geometry.basic_mean_albedo`); the thesis: minimal at R = 1. The R grid is an open
 choice (``patch.R_step``)."""
 
 from __future__ import annotations
 
 import pandas as pd
 
-from brdfs import patch, plotting
-from brdfs.artifacts import figure
+from brdfs.numerics import patch_geometry as patch
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import figure
 from brdfs.artifacts._patch_common import SECTION, grid
 
 NAME = "fig_4_6_basic_mean_albedo"

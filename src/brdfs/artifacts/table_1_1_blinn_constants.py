@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import pandas as pd
 
-from brdfs import plotting
-from brdfs.artifacts import table
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import table
 
 SOURCE = "table_3_1_blinn_constants"
 

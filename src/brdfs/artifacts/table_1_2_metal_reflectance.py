@@ -12,9 +12,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import fresnel, plotting, published
-from brdfs.artifacts import comparison, get_artifact, table
-from brdfs.fresnel import UNIT_ROUNDOFF
+from brdfs.physics import fresnel
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.pipeline.registry import comparison, get_artifact, table
+from brdfs.physics.fresnel import UNIT_ROUNDOFF
 
 ARTIFACT = "metal_a0"
 READINGS = "extra_metal_a0_readings"

@@ -1,7 +1,7 @@
 """Table 3.1 (and its Blinn half, Table 1.1): maximal constants C_n = 1 / max_θ a(θ) of the
 reciprocal Blinn model (eq. 1.34) and the corrected Blinn model (eq. 3.34), computed with C = 1.
 
-Besides the true maximum (located by :func:`brdfs.quantities.max_albedo`), the table carries
+Besides the true maximum (located by :func:`brdfs.numerics.quantities.max_albedo`), the table carries
 the readings fixed in advance for prints that do not reproduce: the constant obtained from the
 albedo at normal incidence only, and from maxima over coarse θ grids (1°, 5°, 10°, 15°, 30°).
 """
@@ -10,11 +10,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting, published
-from brdfs.albedo import albedo_table
-from brdfs.artifacts import comparison, get_artifact, table
-from brdfs.models import model
-from brdfs.quantities import maximal_constant
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.numerics.albedo import albedo_table
+from brdfs.pipeline.registry import comparison, get_artifact, table
+from brdfs.physics.models import model
+from brdfs.numerics.quantities import maximal_constant
 
 NAME = "table_3_1_blinn_constants"
 MODELS = ("blinn", "blinn_cosmin")

@@ -5,10 +5,11 @@ import numpy as np
 import pandas as pd
 from scipy.integrate import quad
 
-from brdfs import plotting, published
-from brdfs.artifacts import comparison, get_artifact, table
-from brdfs.models import model
-from brdfs.quantities import maximal_constant
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.pipeline.registry import comparison, get_artifact, table
+from brdfs.physics.models import model
+from brdfs.numerics.quantities import maximal_constant
 
 NAME = "table_3_2_ward_cmax"
 

@@ -1,15 +1,16 @@
 """Table 3.3: mean albedo (eq. 3.37) of the reciprocal Phong, the new model, Blinn and corrected
 Blinn for n = 1 … 512 (Blinn columns with this project's C_n of Table 3.1), the n → ∞ row from
-the derived limits (:mod:`brdfs.quantities`), and rows at growing n that confirm the limits."""
+the derived limits (:mod:`brdfs.numerics.quantities`), and rows at growing n that confirm the limits."""
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
 
-from brdfs import plotting, published
-from brdfs.artifacts import comparison, get_artifact, table
-from brdfs.models import model
-from brdfs.quantities import limit_mean_albedo, mean_albedo, phong_mean_albedo
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.pipeline.registry import comparison, get_artifact, table
+from brdfs.physics.models import model
+from brdfs.numerics.quantities import limit_mean_albedo, mean_albedo, phong_mean_albedo
 from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
 
 NAME = "table_3_3_mean_albedo"

@@ -1,7 +1,7 @@
 """Table 4.2: the mirror limits (n → ∞, s → ∞) of Phong, of the new patch BRDF and of a metal mirror.
 
-Rows of kind ``limit`` hold the derived limits (Phong and Blinn from :mod:`brdfs.quantities`,
-the patch BRDF from :func:`brdfs.patch.limit_small_patch_albedo`, the metal mirror from the
+Rows of kind ``limit`` hold the derived limits (Phong and Blinn from :mod:`brdfs.numerics.quantities`,
+the patch BRDF from :func:`brdfs.numerics.patch_geometry.limit_small_patch_albedo`, the metal mirror from the
 ideal mirror with Fresnel = 1: f = δ/cos θ, a ≡ 1). Rows of kind ``numerical`` confirm them
 at growing n or s (config ``patch.limit_n``, ``patch.limit_s``, ``patch.limit_theta_near_deg``).
 
@@ -16,11 +16,14 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import patch, plotting, published, quantities
-from brdfs.albedo import albedo_table
-from brdfs.artifacts import comparison, get_artifact, table
+from brdfs.numerics import patch_geometry as patch
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.numerics import quantities
+from brdfs.numerics.albedo import albedo_table
+from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.artifacts._patch_common import SECTION, tolerances
-from brdfs.models import model
+from brdfs.physics.models import model
 
 NAME = "table_4_2_limit_comparison"
 ARTIFACT = "limit_comparison"

@@ -12,8 +12,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs import patch, plotting, published
-from brdfs.artifacts import comparison, get_artifact, table
+from brdfs.numerics import patch_geometry as patch
+from brdfs.pipeline import plotting
+from brdfs.pipeline import published
+from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.artifacts._patch_common import SECTION, tolerances, truncation_reason
 
 NAME = "table_4_3_generalized_lambert"

@@ -1,0 +1,72 @@
+"""Albedo curves a(θ_L) of several models (Figures 2.1 and 3.4): tidy data and their plot."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs.pipeline import plotting
+from brdfs.numerics.albedo import albedo_table
+from brdfs.physics.geometry import cos_incidence
+from brdfs.physics.models import model
+
+#: Wide parameter columns of every curve table (contract: one column per parameter).
+PARAM_COLUMNS = ("G", "n", "m", "sigma0_um", "tau_um", "lambda_um", "term", "C")
+
+
+def build(spec: dict):
+    """The model of a config entry ``{model: name, <parameter>: value, ...}`` (``theta_deg`` ignored)."""
+    params = {k: v for k, v in spec.items() if k not in ("model", "theta_deg")}
+    return model(spec["model"], **params)
+
+
+def label(brdf) -> str:
+    """A legend label naming the model and its parameters, e.g. ``cook_torrance (m=0.1, G=none)``."""
+    shown = ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
+                      for k, v in brdf.params.items() if k != "C" and v is not None)
+    return f"{brdf.name} ({shown})"
+
+
+def param_columns(brdf) -> dict:
+    """The wide parameter columns of ``brdf`` (empty where a parameter does not apply)."""
+    return {c: "" if brdf.params.get(c) is None else brdf.params[c] for c in PARAM_COLUMNS}
+
+
+def curves(specs, theta_deg, tol) -> pd.DataFrame:
+    """a(θ) with its error for every model of ``specs`` on ``theta_deg``, one row per value."""
+    models = [build(s) for s in specs]
+    est = albedo_table(models, theta_deg, tol=tol["rtol"], atol=tol["atol"])
+    frames = [
+        pd.DataFrame({"model": m.name, **param_columns(m), "label": label(m), "theta_deg": theta_deg,
+                      "cos_theta": cos_incidence(theta_deg), "albedo": est.value[i], "albedo_err": est.error[i]})
+        for i, m in enumerate(models)
+    ]
+    return pd.concat(frames, ignore_index=True)
+
+
+def plot_curves(df: pd.DataFrame, path, title: str, ymax: float = 3.0) -> None:
+    """Two panels: a(θ) over 0°–90° (clipped at ``ymax``, as the thesis's axes), and against 90° − θ on log axes."""
+    fig, (ax, ax_log) = plotting.plt.subplots(1, 2, figsize=(11, 4.2))
+    for name, g in df.groupby("label", sort=False):
+        line, = ax.plot(g["theta_deg"], g["albedo"], label=name)
+        ax_log.loglog(90.0 - g["theta_deg"], g["albedo"], color=line.get_color())
+        ax.fill_between(g["theta_deg"], g["albedo"] - g["albedo_err"], g["albedo"] + g["albedo_err"],
+                        color=line.get_color(), alpha=0.3, lw=0)
+    ax.set(xlabel="incidence angle θ_L [deg]", ylabel="albedo a(θ_L)", xlim=(0, 90), ylim=(0, ymax))
+    ax.axhline(1.0, color="k", lw=0.6, ls=":")
+    ax_log.axhline(1.0, color="k", lw=0.6, ls=":")
+    ax_log.invert_xaxis()
+    ax_log.set(xlabel="90° − θ_L [deg] (log)", ylabel="albedo (log)")
+    fig.suptitle(title, fontsize=9)
+    ax.legend(fontsize=7, loc="lower left")
+    plotting.savefig(fig, path)
+
+
+def figure_title(number: str, df: pd.DataFrame) -> str:
+    """The caption: the models drawn, F = 1, the incidence grid (a choice), and He–Torrance if absent."""
+    models = "; ".join(dict.fromkeys(df["label"]))
+    theta = np.unique(df["theta_deg"])
+    step = np.min(np.diff(theta[theta < 80.0]))
+    grid = f"step {step:g}° on [0°, 90°) plus {np.sum(theta > 80.0)} points up to 90° − {90.0 - theta[-1]:.0e}°"
+    missing = (" He–Torrance: wavelength lambda_um a choice (the thesis gives none)." if (df["model"] == "he_torrance").any()
+               else " He–Torrance not drawn (model not available).")
+    return f"Figure {number}: albedo with F = 1 of {models}.\nIncidence grid (a choice): {grid}.{missing}"

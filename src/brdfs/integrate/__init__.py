@@ -1,4 +1,0 @@
-"""Integration engine: vectorised adaptive Gauss–Kronrod and lobe-following hemisphere coordinates."""
-from .gauss_kronrod import Estimate, integrate
-
-__all__ = ["Estimate", "integrate"]

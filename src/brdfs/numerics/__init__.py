@@ -1,0 +1,1 @@
+"""Numerics: hemispherical integration, albedo and derived quantities, pumping, patch geometry."""

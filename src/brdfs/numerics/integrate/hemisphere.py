@@ -1,0 +1,153 @@
+"""Albedo integrals a(L) = ∫ f(L, V) cos θ_V dω_V (eq. 1.18 / 2.2) in lobe-following coordinates.
+
+Coordinates.  V is written in a frame whose pole is the lobe's axis — the mirror direction R
+(β = α, dω_V = sin α dα dφ) or the normal for the half vector H (β = δ, dω_V = 4 (L·H) dω_H) —
+and the radial angle β is replaced by the lobe's cumulative weight t (:mod:`.lobes`).
+
+Azimuth.  In both frames N·V = A + B cos φ with B ≥ 0 (mirror: A = cos α cos θ, B = sin α sin θ;
+half: A = cos 2δ cos θ, B = sin 2δ sin θ), and L·H is likewise linear in cos φ.  Every kink the
+models declare (the horizon N·V = 0, N·V = N·L of max(N·L, N·V), the switches of the
+Torrance–Sparrow G) is therefore a level of a linear function of cos φ, found in closed form;
+between these breakpoints the integrand is smooth and a Gauss–Kronrod pair integrates it.  The
+piece that ends at the horizon uses φ = φ_h − (φ_h − φ_0)(1 − u)², which removes the square-root
+endpoint behaviour of √(N·V) (Ward) at the horizon.
+
+Radial breakpoints.  A level set N·V = c enters or leaves the circle of radius β at
+β = arccos c ∓ θ and β = θ − arccos c (half frame: 2δ instead of β); these are passed to the
+adaptive driver so that the outer integrand is smooth on every interval.
+
+All isotropic models are symmetric about the plane of incidence, so φ runs over [0, π] and the
+result is doubled.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from brdfs.physics.geometry import cos_incidence, sin_incidence
+from brdfs.numerics.integrate.gauss_kronrod import GAUSS_WEIGHTS, KRONROD_WEIGHTS, NODES, integrate
+
+_U = 0.5 * (NODES + 1.0)            # Kronrod nodes on [0, 1]
+_WK = 0.5 * KRONROD_WEIGHTS
+_WG = 0.5 * GAUSS_WEIGHTS
+SUBPIECES = 2
+_EPS = np.finfo(float).eps
+
+
+def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
+    """Albedo of ``models[i]`` at ``theta_deg[i]`` for every i, in one adaptive run."""
+    theta_deg = np.asarray(theta_deg, float).ravel()
+    models = list(models)
+    if len(models) != theta_deg.size:
+        raise ValueError("albedo_many needs one model per angle")
+    first = {}                       # the same model object at many angles is evaluated together
+    index = np.array([first.setdefault(id(m), i) for i, m in enumerate(models)])
+    mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
+    rows = [_radial_breakpoints(models[i], mu[i], st[i], theta_deg[i]) for i in range(len(models))]
+    width = max(r.size for r in rows)
+    bp = np.vstack([np.pad(r, (0, width - r.size), constant_values=np.nan) for r in rows])
+
+    def integrand(t, elem):
+        high = np.empty_like(t)
+        low = np.empty_like(t)
+        rounding = np.empty_like(t)     # the lobe's evaluation error, which no rule refines away
+        for k in np.unique(index[elem]):
+            rows = index[elem] == k
+            e = elem[rows]
+            high[rows], low[rows] = _azimuthal(models[k], t[rows], mu[e, None], st[e, None])
+            rounding[rows] = models[k].lobe.rounding * _EPS * np.abs(high[rows])
+        return high, low, rounding
+
+    return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=192)
+
+
+def _radial_breakpoints(model, mu, st, theta_deg):
+    """Breakpoints in t for one (model, θ): range ends and the radii where level sets touch."""
+    lobe = model.lobe
+    theta = np.radians(theta_deg)
+    scale = 0.5 if lobe.frame == "half" else 1.0
+    beta_max = scale * (np.pi / 2 + theta)
+    levels = [0.0] + [float(np.broadcast_to(c, ())) for c in model.nv_levels(np.float64(mu))]
+    cand = []
+    for c in levels:
+        a = np.arccos(np.clip(c, -1, 1))
+        cand += [scale * (a - theta), scale * (theta - a), scale * (a + theta)]
+    cand = [b for b in cand if 0 < b < beta_max]
+    t_pts = np.unique(np.concatenate([[0.0], lobe.t_of(np.array(cand + [beta_max]))]))
+    return t_pts[t_pts <= lobe.t_of(beta_max)]
+
+
+def _phi_level(A, B, c):
+    """φ in [0, π] where A + B cos φ = c (π if the level is never reached from above, 0 if always below)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = (c - A) / B
+    x = np.where(B > 0, x, np.where(A >= c, -1.0, 1.0))
+    return np.arccos(np.clip(x, -1.0, 1.0))
+
+
+def _azimuthal(model, t, mu, st):
+    """Inner φ-integral at radial nodes t (m, 21): returns its Kronrod and Gauss values."""
+    lobe = model.lobe
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cb, sb = lobe.angle(np.minimum(t, 0.5 + 0.5 * np.nextafter(1.0, 0)))
+        jac = lobe.solid_angle_per_t(t, cb, sb)
+    if lobe.frame == "mirror":
+        A_nv, B_nv = cb * mu, sb * st
+        lh = None
+        levels = [A_nv * 0 + c for c in model.nv_levels(mu)]
+        phis = []
+    else:
+        cos2, sin2 = (cb - sb) * (cb + sb), 2 * sb * cb
+        A_nv, B_nv = cos2 * mu, sin2 * st
+        A_lh, B_lh = cb * mu, sb * st
+        lh = (A_lh, B_lh)
+        levels = [A_nv * 0 + c for c in model.nv_levels(mu)]
+        phis = [_phi_level(A_lh, B_lh, c) for c in model.lh_levels(mu, cb)]
+    phi_h = _phi_level(A_nv, B_nv, 0.0)
+    phis = phis + [_phi_level(A_nv, B_nv, c) for c in levels]
+    cuts = np.sort(np.stack([np.zeros_like(phi_h)] + [np.minimum(p, phi_h) for p in phis] + [phi_h], -1), -1)
+    cuts = _split_pieces(cuts, SUBPIECES)
+    lo, hi = cuts[..., :-1, None], cuts[..., 1:, None]                      # (m, 21, P, 1)
+    u = _U
+    phi, dphi = lo + (hi - lo) * u, (hi - lo) + 0 * u
+    if model.sqrt_at_horizon:
+        # last piece ends at the horizon where the integrand behaves like sqrt(N·V): cluster nodes there
+        cut = (phi_h < np.pi)[..., None, None]
+        lo_l, hi_l = lo[..., -1:, :], hi[..., -1:, :]
+        phi[..., -1:, :] = np.where(cut, hi_l - (hi_l - lo_l) * (1 - u) ** 2, phi[..., -1:, :])
+        dphi[..., -1:, :] = np.where(cut, 2 * (hi_l - lo_l) * (1 - u), dphi[..., -1:, :])
+    V, extra = _directions(lobe.frame, cb, sb, mu, st, phi)
+    L = np.stack(np.broadcast_arrays(st, 0.0 * st, mu), -1)[..., None, None, :]
+    f = model(L, V)
+    g = f * V[..., 2] * extra * dphi
+    g = np.where(f == 0, 0.0, g)          # NaN (an undefined BRDF) propagates; zero stays zero
+    inside = t < 1.0                       # t = 1 is the lobe's far end, where its weight vanishes
+    high = np.where(inside, 2 * np.sum(g @ _WK, axis=-1) * jac, 0.0)
+    low = np.where(inside, 2 * np.sum(g @ _WG, axis=-1) * jac, 0.0)
+    return high, low
+
+
+def _split_pieces(cuts, k):
+    """Split every φ-piece into k equal parts (a shorter piece makes the 10-point Gauss rule exact
+    to rounding for the trigonometric polynomials met here)."""
+    lo, hi = cuts[..., :-1, None], cuts[..., 1:, None]
+    parts = lo + (hi - lo) * (np.arange(k) / k)
+    return np.concatenate([parts.reshape(*cuts.shape[:-1], -1), cuts[..., -1:]], -1)
+
+
+def _directions(frame, cb, sb, mu, st, phi):
+    """V at azimuth φ (m, 21, P, 21) on the circle of radius β; returns V and the extra Jacobian."""
+    cb, sb, mu, st = (x[..., None, None] for x in (cb, sb, mu, st))
+    sin_cos, sin_sin = sb * np.cos(phi), sb * np.sin(phi)
+    V = np.empty(phi.shape + (3,))
+    if frame == "mirror":
+        # V = cos α R + sin α (cos φ i + sin φ j), R = (−sin θ, 0, cos θ), i = (cos θ, 0, sin θ)
+        V[..., 0] = sin_cos * mu - cb * st
+        V[..., 1] = sin_sin
+        V[..., 2] = cb * mu + sin_cos * st
+        return V, 1.0
+    # V = 2 (L·H) H − L, H = (sin δ cos φ, sin δ sin φ, cos δ)
+    lh = st * sin_cos + mu * cb
+    V[..., 0] = 2 * lh * sin_cos - st
+    V[..., 1] = 2 * lh * sin_sin
+    V[..., 2] = 2 * lh * cb - mu
+    return V, 4 * lh

@@ -1,0 +1,382 @@
+"""Patch-based BRDFs of chapter 4: projected-disk geometry, weight profiles, albedos.
+
+Everything here lives on the base plane (the unit disk onto which directions project):
+V ↦ V_P, and cos θ_V dω_V = dx dy, so an albedo is an area integral over the disk.
+
+* :func:`circle_intersection` — C(L'_P, R) ∩ unit disk in closed form (eqs. 4.9/4.10); the one
+  place the lens geometry is computed (albedos and diagrams draw from it).
+* :func:`basic_albedo`, :func:`basic_mean_albedo` — the basic BRDF (eq. 4.2), closed forms.
+* :class:`ExponentialProfile` (eq. 4.44), :class:`GeneralizedLambertProfile` (eqs. 4.58/4.59) —
+  profiles ξ(m) with their weight functions p(R) (eq. 4.41) and constants.
+* :func:`mixture_albedo`, :func:`mixture_mean_albedo` — eqs. 4.22/4.23: one adaptive
+  Gauss–Kronrod integral over R, breakpoints at the kinks R = 1 − d, 1, 1 + d.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from scipy.special import gammainc
+
+from brdfs.physics.geometry import sin_incidence
+from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+
+_EPS = np.finfo(float).eps
+#: Relative rounding bound of the closed forms of this module (sums of non-negative terms,
+#: each a few correctly rounded operations away from its inputs).
+CLOSED_FORM_RTOL = 64 * _EPS
+
+
+class Lens(NamedTuple):
+    """C(Q, R) ∩ unit disk for a centre Q at distance d from O (figure 4.4).
+
+    Attributes
+    ----------
+    alpha : ndarray
+        Half the angle the common chord subtends at O (0 when no chord bounds the region
+        on the unit circle, π when the whole unit disk is inside).
+    beta : ndarray
+        Half the angle the chord subtends at Q, likewise.
+    area : ndarray
+        Area(C(Q, R)) = (α − cos α sin α) + R² (β − cos β sin β)  (eq. 4.9).
+    """
+
+    alpha: np.ndarray
+    beta: np.ndarray
+    area: np.ndarray
+
+
+def _segment(t):
+    """t − sin t cos t = (x − sin x)/2 with x = 2t, by its Taylor series where it cancels."""
+    x = 2.0 * np.asarray(t, float)
+    small = np.abs(x) < 0.25
+    xs = np.where(small, x, 0.0)
+    # x − sin x = Σ_{k≥1} (−1)^(k+1) x^(2k+1)/(2k+1)!, truncated after x^15 (error < 1e-18 rel).
+    series = sum((-1) ** (k + 1) * xs ** (2 * k + 1) / _factorial(2 * k + 1) for k in range(1, 8))
+    return 0.5 * np.where(small, series, x - np.sin(x))
+
+
+def _factorial(n):
+    return float(np.prod(np.arange(1, n + 1, dtype=float)))
+
+
+def _four_triangle_area(a, b, c):
+    """4 × area of the triangle with sides a, b, c (Kahan's stable Heron formula); 0 if degenerate."""
+    a, b, c = np.sort(np.stack(np.broadcast_arrays(a, b, c)), axis=0)[::-1]
+    prod = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c))
+    return np.sqrt(np.maximum(prod, 0.0))
+
+
+def circle_intersection(d, R):
+    """The common part of the unit disk and the disk of radius R centred at distance d.
+
+    Eqs. 4.9/4.10, with the angles from the triangle O, Q, P (P a chord end):
+    α = atan2(4Δ, 1 + d² − R²), β = atan2(4Δ, d² + R² − 1), Δ its area (stable Heron) —
+    accurate to rounding even for nearly tangent circles, where arccos of eq. 4.10 is not.
+
+    Parameters
+    ----------
+    d : array_like
+        Distance of the centre from O, ``d >= 0``.
+    R : array_like
+        Radius, ``R > 0``.
+
+    Returns
+    -------
+    Lens
+        Angles and area (relative rounding error below :data:`CLOSED_FORM_RTOL`).
+
+    Examples
+    --------
+    Two unit circles one radius apart overlap in 2π/3 − √3/2:
+
+    >>> lens = float(circle_intersection(1.0, 1.0).area)
+    >>> bool(abs(lens - (2 * np.pi / 3 - np.sqrt(3) / 2)) < CLOSED_FORM_RTOL)
+    True
+    """
+    d, R = np.broadcast_arrays(np.asarray(d, float), np.asarray(R, float))
+    four_delta = _four_triangle_area(1.0, R, d)
+    alpha = np.arctan2(four_delta, 1.0 + (d - R) * (d + R))
+    beta = np.arctan2(four_delta, d * d + (R - 1.0) * (R + 1.0))
+    nested = d <= np.abs(1.0 - R)
+    apart = d >= 1.0 + R
+    alpha = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, 0.0, np.pi), alpha))
+    beta = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, np.pi, 0.0), beta))
+    return Lens(alpha, beta, _segment(alpha) + R * R * _segment(beta))
+
+
+def basic_constant(R):
+    """c(R) = 1 / (π min(1, R²))  (eq. 4.7)."""
+    R = np.asarray(R, float)
+    return 1.0 / (np.pi * np.minimum(1.0, R * R))
+
+
+def basic_albedo(theta_deg, R):
+    """a_R(L) = Area(C(L'_P, R)) / Area(C(O, R))  (eq. 4.8), with |L'_P| = sin θ.
+
+    Returns
+    -------
+    Estimate
+        Value and rounding bound, broadcast over ``theta_deg`` and ``R``.
+    """
+    return basic_albedo_at(sin_incidence(theta_deg), R)
+
+
+def basic_mean_albedo(R):
+    """(a_R)_mean of the basic BRDF (eq. 4.11) in closed form.
+
+    a_mean = 2 ∫₀¹ a_R(d) d dd (eq. 4.11 with u = cos²θ_L) and ∫_{|Q|<1} Area(C(Q, R)) dQ is
+    the overlap of two unit disks averaged over shifts |t| < R, so with U = R/2
+    a_mean = 2 F(U) / (π min(1, R²)),  F(U) = 4U² arccos U + arcsin U − U(1 + 2U²)√(1 − U²).
+
+    Returns
+    -------
+    Estimate
+        Value and rounding bound (the terms of F cancel to O(U²) for small R).
+    """
+    U = 0.5 * np.asarray(R, float)
+    root = np.sqrt((1.0 - U) * (1.0 + U))
+    terms = (4 * U * U * np.arccos(U), np.arcsin(U), U * (1 + 2 * U * U) * root)
+    scale = 2.0 * basic_constant(R)
+    value = scale * (terms[0] + terms[1] - terms[2])
+    return Estimate(value, CLOSED_FORM_RTOL * scale * sum(terms))
+
+
+@dataclass(frozen=True)
+class ExponentialProfile:
+    """ξ(m) = exp(−s m)  (eq. 4.44), s ≥ 0.
+
+    Decreasing, so C_max makes a(N) = 1 (eq. 4.45); its weight p(R) (eq. 4.47) has a Dirac
+    part p_Diffuse = C_max π e^{−2s} at R = 2 (eq. 4.21), the diffuse part of Table 4.1.
+    """
+
+    s: float
+
+    def __post_init__(self):
+        if not (np.isfinite(self.s) and self.s >= 0):
+            raise ValueError(f"exponential profile: s must be finite and >= 0, got {self.s!r}")
+
+    def xi(self, m):
+        """ξ(m) = e^{−s m}  (eq. 4.44)."""
+        return np.exp(-self.s * np.asarray(m, float))
+
+    def dxi(self, m):
+        """ξ'(m) = −s e^{−s m}."""
+        return -self.s * self.xi(m)
+
+    @property
+    def c_max(self) -> float:
+        """C_max = s² / (2π (1 − (1 + s) e^{−s}))  (eq. 4.45); 1 − (1+s)e^{−s} = P(2, s), the
+        regularised incomplete gamma function, free of cancellation; its s → 0 limit is 1/π."""
+        if self.s == 0:
+            return 1.0 / np.pi
+        return self.s**2 / (2.0 * np.pi * gammainc(2.0, self.s))
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        """Where p(R) changes scale: multiples of its mode 2/s (kinks are added by the caller)."""
+        return tuple(k / self.s for k in (1.0, 4.0, 16.0, 64.0) if self.s > 0 and k / self.s < 2.0)
+
+    def cdf(self, R):
+        """F(R) = ∫₀^R p  (eq. 4.27): P(3, sR)/P(2, s) for R ≤ 1, then + s²(e^{−s} − e^{−sR})/(2P(2, s));
+        the jump p_Diffuse at R = 2 is not included (F(2⁻) = 1 − p_Diffuse)."""
+        R = np.asarray(R, float)
+        if self.s == 0:
+            return np.zeros_like(R)
+        s, norm = self.s, gammainc(2.0, self.s)
+        inner = gammainc(3.0, s * np.minimum(R, 1.0)) / norm
+        outer = s * s * (np.exp(-s) - np.exp(-s * np.maximum(R, 1.0))) / (2.0 * norm)
+        return inner + outer
+
+
+@dataclass(frozen=True)
+class GeneralizedLambertProfile:
+    """ξ(m) = min((1 − (m/2)²)^{−d/2}, ξ_max), ξ_max = ξ(m_clip)  (eqs. 4.58/4.59), 0 ≤ d ≤ 1.
+
+    Increasing: the albedo is smallest at normal incidence and largest at grazing incidence,
+    so C_max = 1/a^ξ(90°) needs an integration (:func:`generalized_lambert_c_max`).
+    """
+
+    d: float
+    m_clip: float = 1.9
+
+    def __post_init__(self):
+        if not 0.0 <= float(self.d) <= 1.0:
+            raise ValueError(f"generalized Lambertian: d must lie in [0, 1], got {self.d!r}")
+        if not 0.0 < float(self.m_clip) < 2.0:
+            raise ValueError(f"generalized Lambertian: m_clip must lie in (0, 2), got {self.m_clip!r}")
+
+    def _unclipped(self, m):
+        w = 1.0 - 0.25 * np.asarray(m, float) ** 2
+        return w ** (-0.5 * self.d)
+
+    @property
+    def xi_max(self) -> float:
+        """ξ_max = ξ(m_clip), the f_max column of Table 4.3."""
+        return float(self._unclipped(self.m_clip))
+
+    def xi(self, m):
+        """ξ(m) clipped at ξ_max  (eq. 4.59 without C_max)."""
+        m = np.asarray(m, float)
+        return np.where(m < self.m_clip, self._unclipped(np.minimum(m, self.m_clip)), self.xi_max)
+
+    def dxi(self, m):
+        """ξ'(m) = (d m / 4)(1 − m²/4)^{−d/2 − 1} below m_clip, 0 above."""
+        m = np.asarray(m, float)
+        mc = np.minimum(m, self.m_clip)
+        slope = 0.25 * self.d * mc * (1.0 - 0.25 * mc * mc) ** (-0.5 * self.d - 1.0)
+        return np.where(m < self.m_clip, slope, 0.0)
+
+    def disk_integral(self, rho):
+        """∫₀^ρ ξ(r) r dr for ρ ≤ m_clip: (4/(2 − d)) (1 − (1 − ρ²/4)^{(2−d)/2})."""
+        rho = np.asarray(rho, float)
+        if np.any(rho > self.m_clip):
+            raise ValueError(f"disk_integral is closed-form only up to m_clip = {self.m_clip}")
+        w = 1.0 - 0.25 * rho * rho
+        return 4.0 / (2.0 - self.d) * -np.expm1(0.5 * (2.0 - self.d) * np.log(w))
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        return (self.m_clip,)
+
+
+def weight(profile, R, C):
+    """p(R) = −C ξ'(R) π min(1, R²)  (eq. 4.41), the continuous part of the weight."""
+    R = np.asarray(R, float)
+    return -C * profile.dxi(R) * np.pi * np.minimum(1.0, R * R)
+
+
+def diffuse_weight(profile, C):
+    """p_Diffuse = C π ξ(2), the Dirac part of p(R) at R = 2 (eqs. 4.21, 4.24)."""
+    return float(C * np.pi * profile.xi(2.0))
+
+
+def _r_breakpoints(profile, d):
+    """Per element: 0, the kinks 1 − d, 1, 1 + d of a_R(d) in R, the profile's points, 2."""
+    d = np.atleast_1d(np.asarray(d, float))
+    fixed = np.array([0.0, 1.0, 2.0, *profile.breakpoints])
+    pts = np.concatenate([np.broadcast_to(fixed, (d.size, fixed.size)),
+                          np.stack([1.0 - d, 1.0 + d], axis=1)], axis=1)
+    pts = np.where((pts >= 0.0) & (pts <= 2.0), pts, np.nan)
+    pts = np.sort(pts, axis=1)
+    duplicate = np.concatenate([np.zeros((d.size, 1), bool), np.diff(pts, axis=1) == 0], axis=1)
+    return np.sort(np.where(duplicate, np.nan, pts), axis=1)   # NaN padding last
+
+
+def _mixture_integral(profile, C, per_element, d, rtol, atol):
+    """∫₀² p(R) g(R, element) dR + p_Diffuse for g = ``per_element`` (an :class:`Estimate`),
+    one element per |L'_P| = ``d`` (whose kinks 1 ∓ d split the range)."""
+
+    def integrand(x, elem):
+        g = per_element(x, elem)
+        p = weight(profile, x, C)
+        return p * g.value, p * g.value, p * g.error
+
+    est = integrate(integrand, _r_breakpoints(profile, d), rtol=rtol, atol=atol)
+    p_diffuse = diffuse_weight(profile, C)
+    return Estimate(est.value + p_diffuse, est.error + CLOSED_FORM_RTOL * abs(p_diffuse))
+
+
+def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14):
+    """a^p(L) = ∫₀² p(R) a_R(L) dR + p_Diffuse  (eqs. 4.22, 4.24), vectorised over θ.
+
+    Parameters
+    ----------
+    profile : ExponentialProfile or GeneralizedLambertProfile
+        The profile ξ; p(R) from eq. 4.41.
+    theta_deg : array_like
+        Incidence angles in [0°, 90°].
+    C : float, optional
+        The BRDF's constant; default the profile's ``c_max``.
+
+    Returns
+    -------
+    Estimate
+        Albedo and error, shape of ``theta_deg``.
+    """
+    C = profile.c_max if C is None else float(C)
+    theta = np.asarray(theta_deg, float)
+    d = np.atleast_1d(sin_incidence(theta)).ravel()
+    est = _mixture_integral(profile, C, lambda R, e: basic_albedo_at(d[e][:, None], R),
+                            d, rtol, atol)
+    return Estimate(est.value.reshape(theta.shape), est.error.reshape(theta.shape))
+
+
+def basic_albedo_at(d, R):
+    """a_R at |L'_P| = d (eq. 4.8), as an :class:`Estimate` (R > 0)."""
+    value = circle_intersection(d, R).area * basic_constant(R)
+    return Estimate(value, CLOSED_FORM_RTOL * value)
+
+
+def mixture_mean_albedo(profile, C=None, rtol=1e-10, atol=1e-14):
+    """a^p_mean = ∫₀² p(R) (a_R)_mean dR + p_Diffuse  (eqs. 4.23, 4.24), as a scalar Estimate."""
+    C = profile.c_max if C is None else float(C)
+    est = _mixture_integral(profile, C, lambda R, e: basic_mean_albedo(R), np.array([0.0]), rtol, atol)
+    return est[0]
+
+
+def generalized_lambert_c_max(profile, rtol=1e-10, atol=1e-14):
+    """C_max = 1 / a^ξ(90°) of the clipped profile (Table 4.3): the albedo of ξ is largest at
+    grazing incidence (see the thesis below eq. 4.59; checked in the tests)."""
+    a90 = mixture_albedo(profile, 90.0, C=1.0, rtol=rtol, atol=atol)
+    return Estimate(1.0 / a90.value, a90.error / a90.value**2)
+
+
+def centred_ellipse_area(b, ratio):
+    """Area(E(O, v, b)): the ellipse with semi-axes b/ratio (along u) and b (along v), centred at O,
+    cut by the unit disk — the denominator of eqs. 4.35/4.36.
+
+    With a = b/ratio: πab if a ≤ 1, π if b ≥ 1, otherwise (in polar coordinates, the ellipse
+    leaves the disk at sin²φ₀ = (1 − a⁻²)/(b⁻² − a⁻²))  2φ₀ + ab (π − 2 atan((a/b) tan φ₀)).
+    """
+    b, ratio = np.broadcast_arrays(np.asarray(b, float), np.asarray(ratio, float))
+    a = b / ratio
+    with np.errstate(divide="ignore", invalid="ignore"):
+        phi0 = np.arcsin(np.sqrt((1.0 - a**-2) / (b**-2 - a**-2)))
+        clipped = 2.0 * phi0 + a * b * (np.pi - 2.0 * np.arctan(np.tan(phi0) / ratio))
+    return np.where(a <= 1.0, np.pi * a * b, np.where(b >= 1.0, np.pi, clipped))
+
+
+def elliptical_constant(b, ratio):
+    """c(b) = 1 / Area(E(O, v, b))  (eq. 4.36: 1/(abπ) while the ellipse fits in the disk)."""
+    return 1.0 / centred_ellipse_area(b, ratio)
+
+
+def limit_small_patch_albedo(theta_deg):
+    """lim_{R→0} a_R(θ) (eq. 4.8): 1 for θ < 90°, 1/2 at θ = 90°.
+
+    For θ < 90° the disk of radius R → 0 around L'_P lies inside the unit disk; at θ = 90° its
+    centre is on the unit circle, which cuts it in half as R → 0.  The exponential profile's
+    p(R) concentrates at R → 0 as s → ∞ (F(R) → 1 for every R > 0, eq. 4.27), so this is also
+    lim_{s→∞} a^p(θ), and the mean albedo tends to 1 (Table 4.2).
+    """
+    theta = np.asarray(theta_deg, float)
+    return np.where(theta < 90.0, 1.0, 0.5)
+
+
+def inverse_cdf(profile, r, iterations=64):
+    """F⁻¹(r) of the exponential weight (eq. 4.27; Figure 4.13), by bisection on the closed-form F.
+
+    F rises continuously to 1 − p_Diffuse at R = 2⁻ and jumps to 1 there (the Dirac part), so
+    F⁻¹(r) = 2 for r ≥ 1 − p_Diffuse.
+
+    Returns
+    -------
+    Estimate
+        R with its error: the final bracket plus the rounding of F divided by the slope p(R).
+    """
+    r = np.asarray(r, float)
+    if np.any((r < 0) | (r > 1)):
+        raise ValueError(f"inverse_cdf: r must lie in [0, 1], got {r[(r < 0) | (r > 1)][:5]!r}")
+    lo, hi = np.zeros_like(r), np.full_like(r, 2.0)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        below = profile.cdf(mid) < r
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    R = 0.5 * (lo + hi)
+    slope = weight(profile, R, profile.c_max)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        err = 0.5 * (hi - lo) + np.where(r > 0, CLOSED_FORM_RTOL * r / slope, 0.0)
+    at_top = r >= 1.0 - diffuse_weight(profile, profile.c_max)
+    return Estimate(np.where(at_top, 2.0, np.where(r > 0, R, 0.0)), np.where(at_top | (r == 0), 0.0, err))

@@ -1,0 +1,322 @@
+"""Albedo pumping-up (section 2.3): f* = f / g with g ≥ max(a(L), a(V)) (eqs. 2.16–2.21).
+
+Two correction terms (section 2.3.1/2.3.2)::
+
+    g1(L, V) = max(a(L), a(V))                      (eq. 2.20, "plain")
+    g2(L, V) = max(a(L), a(V), N·V, N·L)            (eq. 2.21, "controlled")
+
+A pumped model is again a symmetric BRDF (:class:`Pumped`), so it can be pumped with its own
+albedo, level after level.  As the thesis suggests for rendering (end of section 2.3), the albedo
+a pumped model divides by is precomputed once per level as a one-variable table
+(:class:`AlbedoTable`): a piecewise Chebyshev interpolant in x = cos θ whose error is measured
+against the engine at off-grid points and carried into the error of everything computed from it.
+
+Error budget.  Let ``f̃_k`` be the model actually evaluated at level k (built from interpolated
+albedos) and ``f_k`` the exact pumped model.  If |f̃_k / f_k − 1| ≤ ε_k and the table of level k
+satisfies |ã_k / a_k − 1| ≤ δ_k, then, since g is a maximum of its arguments and the dot
+products are exact, |g̃_k / g_k − 1| ≤ δ_k and
+
+    ε_{k+1} = (1 + ε_k) / (1 − δ_k) − 1,      δ_k = ε_k + (interpolation + engine error) / min ã_k.
+
+Every value computed from ``f̃_k`` therefore carries the relative error ε_k on top of its own.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from numpy.polynomial import chebyshev as cheb
+
+from brdfs.numerics.albedo import albedo
+from brdfs.physics.models.base import BRDF
+
+CORRECTIONS = ("g1", "g2")
+_BISECTIONS = 60            # halves a segment of [0, 1] below the spacing of doubles
+_CHECK_SAFETY = 10.0        # measured interpolation error at off-grid points × this = reported
+_MAX_DEGREE = 256
+
+
+def lobatto_points(degree):
+    """Chebyshev–Lobatto points cos(π j / D), j = 0 … D, on [−1, 1] (ascending)."""
+    return np.cos(np.pi * np.arange(degree, -1, -1) / degree)
+
+
+def _coefficients(values):
+    """Chebyshev coefficients of the interpolant through ``values`` at ascending Lobatto points."""
+    degree = values.shape[-1] - 1
+    s = lobatto_points(degree)
+    return np.linalg.solve(cheb.chebvander(s, degree), values.T).T
+
+
+@dataclass(frozen=True, eq=False)
+class AlbedoTable:
+    """a(θ) as a piecewise Chebyshev interpolant in x = cos θ, with an absolute error bound.
+
+    Attributes
+    ----------
+    edges : ndarray (P + 1,)
+        Piece boundaries in x, ascending from 0 to 1 (kinks of a, if any, are edges).
+    values : ndarray (P, D + 1)
+        Albedo at the Chebyshev–Lobatto points of each piece (ascending in x).
+    error : float
+        Absolute bound on |table − albedo of the model it tabulates| (interpolation + engine).
+    model_rtol : float
+        ε of the tabulated model: its relative distance to the exact pumped model.
+    """
+
+    edges: np.ndarray
+    values: np.ndarray
+    error: float
+    model_rtol: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "_coef", _coefficients(np.asarray(self.values, float)))
+        object.__setattr__(self, "segments", self._monotone_segments())
+        object.__setattr__(self, "cosine_crossings", self._crossings_with_cosine())
+
+    @property
+    def rtol(self):
+        """δ: relative distance of the table to the exact albedo of the exact pumped model."""
+        return self.model_rtol + self.error / float(np.min(self.values))
+
+    def _local(self, x):
+        x = np.clip(np.asarray(x, float), 0.0, 1.0)
+        piece = np.clip(np.searchsorted(self.edges, x, side="right") - 1, 0, len(self.edges) - 2)
+        lo, hi = self.edges[piece], self.edges[piece + 1]
+        return piece, (2.0 * x - lo - hi) / (hi - lo)
+
+    def __call__(self, x):
+        """The tabulated albedo at x = cos θ (any shape)."""
+        piece, s = self._local(x)
+        out = np.empty(s.shape)
+        for p in np.unique(piece):
+            mask = piece == p
+            out[mask] = cheb.chebval(s[mask], self._coef[p])
+        return out
+
+    def solve(self, y, lo, hi):
+        """x in [lo, hi] (where the table is monotone) with table(x) = y; ``lo`` where there is none."""
+        y = np.asarray(y, float)
+        f_lo, f_hi = self(lo), self(hi)
+        rising = f_hi >= f_lo
+        inside = (np.minimum(f_lo, f_hi) <= y) & (y <= np.maximum(f_lo, f_hi))
+        a, b = np.full(y.shape, lo), np.full(y.shape, hi)
+        for _ in range(_BISECTIONS):
+            mid = 0.5 * (a + b)
+            below = (self(mid) < y) == rising
+            a, b = np.where(below, mid, a), np.where(below, b, mid)
+        return np.where(inside, 0.5 * (a + b), lo)
+
+    def _monotone_segments(self):
+        """Boundaries in x of the segments where the table is monotone (edges and extrema)."""
+        points = list(self.edges)
+        for p, coef in enumerate(self._coef):
+            roots = cheb.chebroots(cheb.chebder(coef)) if coef.size > 2 else np.array([])
+            real = roots[np.abs(roots.imag) < 1e-9].real
+            lo, hi = self.edges[p], self.edges[p + 1]
+            points += list(lo + (hi - lo) * (real[(real > -1) & (real < 1)] + 1) / 2)
+        return np.unique(points)
+
+    def _crossings_with_cosine(self):
+        """x where table(x) − x changes sign by more than the table's error (kinks of max(a, cos θ))."""
+        x = np.linspace(0.0, 1.0, 4097)
+        d = self(x) - x
+        significant = np.abs(d) > _CHECK_SAFETY * self.error
+        xs, ds = x[significant], d[significant]
+        change = np.nonzero(np.sign(ds[:-1]) != np.sign(ds[1:]))[0]
+        roots = []
+        for i in change:
+            a, b = xs[i], xs[i + 1]
+            for _ in range(_BISECTIONS):
+                mid = 0.5 * (a + b)
+                a, b = (mid, b) if np.sign(self(mid) - mid) == np.sign(ds[i]) else (a, mid)
+            roots.append(0.5 * (a + b))
+        return np.array(roots)
+
+    def to_frame(self):
+        """Tidy rows: one per node (piece, x, albedo), the error bounds repeated."""
+        pieces, degree = self.values.shape[0], self.values.shape[1] - 1
+        s = lobatto_points(degree)
+        rows = []
+        for p in range(pieces):
+            lo, hi = self.edges[p], self.edges[p + 1]
+            x = 0.5 * (lo + hi) + 0.5 * (hi - lo) * s
+            rows.append(pd.DataFrame({"piece": p, "x_lo": lo, "x_hi": hi, "node": np.arange(degree + 1),
+                                      "cos_theta": x, "albedo": self.values[p]}))
+        return pd.concat(rows, ignore_index=True).assign(albedo_err=self.error, model_rtol=self.model_rtol)
+
+    @classmethod
+    def from_frame(cls, df):
+        """Inverse of :meth:`to_frame`."""
+        df = df.sort_values(["piece", "node"])
+        pieces = df.groupby("piece")
+        edges = np.append(pieces["x_lo"].first().to_numpy(), df["x_hi"].iloc[-1])
+        values = np.vstack([g["albedo"].to_numpy() for _, g in pieces])
+        return cls(edges, values, float(df["albedo_err"].iloc[0]), float(df["model_rtol"].iloc[0]))
+
+
+def _engine(model, x, rtol):
+    theta = np.degrees(np.arccos(np.clip(x, 0.0, 1.0)))
+    return albedo(model, theta, tol=rtol)
+
+
+def tabulate_albedo(model, edges=(0.0, 1.0), target_rtol=1e-9, engine_rtol=1e-11, degree=16, model_rtol=0.0):
+    """Tabulate the albedo of ``model`` on pieces ``edges`` of x = cos θ.
+
+    The degree D of every piece is doubled until the interpolant through D + 1 Lobatto points
+    matches the engine at the D midpoints (the new points of degree 2D) within
+    ``target_rtol`` × min a.  The reported error is ``10 ×`` the largest mismatch there plus the
+    largest engine error, so it bounds the error between the check points too.
+
+    Raises
+    ------
+    RuntimeError
+        If degree 256 does not reach the target (a kink not declared as an edge).
+    """
+    edges = np.asarray(edges, float)
+    values, mismatch, engine_err = [], 0.0, 0.0
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        d = degree
+        fine = _engine(model, 0.5 * (lo + hi) + 0.5 * (hi - lo) * lobatto_points(2 * d), engine_rtol)
+        while True:
+            nodes, check = fine.value[::2], fine.value[1::2]
+            s_check = lobatto_points(2 * d)[1::2]
+            miss = np.max(np.abs(cheb.chebval(s_check, _coefficients(nodes)) - check))
+            if miss <= target_rtol * np.min(fine.value) or 2 * d > _MAX_DEGREE:
+                break
+            d *= 2
+            new = _engine(model, 0.5 * (lo + hi) + 0.5 * (hi - lo) * lobatto_points(2 * d)[1::2], engine_rtol)
+            merged = np.empty(2 * d + 1)
+            merged[::2], merged[1::2] = fine.value, new.value
+            merged_err = np.empty(2 * d + 1)
+            merged_err[::2], merged_err[1::2] = fine.error, new.error
+            fine = type(fine)(merged, merged_err)
+        if miss > target_rtol * np.min(fine.value):
+            raise RuntimeError(f"albedo table of {model!r} on [{lo}, {hi}] misses {target_rtol} at degree {d}")
+        values.append(nodes)
+        mismatch, engine_err = max(mismatch, miss), max(engine_err, float(np.max(fine.error)))
+    width = max(v.size for v in values)
+    values = np.vstack([_resample(v, width - 1) for v in values])
+    return AlbedoTable(edges, values, _CHECK_SAFETY * mismatch + engine_err, model_rtol)
+
+
+def _resample(values, degree):
+    """Values at the Lobatto points of ``degree`` ≥ their own (the same polynomial, exact to rounding)."""
+    if values.size == degree + 1:
+        return values
+    return cheb.chebval(lobatto_points(degree), _coefficients(values))
+
+
+@dataclass(frozen=True)
+class Pumped(BRDF):
+    """f* = f / g (eq. 2.16), g = g1 (eq. 2.20) or g2 (eq. 2.21) from the tabulated albedo of f.
+
+    Attributes
+    ----------
+    base : BRDF
+        The symmetric model pumped (itself possibly a :class:`Pumped`).
+    table : AlbedoTable
+        The albedo of ``base``.
+    correction : str
+        ``'g1'`` (plain) or ``'g2'`` (controlled).
+    """
+
+    base: BRDF
+    table: AlbedoTable
+    correction: str = "g1"
+
+    def __post_init__(self):
+        if self.correction not in CORRECTIONS:
+            raise ValueError(f"correction must be one of {CORRECTIONS}, got {self.correction!r}")
+        if not self.base.reciprocal:
+            raise ValueError(f"pumping needs a symmetric BRDF, got the non-reciprocal {self.base.name!r}")
+
+    @property
+    def name(self):
+        return self.base.name
+
+    @property
+    def level(self):
+        """How many times the original model has been pumped."""
+        return self.base.level + 1 if isinstance(self.base, Pumped) else 1
+
+    @property
+    def lobe(self):
+        return self.base.lobe
+
+    @property
+    def params(self):
+        return self.base.params
+
+    def correction_term(self, nl, nv):
+        """g(L, V) of eq. 2.20 or 2.21 from N·L and N·V."""
+        g = np.maximum(self.table(nl), self.table(nv))
+        if self.correction == "g2":
+            g = np.maximum(g, np.maximum(nl, nv))
+        return g
+
+    def _eval(self, L, V, nl, nv):
+        return self.base._eval(L, V, nl, nv) / self.correction_term(nl, nv)
+
+    def nv_levels(self, nl):
+        """N·V where g switches argument: N·V = N·L, a(V) = a(L), and for g2 also N·V = a(L),
+        a(V) = N·L and a(V) = N·V; plus the table's piece edges and the base model's kinks."""
+        segments = self.table.segments
+        bounds = list(zip(segments[:-1], segments[1:]))
+        a_l = self.table(nl)
+        levels = [*self.base.nv_levels(nl), nl]
+        if len(bounds) > 1:            # a monotone table has the single root a(V) = a(L) at N·V = N·L
+            levels += [self.table.solve(a_l, lo, hi) for lo, hi in bounds]
+        levels += list(self.table.edges[1:-1])
+        if self.correction == "g2":
+            levels += [a_l, *(self.table.solve(nl, lo, hi) for lo, hi in bounds)]
+            levels += list(self.table.cosine_crossings)
+        return tuple(levels)
+
+
+def kink_edges(table, correction):
+    """Piece edges for the table of the next level: the kinks of max(a, cos θ) (g2) and of ``table``."""
+    edges = list(table.edges)
+    if correction == "g2":
+        edges += list(table.cosine_crossings)
+    return np.unique(edges)
+
+
+def model_rtol(model):
+    """ε of a model: 0 for an original model, else from the table of the level below (module doc)."""
+    if not isinstance(model, Pumped):
+        return 0.0
+    return (1.0 + model.table.model_rtol) / (1.0 - model.table.rtol) - 1.0
+
+
+def pumped_models(base, tables, correction):
+    """``base`` and its pumped versions built from the tables of levels 0 … K−1 (no integration)."""
+    models = [base]
+    for table in tables:
+        models.append(Pumped(models[-1], table, correction))
+    return models
+
+
+def sequence_frame(base, levels, target_rtol=1e-9, engine_rtol=1e-11):
+    """The albedo tables of ``base`` pumped 0 … ``levels`` times with g1 and with g2, as tidy rows.
+
+    Level 0 (``pumping = 'none'``) is tabulated once and shared by both sequences.
+    Columns: ``pumping, level`` and those of :meth:`AlbedoTable.to_frame`.
+    """
+    first = tabulate_albedo(base, target_rtol=target_rtol, engine_rtol=engine_rtol)
+    frames = [first.to_frame().assign(pumping="none", level=0)]
+    for correction in CORRECTIONS:
+        tables = [first]
+        for level in range(1, levels + 1):
+            model = pumped_models(base, tables, correction)[-1]
+            tables.append(tabulate_albedo(model, kink_edges(tables[-1], correction), target_rtol, engine_rtol,
+                                          model_rtol=model_rtol(model)))
+            frames.append(tables[-1].to_frame().assign(pumping=correction, level=level))
+    return pd.concat(frames, ignore_index=True)
+
+
+def tables_from_frame(df, correction):
+    """The tables of levels 0, 1, … of one sequence of :func:`sequence_frame`."""
+    rows = df[(df["pumping"] == correction) | (df["level"] == 0)]
+    return [AlbedoTable.from_frame(rows[rows["level"] == k]) for k in sorted(rows["level"].unique())]

@@ -1,0 +1,58 @@
+"""Blinn-type models: functions of N·H (sections 1.2.4 and 3.7.1)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from brdfs.physics.geometry import n_dot_h
+from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.physics.models.base import BRDF, check_positive, positive_power
+
+
+@dataclass(frozen=True)
+class _BlinnFamily(BRDF):
+    n: float
+    C: float = 1.0
+
+    def __post_init__(self):
+        check_positive("n", self.n, allow_zero=True)
+        check_positive("C", self.C)
+
+    @property
+    def lobe(self):
+        return PowerCosine(self.n, "half")
+
+
+@dataclass(frozen=True)
+class Blinn(_BlinnFamily):
+    """Reciprocal Blinn, f = C (N·H)^n (eq. 1.34 / 2.6 / 3.33)."""
+
+    name = "blinn"
+
+    def _eval(self, L, V, nl, nv):
+        return self.C * positive_power(n_dot_h(L, V), self.n)
+
+
+@dataclass(frozen=True)
+class BlinnOriginal(_BlinnFamily):
+    """Original Blinn, f = C (N·H)^n / cos θ_L (eq. 2.5) — not reciprocal."""
+
+    name = "blinn_original"
+    reciprocal = False
+
+    def _eval(self, L, V, nl, nv):
+        return self.C * positive_power(n_dot_h(L, V), self.n) / nl
+
+
+@dataclass(frozen=True)
+class BlinnCosmin(_BlinnFamily):
+    """Corrected Blinn, f = C (N·H)^n / max(N·L, N·V) (eq. 3.34)."""
+
+    name = "blinn_cosmin"
+
+    def _eval(self, L, V, nl, nv):
+        return self.C * positive_power(n_dot_h(L, V), self.n) / np.maximum(nl, nv)
+
+    def nv_levels(self, nl):
+        return (nl,)

@@ -1,0 +1,87 @@
+"""Phong-type models: functions of R·V (chapter 2 and 3)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from brdfs.physics.geometry import r_dot_v
+from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.physics.models.base import BRDF, check_positive, positive_power
+
+
+def phong_constant(n):
+    """c_n = (n+2)/(2π), the largest energy-conserving constant of the reciprocal Phong (eq. 3.6)."""
+    return (np.asarray(n, float) + 2.0) / (2.0 * np.pi)
+
+
+@dataclass(frozen=True)
+class _PhongFamily(BRDF):
+    n: float
+    C: float | None = None
+
+    def __post_init__(self):
+        check_positive("n", self.n, allow_zero=True)
+        if self.C is None:
+            object.__setattr__(self, "C", float(phong_constant(self.n)))
+        check_positive("C", self.C)
+
+    @property
+    def lobe(self):
+        return PowerCosine(self.n, "mirror")
+
+    def _lobe_value(self, L, V):
+        return self.C * positive_power(r_dot_v(L, V), self.n)
+
+
+@dataclass(frozen=True)
+class Phong(_PhongFamily):
+    """Reciprocal Phong, f = c (R·V)^n (eq. 2.6 / 3.5), c = (n+2)/2π by default."""
+
+    name = "phong"
+
+    def _eval(self, L, V, nl, nv):
+        return self._lobe_value(L, V)
+
+
+@dataclass(frozen=True)
+class PhongOriginal(_PhongFamily):
+    """Original Phong, f = c (R·V)^n / cos θ_L (eq. 2.5) — not reciprocal."""
+
+    name = "phong_original"
+    reciprocal = False
+
+    def _eval(self, L, V, nl, nv):
+        return self._lobe_value(L, V) / nl
+
+
+@dataclass(frozen=True)
+class PhongCosmin(_PhongFamily):
+    """The new model, f = c (R·V)^n / max(N·L, N·V) (eq. 3.10)."""
+
+    name = "phong_cosmin"
+
+    def _eval(self, L, V, nl, nv):
+        return self._lobe_value(L, V) / np.maximum(nl, nv)
+
+    def nv_levels(self, nl):
+        return (nl,)
+
+
+@dataclass(frozen=True)
+class PModel(_PhongFamily):
+    """p-model, f = c (R·V)^n / max(N·L, N·V)^p, 0 ≤ p ≤ 1 (eq. 3.12)."""
+
+    p: float = 1.0
+    name = "p_model"
+
+    def __post_init__(self):
+        super().__post_init__()
+        if not 0.0 <= float(self.p) <= 1.0:
+            raise ValueError(f"p must lie in [0, 1], got {self.p!r}")
+
+    def _eval(self, L, V, nl, nv):
+        return self._lobe_value(L, V) / np.maximum(nl, nv) ** self.p
+
+    def nv_levels(self, nl):
+        return (nl,)

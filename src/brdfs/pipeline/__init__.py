@@ -1,0 +1,1 @@
+"""Pipeline plumbing: configuration, the artifact registry, I/O, published values, regression, plotting."""

@@ -1,9 +1,0 @@
-"""Compute one registered table or figure and write its CSV and PNG (atomically)."""
-
-from brdfs import artifacts, io
-
-with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
-    artifact = artifacts.get_artifact(snakemake.params.artifact)  # noqa: F821
-    df = artifact.compute(snakemake.params.config, artifacts.read_tables(snakemake.input.tables))  # noqa: F821
-    artifact.write(df, snakemake.output.csv, snakemake.output.png)  # noqa: F821
-    log.info("%s: %d rows -> %s", artifact.name, len(df), snakemake.output.csv)  # noqa: F821
