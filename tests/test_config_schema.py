@@ -86,7 +86,8 @@ def dry_run(tmp_path: Path, config: dict) -> subprocess.CompletedProcess:
 def test_dry_run_of_the_valid_config_plans_every_rule(tmp_path):
     run = dry_run(tmp_path, raw_config())
     assert run.returncode == 0, run.stderr
-    assert "check_metal_a0" in run.stdout and "merge_comparison" in run.stdout
+    assert "results/checks/published/metal_a0.csv" in run.stdout and "merge_comparison" in run.stdout
+    assert "results/figures/fig_2_1_albedo_classical.png" in run.stdout
     assert not (tmp_path / "results").exists()
 
 

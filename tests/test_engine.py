@@ -9,7 +9,7 @@ import pytest
 from scipy.integrate import quad
 
 from brdfs import albedo_table, model
-from brdfs.numerics import albedo
+from brdfs import albedo
 from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
 from brdfs.numerics.integrate.disk import disk_albedo
 from brdfs.numerics.quantities import grazing_albedo_new_model, max_albedo, mean_albedo, mean_albedo_nested, phong_mean_albedo

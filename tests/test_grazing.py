@@ -9,7 +9,7 @@ from scipy.integrate import quad
 from scipy.special import beta, gamma, hyperu
 
 from brdfs import model
-from brdfs.numerics import albedo
+from brdfs import albedo
 from brdfs.artifacts._albedo_curves import build
 from brdfs.physics.geometry import cos_incidence
 from brdfs.numerics.grazing import (NORMALISATION_FACTORS, SmithGrazingLimit, approach_angles, asymptotic_law,

@@ -10,7 +10,7 @@ from scipy.integrate import quad
 from scipy.special import erfc, gammaln
 
 from brdfs import model
-from brdfs.numerics import albedo
+from brdfs import albedo
 from brdfs.physics.geometry import direction
 from brdfs.physics.models.he_torrance import (
     HeTorrance,
