@@ -1,9 +1,8 @@
 # Configuration check and the registry-derived names every rule uses.
-from snakemake.utils import validate
-
 from brdfs.pipeline import registry
+from brdfs.pipeline.config import check_config
 
-validate(config, "../schemas/config.schema.yaml")
+check_config(config)
 
 PUBLISHED = "data/published_values.csv"
 COMPARISON = "results/checks/published_comparison.csv"

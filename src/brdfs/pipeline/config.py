@@ -1,9 +1,9 @@
 """Load ``config.yaml`` outside Snakemake, validated as the workflow validates it.
 
-The Snakefile validates with ``snakemake.utils.validate``; this module applies
-the same JSON schema with the same default filling (the jsonschema FAQ recipe
-Snakemake uses), so in-process runs (tests, ``python -m brdfs.pipeline.regression``) see
-the same configuration as the pipeline.
+The workflow (``workflow/rules/common.smk``) and in-process runs (tests,
+``python -m brdfs.pipeline.regression``) validate through :func:`validate_config`: the JSON
+schema of ``workflow/schemas/config.schema.yaml`` with default filling (the jsonschema FAQ
+recipe Snakemake uses) and the model names taken from the model classes.
 """
 
 from __future__ import annotations
@@ -32,6 +32,16 @@ def _validator_filling_defaults(schema: dict) -> jsonschema.protocols.Validator:
     return jsonschema.validators.extend(base, {"properties": set_defaults})(schema)
 
 
+def load_schema(schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
+    """The config schema, with the enum of model names filled in from the model classes."""
+    from brdfs.physics.models import MODELS
+
+    with open(schema_path, encoding="utf-8") as stream:
+        schema = yaml.safe_load(stream)
+    schema.setdefault("$defs", {}).setdefault("model_name", {"type": "string"})["enum"] = sorted(MODELS)
+    return schema
+
+
 def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
     """Validate ``config`` in place, filling the schema's defaults.
 
@@ -40,9 +50,7 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
     jsonschema.ValidationError
         Naming the offending key and value.
     """
-    with open(schema_path, encoding="utf-8") as stream:
-        schema = yaml.safe_load(stream)
-    _validator_filling_defaults(schema).validate(config)
+    _validator_filling_defaults(load_schema(schema_path)).validate(config)
     return config
 
 
@@ -51,3 +59,22 @@ def load_config(path: str | os.PathLike = CONFIG_YAML, schema_path: str | os.Pat
     with open(path, encoding="utf-8") as stream:
         config = yaml.safe_load(stream)
     return validate_config(config, schema_path)
+
+
+class ConfigError(ValueError):
+    """A configuration that does not satisfy the schema; its message is one line."""
+
+
+def check_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
+    """:func:`validate_config`, with a failure reported as one line naming the key and the value.
+
+    Raises
+    ------
+    ConfigError
+        ``Error validating config file: config['a']['b'] = <value>: <reason>``.
+    """
+    try:
+        return validate_config(config, schema_path)
+    except jsonschema.ValidationError as error:
+        key = "config" + "".join(f"[{p!r}]" for p in error.absolute_path)
+        raise ConfigError(f"Error validating config file: {key} = {error.instance!r}: {error.message}") from None
