@@ -137,8 +137,12 @@ def _evaluate(scene, index, L, V):
 
 
 def _direct(scene, p, index, N, T, B, Vloc):
-    """Σ_lights f(L, V) I cos θ_L / r², with shadow rays (eq. 2.3)."""
+    """Σ_lights f(L, V) I cos θ_L / r², with shadow rays (eq. 2.3); 0 where nothing is hit."""
     out = np.zeros(p.shape[:-1] + (scene.channels,))
+    hit = index >= 0
+    if not np.all(hit):
+        out[hit] = _direct(scene, p[hit], index[hit], N[hit], T[hit], B[hit], Vloc[hit])
+        return out
     origin = p + RAY_OFFSET * N           # shadow rays only; the shading geometry is at p
     for light in scene.lights:
         to_light = np.asarray(light.position, float) - p
