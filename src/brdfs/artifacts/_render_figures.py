@@ -6,7 +6,8 @@ every panel and returns one row per (panel, object) with the scene's parameters 
 luminance Y of the object's pixels with its Monte Carlo standard error; the display images (8-bit
 sRGB) ride along in ``df.attrs["images"]`` to ``plot``, which lays them out. All panels of a
 figure share one display scale (from the reference objects of its first panel, section 3.6), so
-brightness differences between panels (pumping, Fig. 2.8) stay visible.
+brightness differences between panels (pumping, Fig. 2.8) stay visible, and all panels use the
+same random numbers (common random numbers), so such differences are not Monte Carlo noise.
 """
 from __future__ import annotations
 
@@ -85,7 +86,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
         camera = tracer.Camera(tuple(cam["eye"]), tuple(cam["target"]), width, height, cam.get("fov_deg", 30.0))
         direct_only = not panel.sky
         image = tracer.render(scene, camera, spp=1 if direct_only else setup["spp"],
-                              depth=1 if direct_only else setup["depth"], seed=cfg["seed"] + k,
+                              depth=1 if direct_only else setup["depth"], seed=cfg["seed"],   # common random numbers: panels differ by their materials only
                               stat_weights=spectrum.luminance_weights(panel.channels))
         rgb = spectrum.linear_rgb(image.radiance)
         if scale is None or not shared_scale:
