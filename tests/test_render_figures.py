@@ -49,9 +49,13 @@ def test_every_render_reports_each_object_with_a_finite_luminance_and_error(name
 def test_pumping_brightens_every_object_of_figure_2_8(frames):
     """Pumping divides f by g ≤ 1 with the same proposal and random stream: never darker (Sec. 2.3)."""
     df = frames["fig_2_8_pumping_render"]
-    for n, group in df[df["object"] != "background"].groupby("n"):
-        plain = group[group["pumping_levels"] == 0].set_index("object")["luminance"]
-        pumped = group[group["pumping_levels"] == 1].set_index("object")["luminance"]
+    objects = df[df["object"] != "background"]
+    for n in objects["n"].dropna().unique():
+        in_panels = objects[objects["panel_title"].str.endswith(f"n = {n:g}")]
+        plain = in_panels[in_panels["panel"] < 2].set_index("object")["luminance"]
+        pumped = in_panels[in_panels["panel"] >= 2].set_index("object")["luminance"]
+        assert set(objects[objects["panel"] >= 2]["pumping"].dropna()) - {"none"} == {"g1"}
+        assert len(plain) == len(pumped) >= 6
         assert np.all(pumped >= plain * (1 - 1e-12)), (n, plain, pumped)
         assert (pumped > plain * 1.01).any()
 

@@ -59,13 +59,16 @@ def _scene(panel: Panel, cfg: dict):
 
 
 def _describe(spec: dict) -> dict:
-    keys = ("metal", "model", "n", "s", "b", "ratio", "d", "a_s", "pumped", "diffuse")
+    """Material columns of a row (docs/contract.md names): model, metal, parameters, pumping."""
+    keys = ("metal", "model", "n", "s", "b", "ratio", "d", "a_s", "diffuse")
     out = {k: spec.get(k) for k in keys}
-    if "rgb" in spec:
-        out["model"] = "plastic_eq_3_31"
+    if "rgb" in spec:          # eq. 3.31: Lambert r, g, b + a_s · phong_cosmin
+        out["model"] = "phong_cosmin"
         out["rgb"] = " ".join(f"{c:g}" for c in spec["rgb"])
     elif "diffuse" in spec:
         out["model"] = "lambert"
+    level = int(spec.get("pumped", 0))
+    out["pumping"], out["level"] = ("g1" if level else "none"), level
     return out
 
 

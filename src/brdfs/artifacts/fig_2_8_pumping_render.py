@@ -29,7 +29,7 @@ def panels(cfg: dict) -> list:
             for x, metal in zip(xs, p["spheres"]):
                 objects.append((f"{metal} sphere", rf.sphere(x, -1.4, 0.55), {**spec, "metal": metal}))
             out.append(rf.Panel(f"{row}, n = {n:g}", objects, rf.TWO_LIGHTS, rf.STREET_CAMERA,
-                                aspect=1.6, extra={"pumping_levels": pumped}))
+                                aspect=1.6))
     return out
 
 
