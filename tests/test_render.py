@@ -205,3 +205,35 @@ def test_proposal_for_uses_the_models_own_sampler_when_it_has_one():
 
     assert isinstance(sampling.proposal_for(WithSampler()), sampling.ModelSampler)
     assert isinstance(sampling.proposal_for(brdfs.model("phong_cosmin", n=5)), sampling.PowerLobeSampler)
+
+
+def test_a_models_own_sampler_is_used_and_its_weights_stay_unbiased():
+    """Duck typing: a model carrying sample/pdf (the sampling helper's interface) is sampled with
+    them; the material's mixture weights still average to the engine's albedo."""
+    from dataclasses import dataclass
+
+    from brdfs.physics.models.phong import PhongCosmin
+
+    calls = []
+
+    @dataclass(frozen=True)
+    class SampledNewModel(PhongCosmin):
+        def sample(self, L, u):
+            calls.append(len(u))
+            V = sampling.PowerLobeSampler(self.n).sample(L, u)
+            pdf = self.pdf(L, V)
+            return V, np.where(pdf > 0, self(L, V) * np.maximum(V[..., 2], 0) / np.where(pdf > 0, pdf, 1), 0.0), pdf
+
+        def pdf(self, L, V):
+            return sampling.PowerLobeSampler(self.n).pdf(L, V)
+
+    model = SampledNewModel(n=200.0)
+    material = materials.specular(model, 1)
+    assert isinstance(material.proposals[0], sampling.ModelSampler)
+    rng = np.random.default_rng(2)
+    n, theta = 200_000, 40.0
+    V = np.broadcast_to([np.sin(np.radians(theta)), 0.0, np.cos(np.radians(theta))], (n, 3))
+    _, weight = material.sample(V, rng.random((n, 2)), rng.random(n))
+    assert calls and sum(calls) > 0.8 * n
+    expected = brdfs.albedo(brdfs.model("phong_cosmin", n=200.0), theta).value
+    assert abs(weight.mean() - expected) <= 4.5 * weight.std() / np.sqrt(n)
