@@ -11,6 +11,7 @@ from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import fig_4_18_generalized_lambert as fig_4_18
 from brdfs.numerics.render import tracer
 from brdfs.pipeline import registry
+from brdfs.pipeline.config import CONFIG_YAML
 
 RENDERS = ["fig_2_8_pumping_render", "fig_3_8_material_spheres", "fig_3_9_metals_new_model",
            "fig_3_10_metal_teapots", "fig_3_11_silver_mirror", "fig_3_12_plastics", "fig_3_13_ceramics",
@@ -19,10 +20,8 @@ RENDERS = ["fig_2_8_pumping_render", "fig_3_8_material_spheres", "fig_3_9_metals
 
 
 @pytest.fixture(scope="module")
-def tiny_cfg(repo_root=None):
-    from pathlib import Path
-    cfg = yaml.safe_load((Path(__file__).resolve().parents[1] / "config.yaml").read_text())
-    cfg = copy.deepcopy(cfg)
+def tiny_cfg():
+    cfg = yaml.safe_load(CONFIG_YAML.read_text())
     cfg["renders"]["draft"] = {"width": 24, "height": 18, "spp": 4, "depth": 2}
     return registry.config_subset(cfg, ["renders"])
 

@@ -26,6 +26,7 @@ import numpy as np
 from scipy.special import lambertw
 
 from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.physics.models.base import BRDF
 
 
 def _frame_around(axis):
@@ -136,8 +137,10 @@ class ModelSampler:
 
 
 def proposal_for(model):
-    """The best available proposal for ``model``: its own sampler, else one fitted to its shape."""
-    if callable(getattr(model, "sample", None)) and callable(getattr(model, "pdf", None)):
+    """The best available proposal for ``model``: its own sampler (where it overrides the protocol's
+    cosine default), else one fitted to its shape."""
+    own = getattr(type(model), "sample", None)
+    if callable(own) and callable(getattr(model, "pdf", None)) and own is not BRDF.sample:
         return ModelSampler(model)
     name = getattr(model, "name", "")
     if name == "patch_exponential":
