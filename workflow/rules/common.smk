@@ -1,9 +1,16 @@
 # Configuration check and the registry-derived names every rule uses.
-from snakemake.utils import validate
+import sys
 
 from brdfs.pipeline import registry
+from brdfs.pipeline.config import ConfigError, validate_config
 
-validate(config, "../schemas/config.schema.yaml")
+# The schema (workflow/schemas/config.schema.yaml) is applied, with its defaults, to the
+# config as Snakemake sees it (config.yaml updated by --config/--configfile), before any rule
+# is planned. A bad value stops the run with one line naming the key and the value.
+try:
+    validate_config(config)
+except ConfigError as error:
+    sys.exit(str(error))
 
 PUBLISHED = "data/published_values.csv"
 COMPARISON = "results/checks/published_comparison.csv"

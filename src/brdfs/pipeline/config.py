@@ -3,7 +3,9 @@
 The Snakefile validates with ``snakemake.utils.validate``; this module applies
 the same JSON schema with the same default filling (the jsonschema FAQ recipe
 Snakemake uses), so in-process runs (tests, ``python -m brdfs.pipeline.regression``) see
-the same configuration as the pipeline.
+the same configuration as the pipeline. A bad configuration raises
+:class:`ConfigError`, whose message is one line naming the key and its value
+(``workflow/rules/common.smk`` prints it and stops before any rule runs).
 """
 
 from __future__ import annotations
@@ -32,17 +34,72 @@ def _validator_filling_defaults(schema: dict) -> jsonschema.protocols.Validator:
     return jsonschema.validators.extend(base, {"properties": set_defaults})(schema)
 
 
+class ConfigError(ValueError):
+    """An invalid configuration; the message is one line naming the key and the value."""
+
+
+def _key(path) -> str:
+    """``grazing.fig_2_1_models[0].model`` from a jsonschema path."""
+    out = ""
+    for part in path:
+        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else str(part))
+    return out or "(top level)"
+
+
+def _short(value, limit: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+_REASONS = {
+    "type": lambda v: f"must be of type {v}",
+    "minimum": lambda v: f"must be >= {v}",
+    "exclusiveMinimum": lambda v: f"must be > {v}",
+    "maximum": lambda v: f"must be <= {v}",
+    "exclusiveMaximum": lambda v: f"must be < {v}",
+    "enum": lambda v: "must be one of " + ", ".join(map(str, v)),
+    "const": lambda v: f"must be {v}",
+    "pattern": lambda v: f"must match {v}",
+    "minItems": lambda v: "must not be empty" if v == 1 else f"needs at least {v} items",
+}
+
+
+def describe_error(error: jsonschema.ValidationError) -> str:
+    """One line naming the offending key and its value, and what the schema wants."""
+    path = list(error.absolute_path)
+    value, reason = error.instance, None
+    if error.validator == "additionalProperties" and isinstance(value, dict):
+        unknown = sorted(set(value) - set(error.schema.get("properties", {})))
+        if unknown:
+            path.append(unknown[0])
+            value, reason = value[unknown[0]], "unknown key"
+    elif error.validator == "required" and isinstance(value, dict):
+        missing = [k for k in error.validator_value if k not in value]
+        return f"invalid config: {_key([*path, missing[0]])} is missing (required)"
+    elif error.validator in _REASONS:
+        reason = _REASONS[error.validator](error.validator_value)
+    if reason is None:
+        reason = error.message.splitlines()[0]
+        reason = reason if len(reason) <= 100 else reason[:97] + "..."
+    return f"invalid config: {_key(path)} = {_short(value)}: {reason}"
+
+
 def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
     """Validate ``config`` in place, filling the schema's defaults.
 
     Raises
     ------
-    jsonschema.ValidationError
-        Naming the offending key and value.
+    ConfigError
+        One line naming the offending key and value (the jsonschema error is its ``__cause__``).
     """
     with open(schema_path, encoding="utf-8") as stream:
         schema = yaml.safe_load(stream)
-    _validator_filling_defaults(schema).validate(config)
+    if not isinstance(config, dict):
+        raise ConfigError(f"invalid config: (top level) = {_short(config)}: must be a mapping")
+    try:
+        _validator_filling_defaults(schema).validate(config)
+    except jsonschema.ValidationError as error:
+        raise ConfigError(describe_error(error)) from error
     return config
 
 
