@@ -30,7 +30,7 @@ rule merge_comparison:
         fragments=FRAGMENTS,
         published=PUBLISHED,
     output:
-        COMPARISON,
+        report(COMPARISON, caption="../report/comparison.rst", category="Comparison with the print"),
     resources:
         mem_mb=1000,
         runtime=5,

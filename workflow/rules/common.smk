@@ -2,6 +2,7 @@
 import sys
 
 from brdfs.pipeline import registry
+from brdfs.pipeline import report as report_text
 from brdfs.pipeline.config import ConfigError, validate_config
 
 # The schema (workflow/schemas/config.schema.yaml) is applied, with its defaults, to the
@@ -19,6 +20,12 @@ ARTIFACTS = registry.artifacts()
 COMPARISONS = registry.comparisons()
 ARTIFACT_OUTPUTS = [path for a in ARTIFACTS.values() for path in (a.csv, a.png)]
 FRAGMENTS = [c.fragment_csv for c in COMPARISONS.values()]
+
+# Captions and verdicts for the HTML report's caption templates (workflow/report/*.rst),
+# which Snakemake renders with this config; no rule reads this key.
+config[report_text.CONFIG_KEY] = report_text.context(
+    ARTIFACTS, {name: c.tables for name, c in COMPARISONS.items()}, COMPARISON
+)
 
 
 def wildcard_choice(names):
