@@ -9,8 +9,10 @@ from brdfs.numerics.albedo import albedo_table
 from brdfs.physics.geometry import cos_incidence
 from brdfs.physics.models import model
 
-#: Wide parameter columns of every curve table (contract: one column per parameter).
-PARAM_COLUMNS = ("G", "n", "m", "sigma0_um", "tau_um", "lambda_um", "term", "C")
+def param_names(models) -> list[str]:
+    """The wide parameter columns of a curve table: every parameter of ``models``, in order of
+    first appearance (contract: one column per parameter)."""
+    return list(dict.fromkeys(c for m in models for c in m.param_columns()))
 
 
 def build(spec: dict):
@@ -26,17 +28,20 @@ def label(brdf) -> str:
     return f"{brdf.name} ({shown})"
 
 
-def param_columns(brdf) -> dict:
-    """The wide parameter columns of ``brdf`` (empty where a parameter does not apply)."""
-    return {c: "" if brdf.params.get(c) is None else brdf.params[c] for c in PARAM_COLUMNS}
+def param_columns(brdf, names=None) -> dict:
+    """The parameter columns ``names`` (default: the model's own) of ``brdf``, empty where a
+    parameter does not apply."""
+    names = brdf.param_columns() if names is None else names
+    return {c: "" if brdf.params.get(c) is None else brdf.params[c] for c in names}
 
 
 def curves(specs, theta_deg, tol) -> pd.DataFrame:
     """a(θ) with its error for every model of ``specs`` on ``theta_deg``, one row per value."""
     models = [build(s) for s in specs]
-    est = albedo_table(models, theta_deg, tol=tol["rtol"], atol=tol["atol"])
+    est = albedo_table(models, theta_deg, rtol=tol["rtol"], atol=tol["atol"])
+    names = param_names(models)
     frames = [
-        pd.DataFrame({"model": m.name, **param_columns(m), "label": label(m), "theta_deg": theta_deg,
+        pd.DataFrame({"model": m.name, **param_columns(m, names), "label": label(m), "theta_deg": theta_deg,
                       "cos_theta": cos_incidence(theta_deg), "albedo": est.value[i], "albedo_err": est.error[i]})
         for i, m in enumerate(models)
     ]

@@ -22,7 +22,7 @@ def albedo_curves(ns, theta_step_deg: float, rtol: float) -> pd.DataFrame:
     rows = []
     for n in ns:
         brdf = model("phong_cosmin", n=n)
-        est = albedo(brdf, theta, tol=rtol)
+        est = albedo(brdf, theta, rtol=rtol)
         rows.append(pd.DataFrame({"model": "phong_cosmin", "n": float(n), "C": brdf.C, "theta_deg": theta,
                                   "albedo": est.value, "albedo_err": est.error}))
     return pd.concat(rows, ignore_index=True)

@@ -86,7 +86,7 @@ def distance_to_new_model(cfg: dict, df: pd.DataFrame) -> pd.DataFrame:
     theta = np.sort(albedo_rows["theta_deg"].unique())
     new = model("phong_cosmin", n=n)
     from brdfs.numerics.albedo import albedo
-    est = albedo(new, theta, tol=cfg["tolerance"]["rtol"])
+    est = albedo(new, theta, rtol=cfg["tolerance"]["rtol"])
     rows = [pd.DataFrame({"theta_deg": theta, "albedo": est.value, "albedo_err": est.error})
             .assign(model="phong_cosmin", n=n, C=new.C, pumping="none")]
     for level, g in albedo_rows.groupby("level"):

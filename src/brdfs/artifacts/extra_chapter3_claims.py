@@ -21,7 +21,7 @@ def _grazing_rows(ns, check_ns, tol):
     rows = []
     finite = [float(n) for n in ns] + [float(n) for n in check_ns]
     for n in finite:
-        est = albedo(model("phong_cosmin", n=n), [90.0], tol=tol)
+        est = albedo(model("phong_cosmin", n=n), [90.0], rtol=tol)
         rows.append({"claim": "grazing_limit", "model": "phong_cosmin", "n": n, "quantity": "albedo_at_90deg",
                      "value": est.value[0], "value_err": est.error[0], "theta_deg": 90.0,
                      "closed_form": float(grazing_albedo_new_model(n)),
@@ -43,7 +43,7 @@ def _blinn_rows(n, constants, tol):
     rows = []
     for name in ("blinn", "blinn_cosmin"):
         c_row = constants[(constants["model"] == name) & (constants["n"] == n)].iloc[0]
-        est = albedo(model(name, n=float(n), C=float(c_row["C"])), [90.0], tol=tol)
+        est = albedo(model(name, n=float(n), C=float(c_row["C"])), [90.0], rtol=tol)
         rows.append({"claim": "blinn_90deg", "model": name, "n": float(n), "quantity": "albedo_at_90deg",
                      "value": est.value[0], "value_err": est.error[0] + c_row["C_err"] / c_row["C"] * est.value[0],
                      "theta_deg": 90.0, "closed_form": np.nan, "role": "claim"})

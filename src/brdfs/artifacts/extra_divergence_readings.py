@@ -18,7 +18,8 @@ from brdfs.pipeline import plotting
 from brdfs.pipeline import published
 from brdfs.numerics.albedo import albedo
 from brdfs.pipeline.registry import comparison, get_artifact, table
-from brdfs.numerics.grazing import NORMALISATION_FACTORS, grid_albedo, monte_carlo_albedo
+from brdfs.numerics.albedo import monte_carlo_albedo
+from brdfs.numerics.grazing import NORMALISATION_FACTORS
 from brdfs.physics.models import model
 
 ARTIFACT = "grazing_divergence"
@@ -45,10 +46,10 @@ def _methods(r: dict, seed: int, key: tuple) -> list[tuple]:
 def _evaluate(brdf, theta, method, n_theta, n_phi, n_samples, seq, tol):
     """(albedo, albedo_err, mc_stderr) of one reading."""
     if method == "exact":
-        est = albedo(brdf, theta, tol["rtol"], tol["atol"])
+        est = albedo(brdf, theta, rtol=tol["rtol"], atol=tol["atol"])
         return float(est.value), float(est.error), np.nan
     if method == "grid":
-        est = grid_albedo(brdf, theta, n_theta, n_phi)
+        est = albedo(brdf, theta, "midpoint_grid", n_theta=n_theta, n_phi=n_phi)
         return float(est.value), float(est.error), np.nan
     est, stderr = monte_carlo_albedo(brdf, theta, method.removeprefix("mc_"), n_samples, seq)
     return float(est.value), float(est.error), float(stderr)

@@ -40,7 +40,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     for term in TERMS:
         brdf = HeTorrance(sigma0_um=params["sigma0_um"], tau_um=params["tau_um"],
                           lambda_um=section["lambda_um"], term=term)
-        est = albedo(brdf, theta, tol=cfg["tolerance"]["rtol"], atol=cfg["tolerance"]["atol"])
+        est = albedo(brdf, theta, rtol=cfg["tolerance"]["rtol"], atol=cfg["tolerance"]["atol"])
         frames.append(pd.DataFrame({
             "model": brdf.name, "sigma0_um": brdf.sigma0_um, "tau_um": brdf.tau_um, "lambda_um": brdf.lambda_um,
             "ior_re": "", "ior_im": "", "term": term, "theta_deg": theta, "albedo": est.value,

@@ -33,7 +33,7 @@ def sweep(stability: dict, tol: dict) -> pd.DataFrame:
     """The albedo of every sweep model at 90° − 10^(−x); flags for finiteness and sign."""
     theta = 90.0 - 10.0 ** -np.asarray(stability["exponents"], float)
     models = sweep_models(stability)
-    est = albedo_table(models, theta, tol=tol["rtol"], atol=tol["atol"])
+    est = albedo_table(models, theta, rtol=tol["rtol"], atol=tol["atol"])
     frames = [pd.DataFrame({"check": "sweep", "model": m.name, **albedo_curves.param_columns(m), "theta_deg": theta,
                             "albedo": est.value[i], "albedo_err": est.error[i]}) for i, m in enumerate(models)]
     df = pd.concat(frames, ignore_index=True)

@@ -36,7 +36,7 @@ def compute(cfg: dict, deps: dict) -> pd.DataFrame:
     ns = [float(n) for n in cfg["blinn_cn"]["n"]]
     models = [model(name, n=n) for name in MODELS for n in ns]
     grid = np.arange(0.0, 90.0 + 1e-9, 1.0)
-    on_grid = albedo_table(models, grid, tol=READINGS_RTOL).value        # brackets the maximum too
+    on_grid = albedo_table(models, grid, rtol=READINGS_RTOL).value        # brackets the maximum too
     C, theta = maximal_constant(models, cfg["tolerance"]["rtol"], grid_deg=1.0, grid_values=on_grid)
     df = pd.DataFrame({"model": np.repeat(MODELS, len(ns)), "n": np.tile(ns, len(MODELS)),
                        "C": C.value, "C_err": C.error, "theta_max_deg": theta,

@@ -1,15 +1,41 @@
-"""Directional albedo a(L) (eq. 1.18), its maximum over L, and the mean albedo (eq. 1.20 / 3.37)."""
+"""Directional albedo a(L) = ∫ f(L, V) cos θ_V dω_V (eq. 1.18): one front door, several methods.
+
+:func:`albedo` answers every albedo question of the package with the method asked for, in the
+colour-science manner (one function per method and a table of them, :data:`ALBEDO_METHODS`):
+
+* ``engine`` — the lobe-following adaptive Gauss–Kronrod of :mod:`brdfs.numerics.integrate`
+  (the default, and the only method that meets 1e-10 everywhere);
+* ``disk`` — the independent projected-disk integration (:mod:`brdfs.numerics.integrate.disk`);
+* ``product_grid`` — an N × N Gauss–Legendre grid in (cos θ_V, φ_V), error |Q_N − Q_{N/2}|;
+* ``midpoint_grid`` — the midpoint rule on n_θ × n_φ cells of (θ_V, φ_V), as a program of 2001
+  could have computed it (error: a rounding bound only);
+* ``dblquad`` — ``scipy.integrate.dblquad`` over (θ_V, φ_V) with its own error estimate;
+* ``monte_carlo`` — sampling V (``sampler``: ``cosine``, ``uniform``, ``beckmann_half_vector``, or
+  ``model`` for the model's own :meth:`~brdfs.physics.models.base.BRDF.sample`); error = standard error.
+
+Every method returns an :class:`Estimate` with ``value`` and ``error`` shaped like ``theta_deg``,
+the number of BRDF evaluations it cost and a ``status`` per value (``converged`` when the error
+meets the tolerance asked for).
+"""
 from __future__ import annotations
 
-import numpy as np
+import warnings
+from collections.abc import Callable
 
-from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+import numpy as np
+from scipy.integrate import IntegrationWarning, dblquad
+
+from brdfs.numerics.integrate.disk import disk_albedo
+from brdfs.numerics.integrate.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import FRAME as SCATTERING_FRAME
 from brdfs.numerics.integrate.scattering import albedo_scattering
+from brdfs.physics.geometry import light_direction
+from brdfs.physics.models.base import counting_evaluations
 
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-14
+_EPS = np.finfo(float).eps
 
 
 def _check_angles(theta_deg):
@@ -20,40 +46,233 @@ def _check_angles(theta_deg):
     return theta
 
 
+# --- the engine ------------------------------------------------------------------------------
+
 def _albedo_pairs(models, theta, rtol, atol):
     """Albedo of ``models[i]`` at ``theta[i]``: the density integrated in the frame its lobe asks for
     (Kirchhoff lobes in the scattering-vector frame, :mod:`.integrate.scattering`; the others around R
-    or N, :mod:`.integrate.hemisphere`), plus the closed-form albedo of a Dirac part, for a model that
-    has one (``model.delta_albedo(theta)``, e.g. He–Torrance's specular term)."""
+    or N, :mod:`.integrate.hemisphere`), plus the albedo of its Dirac part (``model.delta_albedo``,
+    e.g. He–Torrance's specular term; zero for most models)."""
     value, error = np.zeros(theta.size), np.zeros(theta.size)
+    status = np.full(theta.size, CONVERGED, dtype=object)
     kirchhoff = np.array([m.lobe.frame == SCATTERING_FRAME for m in models], bool)
     for chosen, scheme in ((kirchhoff, albedo_scattering), (~kirchhoff, albedo_many)):
         if chosen.any():
             est = scheme([m for m, c in zip(models, chosen) if c], theta[chosen], rtol=rtol, atol=atol)
             value[chosen], error[chosen] = est.value, est.error
+            if est.status is not None:
+                status[chosen] = est.status
+    groups: dict[int, list[int]] = {}
     for i, m in enumerate(models):
-        if hasattr(m, "delta_albedo"):
-            delta = m.delta_albedo(theta[i])
-            value[i] += delta.value
-            error[i] += delta.error
-    return Estimate(value, error)
+        groups.setdefault(id(m), []).append(i)
+    for rows in groups.values():
+        delta = models[rows[0]].delta_albedo(theta[rows])
+        value[rows] += delta.value
+        error[rows] += delta.error
+    return Estimate(value, error, status=status.astype(str))
 
 
-def albedo(model, theta_deg, tol=None, atol=DEFAULT_ATOL):
-    """a(θ) = ∫ f(L, V) cos θ_V dω_V  (eq. 1.18), vectorised over ``theta_deg``.
+def _engine(model, theta, rtol, atol):
+    return _albedo_pairs([model] * theta.size, theta, rtol, atol)
 
-    Returns an :class:`Estimate` whose ``value`` and ``error`` have the shape of ``theta_deg``.
+
+# --- independent and historical methods ------------------------------------------------------
+
+def _status(value, error, rtol, atol):
+    met = np.asarray(error) <= np.maximum(rtol * np.abs(value), atol)
+    return np.where(met, CONVERGED, BUDGET_EXHAUSTED)
+
+
+def _per_angle(one):
+    """A method for one angle at a time, lifted to an array of angles."""
+    def method(model, theta, rtol, atol, **options):
+        pairs = [one(model, float(t), rtol, atol, **options) for t in theta]
+        value = np.array([p[0] for p in pairs], float)
+        error = np.array([p[1] for p in pairs], float)
+        return Estimate(value, error, status=_status(value, error, rtol, atol))
+    method.__doc__ = one.__doc__
+    return method
+
+
+@_per_angle
+def _disk(model, theta, rtol, atol):
+    """The projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo`)."""
+    est = disk_albedo(model, theta, rtol=max(rtol, 1e-13))
+    return float(est.value), float(est.error)
+
+
+def _grid_sum(model, theta, n):
+    x, w = np.polynomial.legendre.leggauss(n)
+    u, wu = 0.5 * (x + 1), 0.5 * w
+    phi, wphi = 0.5 * np.pi * (x + 1), 0.5 * np.pi * w
+    U, P = np.meshgrid(u, phi, indexing="ij")
+    s = np.sqrt((1 - U) * (1 + U))
+    V = np.stack([s * np.cos(P), s * np.sin(P), U], -1)
+    f = model(light_direction(theta), V)
+    return float(2 * np.einsum("i,j,ij->", wu, wphi, f * U))
+
+
+@_per_angle
+def _product_grid(model, theta, rtol, atol, n=64):
+    """N × N Gauss–Legendre in (u = cos θ_V, φ_V ∈ [0, π]), doubled by symmetry; error |Q_N − Q_{N/2}|."""
+    value = _grid_sum(model, theta, n)
+    return value, abs(value - _grid_sum(model, theta, n // 2)) if n >= 2 else np.inf
+
+
+@_per_angle
+def _midpoint_grid(model, theta, rtol, atol, n_theta=90, n_phi=360):
+    """Midpoint rule on n_θ × n_φ cells of (θ_V, φ_V): Σ f cos θ_V sin θ_V Δθ Δφ; a rounding bound as error."""
+    L = light_direction(theta)
+    d_theta, d_phi = 0.5 * np.pi / n_theta, 2 * np.pi / n_phi
+    phi = (np.arange(n_phi) + 0.5) * d_phi
+    total = bound = 0.0
+    for tv in (np.arange(n_theta) + 0.5) * d_theta:
+        V = np.stack([np.sin(tv) * np.cos(phi), np.sin(tv) * np.sin(phi), np.full_like(phi, np.cos(tv))], -1)
+        row = model(L, V) * np.cos(tv) * np.sin(tv) * d_theta * d_phi
+        total += row.sum()
+        bound += np.abs(row).sum()
+    return total, 4 * _EPS * (np.log2(n_theta * n_phi) + 2) * bound
+
+
+@_per_angle
+def _dblquad(model, theta, rtol, atol, epsrel=None):
+    """``scipy.integrate.dblquad`` over θ_V ∈ [0, π/2], φ_V ∈ [0, π] (doubled by symmetry)."""
+    L = light_direction(theta)
+
+    def integrand(phi, theta_v):
+        st = np.sin(theta_v)
+        V = np.array([st * np.cos(phi), st * np.sin(phi), np.cos(theta_v)])
+        return float(model(L, V)) * np.cos(theta_v) * st
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", IntegrationWarning)
+        value, err = dblquad(integrand, 0.0, np.pi / 2, 0.0, np.pi, epsabs=0.0, epsrel=epsrel or rtol)
+    return 2 * value, 2 * err
+
+
+def _draw(sampler, model, L, rng, n):
+    """Weights f cos θ_V / p(V) of ``n`` directions V drawn by ``sampler``."""
+    u = np.stack([rng.random(n), rng.random(n)], -1)
+    if sampler == "model":
+        return model.sample(L, u)[1]
+    if sampler == "beckmann_half_vector":
+        distribution = model.distribution
+        H = distribution.sample_normal(u[:, 0], u[:, 1])
+        lh = H @ L
+        V = 2 * lh[:, None] * H - L
+        with np.errstate(divide="ignore", invalid="ignore"):
+            w = model(L, V) * V[:, 2] * 4 * lh / distribution.normal_pdf(H[:, 2])
+        return np.where((V[:, 2] > 0) & (lh > 0), w, 0.0)
+    if sampler not in ("uniform", "cosine"):
+        raise ValueError(f"unknown sampler {sampler!r}; choose uniform, cosine, beckmann_half_vector or model")
+    cos_v = u[:, 0] if sampler == "uniform" else np.sqrt(1 - u[:, 0])
+    sin_v = np.sqrt((1 - cos_v) * (1 + cos_v))
+    phi = 2 * np.pi * u[:, 1]
+    V = np.stack([sin_v * np.cos(phi), sin_v * np.sin(phi), cos_v], -1)
+    density = 1 / (2 * np.pi) if sampler == "uniform" else cos_v / np.pi
+    return model(L, V) * cos_v / density
+
+
+def monte_carlo_albedo(model, theta_deg, sampler, n_samples, seed_sequence):
+    """Monte Carlo albedo with ``n_samples`` drawn by ``sampler``; returns (Estimate with a rounding
+    bound, statistical standard error)."""
+    rng = np.random.default_rng(seed_sequence)
+    L = light_direction(theta_deg)
+    w = np.concatenate([_draw(sampler, model, L, rng, k) for k in _chunks(n_samples)])
+    mean = w.mean()
+    stderr = w.std(ddof=1) / np.sqrt(w.size) if w.size > 1 else np.inf
+    return Estimate(mean, 4 * _EPS * (np.log2(w.size) + 2) * np.abs(w).mean()), stderr
+
+
+def _chunks(n, size=250_000):
+    return [size] * (n // size) + ([n % size] if n % size else [])
+
+
+def _monte_carlo(model, theta, rtol, atol, n_samples=100_000, sampler="cosine", seed=0):
+    """Monte Carlo with ``n_samples`` per angle, the k-th angle seeded by ``[*seed, k]``;
+    error = standard error (one standard deviation)."""
+    root = [int(s) for s in np.atleast_1d(seed)]
+    runs = [monte_carlo_albedo(model, float(t), sampler, n_samples, [*root, k]) for k, t in enumerate(theta)]
+    value = np.array([float(r[0].value) for r in runs])
+    error = np.array([float(r[1]) for r in runs])
+    return Estimate(value, error, status=_status(value, error, rtol, atol))
+
+
+#: The albedo methods by name: ``method(model, theta (1-D), rtol, atol, **options) -> Estimate``.
+ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
+    "engine": _engine,
+    "disk": _disk,
+    "product_grid": _product_grid,
+    "midpoint_grid": _midpoint_grid,
+    "dblquad": _dblquad,
+    "monte_carlo": _monte_carlo,
+}
+
+
+# --- the front door --------------------------------------------------------------------------
+
+def albedo(model, theta_deg, method="engine", *, rtol=None, atol=None, **options) -> Estimate:
+    """a(θ) = ∫ f(L, V) cos θ_V dω_V  (eq. 1.18) by ``method`` (:data:`ALBEDO_METHODS`), vectorised
+    over ``theta_deg``.
+
+    Parameters
+    ----------
+    model : BRDF
+    theta_deg : float or array
+        Incidence angles in [0°, 90°].
+    method : str
+        A key of :data:`ALBEDO_METHODS`.
+    rtol, atol : float
+        Target error max(rtol |a|, atol) (defaults :data:`DEFAULT_RTOL`, :data:`DEFAULT_ATOL`).
+    **options
+        The method's own settings (``n`` for ``product_grid``, ``n_samples``, ``sampler`` and
+        ``seed`` for ``monte_carlo``, ...).
+
+    Returns
+    -------
+    Estimate
+        ``value``, ``error`` and ``status`` shaped like ``theta_deg``, and ``evaluations``, the
+        number of BRDF values computed.
+
+    Examples
+    --------
+    >>> from brdfs import model
+
+    The reciprocal Phong with c = (n+2)/2π reflects everything at normal incidence (eq. 3.6):
+
+    >>> est = albedo(model("phong", n=20), [0.0, 45.0])
+    >>> round(float(est.value[0]), 9), [str(s) for s in est.status]
+    (1.0, ['converged', 'converged'])
     """
+    try:
+        run = ALBEDO_METHODS[method]
+    except KeyError:
+        raise ValueError(f"unknown albedo method {method!r}; choose one of {sorted(ALBEDO_METHODS)}") from None
     theta = _check_angles(theta_deg)
-    flat = theta.ravel()
-    est = _albedo_pairs([model] * flat.size, flat, rtol=tol or DEFAULT_RTOL, atol=atol)
-    return Estimate(est.value.reshape(theta.shape), est.error.reshape(theta.shape))
+    rtol = DEFAULT_RTOL if rtol is None else rtol
+    atol = DEFAULT_ATOL if atol is None else atol
+    with counting_evaluations() as count:
+        est = run(model, theta.ravel(), rtol, atol, **options)
+    shape = theta.shape
+    return Estimate(est.value.reshape(shape), est.error.reshape(shape), count[0], est.status.reshape(shape))
 
 
-def albedo_table(models, theta_deg, tol=None, atol=DEFAULT_ATOL):
-    """Albedo of several models on a common grid: arrays of shape (len(models), len(theta))."""
+def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
+    """Albedo of several models on a common grid by the engine: arrays of shape (len(models), len(theta))."""
     theta = _check_angles(np.atleast_1d(theta_deg)).ravel()
     pairs = [(m, t) for m in models for t in theta]
-    est = _albedo_pairs([p[0] for p in pairs], np.array([p[1] for p in pairs]), rtol=tol or DEFAULT_RTOL, atol=atol)
+    with counting_evaluations() as count:
+        est = _albedo_pairs([p[0] for p in pairs], np.array([p[1] for p in pairs]),
+                            DEFAULT_RTOL if rtol is None else rtol, DEFAULT_ATOL if atol is None else atol)
     shape = (len(models), theta.size)
-    return Estimate(est.value.reshape(shape), est.error.reshape(shape))
+    return Estimate(est.value.reshape(shape), est.error.reshape(shape), count[0], est.status.reshape(shape))
+
+
+def albedo_pairs(models, theta_deg, rtol=None, atol=None) -> Estimate:
+    """Albedo of ``models[i]`` at ``theta_deg[i]`` by the engine, in one adaptive run (for derived
+    quantities that need many (model, angle) pairs at once: maxima, mean albedos)."""
+    theta = _check_angles(theta_deg).ravel()
+    with counting_evaluations() as count:
+        est = _albedo_pairs(list(models), theta, DEFAULT_RTOL if rtol is None else rtol,
+                            DEFAULT_ATOL if atol is None else atol)
+    return Estimate(est.value, est.error, count[0], est.status)

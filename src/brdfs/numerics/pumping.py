@@ -158,7 +158,7 @@ class AlbedoTable:
 
 def _engine(model, x, rtol):
     theta = np.degrees(np.arccos(np.clip(x, 0.0, 1.0)))
-    return albedo(model, theta, tol=rtol)
+    return albedo(model, theta, rtol=rtol)
 
 
 def tabulate_albedo(model, edges=(0.0, 1.0), target_rtol=1e-9, engine_rtol=1e-11, degree=16, model_rtol=0.0):

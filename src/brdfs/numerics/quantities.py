@@ -4,17 +4,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.numerics.albedo import DEFAULT_ATOL, DEFAULT_RTOL
+from brdfs.numerics.albedo import DEFAULT_ATOL, DEFAULT_RTOL, albedo_pairs
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
-from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.mean import mean_albedo_lobe
+from brdfs.physics.models import MODELS
 from brdfs.physics.models.blinn import Blinn, BlinnCosmin
 from brdfs.physics.models.phong import Phong, PhongCosmin
 
 _GOLD = (np.sqrt(5.0) - 1.0) / 2.0
 
 
-def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.0, grid_values=None):
+def max_albedo(models, rtol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.0, grid_values=None):
     """max over θ ∈ [0°, theta_max_deg] of a(θ) for each model, and where it is attained.
 
     A grid of step ``grid_deg`` brackets the maximum; a golden-section search, run for all
@@ -30,15 +30,15 @@ def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.0
         The maximal albedo with its error (albedo error plus the variation of a over the final
         bracket, which bounds the error of locating the maximum) and its angle in degrees.
     """
-    rtol = tol or DEFAULT_RTOL
+    rtol = rtol or DEFAULT_RTOL
     models = list(models)
     grid = np.append(np.arange(0.0, theta_max_deg, grid_deg), theta_max_deg)
     if grid_values is None:
-        grid_values = albedo_many([m for m in models for _ in grid], np.tile(grid, len(models)), rtol=1e-8).value
+        grid_values = albedo_pairs([m for m in models for _ in grid], np.tile(grid, len(models)), rtol=1e-8).value
     best = np.nanargmax(np.reshape(grid_values, (len(models), grid.size)), axis=1)
     lo = grid[np.maximum(best - 1, 0)]
     hi = grid[np.minimum(best + 1, grid.size - 1)]
-    value = lambda th: albedo_many(models, th, rtol=rtol, atol=DEFAULT_ATOL).value
+    value = lambda th: albedo_pairs(models, th, rtol=rtol, atol=DEFAULT_ATOL).value
     x1, x2 = hi - _GOLD * (hi - lo), lo + _GOLD * (hi - lo)
     f1, f2 = value(x1), value(x2)
     while np.max(hi - lo) > xtol_deg:
@@ -50,7 +50,7 @@ def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.0
         f1, f2 = np.where(left, f_new, f2), np.where(left, f1, f_new)
         x1, x2 = new_x1, new_x2
     points = np.stack([0.5 * (lo + hi), lo, hi])           # (3, models): centre and bracket ends
-    est = albedo_many(models * 3, points.ravel(), rtol=rtol, atol=DEFAULT_ATOL)
+    est = albedo_pairs(models * 3, points.ravel(), rtol=rtol, atol=DEFAULT_ATOL)
     values, errors = est.value.reshape(3, -1), est.error.reshape(3, -1)
     pick = np.argmax(values, axis=0)     # an end wins at a boundary maximum (θ = 0 exactly)
     cols = np.arange(len(models))
@@ -58,22 +58,22 @@ def max_albedo(models, tol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.0
     return Estimate(values[pick, cols], errors[pick, cols] + bracket), points[pick, cols]
 
 
-def maximal_constant(models, tol=None, **search):
+def maximal_constant(models, rtol=None, **search):
     """C_max = 1 / max_θ a(θ) of models evaluated with C = 1 (Tables 1.1, 3.1, 3.2).
 
     Returns (Estimate of C_max, angle of the maximal albedo in degrees)."""
-    amax, theta = max_albedo(models, tol, **search)
+    amax, theta = max_albedo(models, rtol, **search)
     return Estimate(1.0 / amax.value, amax.error / amax.value ** 2), theta
 
 
-def mean_albedo(models, tol=None):
+def mean_albedo(models, rtol=None):
     """A = (1/π) ∫ a(L) cos θ_L dω_L  (eq. 1.20 / 3.37) for each model.
 
     The cosine-lobe models (reciprocal Phong, the new model, Blinn, corrected Blinn) take the
     two-dimensional reduction of :mod:`brdfs.numerics.integrate.mean`; any other model the nested
     integration of its albedo, :func:`mean_albedo_nested`.
     """
-    rtol = tol or DEFAULT_RTOL
+    rtol = rtol or DEFAULT_RTOL
     models = list(models)
     lobe_models = [_lobe_reduction(m) for m in models]
     if any(r is None for r in lobe_models):
@@ -94,7 +94,7 @@ def _lobe_reduction(brdf):
             Blinn: ("half", False), BlinnCosmin: ("half", True)}.get(type(brdf))
 
 
-def mean_albedo_nested(models, tol=None):
+def mean_albedo_nested(models, rtol=None):
     """A = ∫₀¹ a(θ(v)) 2v dv with v = cos θ_L, the albedo from the engine at every node.
 
     The variable v = cos θ (not cos²θ) keeps the integrand smooth at grazing incidence, where
@@ -102,12 +102,12 @@ def mean_albedo_nested(models, tol=None):
     for all models: the outer Gauss–Kronrod rule in v calls the albedo engine at all its nodes
     at once, and the inner albedo errors are carried as known errors of the integrand.
     """
-    rtol = tol or DEFAULT_RTOL
+    rtol = rtol or DEFAULT_RTOL
     models = list(models)
 
     def integrand(v, elem):
         theta = np.degrees(np.arctan2(np.sqrt((1.0 - v) * (1.0 + v)), v))
-        inner = albedo_many([models[e] for e in np.repeat(elem, v.shape[1])], theta.ravel(),
+        inner = albedo_pairs([models[e] for e in np.repeat(elem, v.shape[1])], theta.ravel(),
                             rtol=rtol / 10, atol=DEFAULT_ATOL)
         a = inner.value.reshape(v.shape) * 2 * v
         return a, a, inner.error.reshape(v.shape) * 2 * v
@@ -116,17 +116,26 @@ def mean_albedo_nested(models, tol=None):
     return integrate(integrand, bp, rtol=rtol, atol=DEFAULT_ATOL)
 
 
-# Limits n → ∞.  For the Phong family the lobe of c (R·V)^n with c = (n+2)/2π shrinks to a
-# delta at R of weight c·2π/(n+1) → 1, so a(θ) → g(θ_L, θ_V = θ_L)·cos θ_L where f = c (R·V)^n g:
-# cos θ for the reciprocal Phong, 1 for the new model (g = 1/max(cos θ_L, cos θ_V)), θ < 90°.
-# For the Blinn family the half-vector lobe C (N·H)^n concentrates at H = N with
-# dω_V = 4 (L·H) dω_H, so a(θ) ∝ cos²θ · g, and C_n scales the maximum to 1: cos²θ for Blinn,
-# cos θ for the corrected Blinn.  With a(θ) = cos^k θ the mean albedo is ∫₀¹ u^(k/2) du = 2/(k+2).
-_LIMIT_COS_POWER = {"phong": 1, "phong_cosmin": 0, "blinn": 2, "blinn_cosmin": 1}
+# Limits n → ∞ (the derivations are on the model classes, ``limit_cos_power`` and
+# ``limit_albedo_90``).  With a(θ) = cos^k θ the mean albedo is ∫₀¹ u^(k/2) du = 2/(k+2).
+
+
+def _model_class(model_name):
+    try:
+        return MODELS[model_name]
+    except KeyError:
+        raise ValueError(f"unknown model {model_name!r}") from None
+
+
+def _limit_power(model_name):
+    k = _model_class(model_name).limit_cos_power
+    if k is None:
+        raise ValueError(f"no derived n → ∞ limit for model {model_name!r}")
+    return k
 
 
 def limit_albedo(model_name, theta_deg):
-    """lim_{n→∞} a(θ) for θ < 90°: cos^k θ with k from the derivation above."""
+    """lim_{n→∞} a(θ) for θ < 90°: cos^k θ with k = ``limit_cos_power`` of the model."""
     k = _limit_power(model_name)
     return np.cos(np.radians(np.asarray(theta_deg, float))) ** k
 
@@ -137,12 +146,11 @@ def limit_mean_albedo(model_name):
 
 
 def limit_albedo_90(model_name):
-    """lim_{n→∞} a(90°): eq. 3.27 gives (n+2)/(2(n+1)) → 1/2 for the new model; 0 for the
-    reciprocal Phong, whose a(90°) ≤ c·2π/(n+1) · max N·V over the lobe → 0."""
-    limits = {"phong_cosmin": 0.5, "phong": 0.0}
-    if model_name not in limits:
+    """lim_{n→∞} a(90°), ``limit_albedo_90`` of the model (new model 1/2, reciprocal Phong 0)."""
+    limit = _model_class(model_name).limit_albedo_90
+    if limit is None:
         raise ValueError(f"no derived limit of a(90°) for model {model_name!r}")
-    return limits[model_name]
+    return limit
 
 
 def grazing_albedo_new_model(n):
@@ -150,12 +158,6 @@ def grazing_albedo_new_model(n):
     n = np.asarray(n, float)
     return np.where(np.isinf(n), 0.5, (n + 2.0) / (2.0 * (n + 1.0)))
 
-
-def _limit_power(model_name):
-    try:
-        return _LIMIT_COS_POWER[model_name]
-    except KeyError:
-        raise ValueError(f"no derived n → ∞ limit for model {model_name!r}") from None
 
 
 def phong_mean_albedo(n):

@@ -1,11 +1,11 @@
 """Load ``config.yaml`` outside Snakemake, validated as the workflow validates it.
 
-The Snakefile validates with ``snakemake.utils.validate``; this module applies
-the same JSON schema with the same default filling (the jsonschema FAQ recipe
-Snakemake uses), so in-process runs (tests, ``python -m brdfs.pipeline.regression``) see
-the same configuration as the pipeline. A bad configuration raises
-:class:`ConfigError`, whose message is one line naming the key and its value
-(``workflow/rules/common.smk`` prints it and stops before any rule runs).
+The workflow (``workflow/rules/common.smk``) and in-process runs (tests,
+``python -m brdfs.pipeline.regression``) validate through :func:`validate_config`: the JSON
+schema of ``workflow/schemas/config.schema.yaml`` with default filling (the jsonschema FAQ
+recipe Snakemake uses) and the model names taken from the model classes. A bad
+configuration raises :class:`ConfigError`, whose message is one line naming the key and its
+value (``workflow/rules/common.smk`` prints it and stops before any rule runs).
 """
 
 from __future__ import annotations
@@ -75,13 +75,23 @@ def describe_error(error: jsonschema.ValidationError) -> str:
             value, reason = value[unknown[0]], "unknown key"
     elif error.validator == "required" and isinstance(value, dict):
         missing = [k for k in error.validator_value if k not in value]
-        return f"invalid config: {_key([*path, missing[0]])} is missing (required)"
+        return f"Error validating config file: {_key([*path, missing[0]])} is missing (required)"
     elif error.validator in _REASONS:
         reason = _REASONS[error.validator](error.validator_value)
     if reason is None:
         reason = error.message.splitlines()[0]
         reason = reason if len(reason) <= 100 else reason[:97] + "..."
-    return f"invalid config: {_key(path)} = {_short(value)}: {reason}"
+    return f"Error validating config file: {_key(path)} = {_short(value)}: {reason}"
+
+
+def load_schema(schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
+    """The config schema, with the enum of model names filled in from the model classes."""
+    from brdfs.physics.models import MODELS
+
+    with open(schema_path, encoding="utf-8") as stream:
+        schema = yaml.safe_load(stream)
+    schema.setdefault("$defs", {}).setdefault("model_name", {"type": "string"})["enum"] = sorted(MODELS)
+    return schema
 
 
 def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
@@ -92,10 +102,9 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
     ConfigError
         One line naming the offending key and value (the jsonschema error is its ``__cause__``).
     """
-    with open(schema_path, encoding="utf-8") as stream:
-        schema = yaml.safe_load(stream)
+    schema = load_schema(schema_path)
     if not isinstance(config, dict):
-        raise ConfigError(f"invalid config: (top level) = {_short(config)}: must be a mapping")
+        raise ConfigError(f"Error validating config file: (top level) = {_short(config)}: must be a mapping")
     try:
         _validator_filling_defaults(schema).validate(config)
     except jsonschema.ValidationError as error:
@@ -107,4 +116,15 @@ def load_config(path: str | os.PathLike = CONFIG_YAML, schema_path: str | os.Pat
     """Read and validate a configuration file (default: the repository's ``config.yaml``)."""
     with open(path, encoding="utf-8") as stream:
         config = yaml.safe_load(stream)
+    return validate_config(config, schema_path)
+
+
+def check_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
+    """:func:`validate_config` (kept for its callers): a failure is one line naming the key and the value.
+
+    Raises
+    ------
+    ConfigError
+        ``Error validating config file: a.b[0].c = <value>: <reason>``.
+    """
     return validate_config(config, schema_path)

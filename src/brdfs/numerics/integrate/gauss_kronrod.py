@@ -61,18 +61,34 @@ STALL_LIMIT = 5
 LOCALISED = 0.9
 
 
+#: ``status`` of an element that met its tolerance.
+CONVERGED = "converged"
+#: ``status`` of an element left short of its tolerance when ``max_rounds`` or ``max_intervals`` ran out.
+BUDGET_EXHAUSTED = "budget_exhausted"
+#: ``status`` of an element short of its tolerance whose remaining error no split could reduce.
+STALLED = "stalled"
+
+
 @dataclass(frozen=True)
 class Estimate:
-    """A computed value with its absolute error estimate (arrays of equal shape)."""
+    """A computed value with its absolute error estimate (arrays of equal shape).
+
+    ``evaluations`` (how many integrand or BRDF values it cost) and ``status`` (per value:
+    :data:`CONVERGED`, :data:`BUDGET_EXHAUSTED`, :data:`STALLED`) are filled where the method
+    producing it knows them.  Unpacking gives ``(value, error)``.
+    """
 
     value: np.ndarray
     error: np.ndarray
+    evaluations: int | None = None
+    status: np.ndarray | None = None
 
     def __iter__(self):
         return iter((self.value, self.error))
 
     def __getitem__(self, idx):
-        return Estimate(np.asarray(self.value)[idx], np.asarray(self.error)[idx])
+        status = None if self.status is None else np.asarray(self.status)[idx]
+        return Estimate(np.asarray(self.value)[idx], np.asarray(self.error)[idx], self.evaluations, status)
 
 
 def gk_pair(values_high, values_low, half_width):
@@ -110,7 +126,8 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     Returns
     -------
     Estimate
-        ``value`` (Gauss sum) and ``error`` per element.
+        ``value`` (Gauss sum), ``error`` and ``status`` per element; ``evaluations`` counts the
+        integrand's nodes.
 
     Notes
     -----
@@ -128,6 +145,8 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     elem, lo, hi = _initial_intervals(bp)
     vals = np.stack(_evaluate(integrand, elem, lo, hi, chunk))      # high, low, extra, |f|
     stalls = np.zeros(elem.size, int)
+    evaluations = elem.size * NODES.size
+    exhausted = True
     for _ in range(max_rounds):
         err = np.abs(vals[0] - vals[1])
         tol_el = np.maximum(rtol * np.abs(np.bincount(elem, vals[0], n_el)), atol)
@@ -138,7 +157,10 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         # Refine while the tolerance is missed and splitting can still make a difference.
         open_el = (total > 0.5 * tol_el) & (movable > np.maximum(0.5 * tol_el - (total - movable), 0.05 * total))
         cand = open_el[elem] & ~frozen
-        if not cand.any() or elem.size > max_intervals:
+        if not cand.any():
+            exhausted = False
+            break
+        if elem.size > max_intervals:
             break
         worst = np.zeros(n_el)
         np.maximum.at(worst, elem[cand], err[cand])
@@ -148,6 +170,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         c_elem = np.tile(elem[split], 2)
         c_lo, c_hi = np.concatenate([lo[split], mid]), np.concatenate([mid, hi[split]])
         c_vals = np.stack(_evaluate(integrand, c_elem, c_lo, c_hi, chunk))
+        evaluations += c_elem.size * NODES.size
         c_err = np.abs(c_vals[0] - c_vals[1])
         kept = c_err[:k] + c_err[k:]
         localised = np.maximum(c_err[:k], c_err[k:]) >= LOCALISED * kept
@@ -160,7 +183,9 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         stalls = np.concatenate([stalls[keep], c_stalls])
     high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
     error = SAFETY * np.abs(high - low) + extra + 50 * _EPS * absval
-    return Estimate(low, error)
+    met = error <= np.maximum(rtol * np.abs(low), atol)
+    status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
+    return Estimate(low, error, evaluations, status)
 
 
 def bp_span(bp):

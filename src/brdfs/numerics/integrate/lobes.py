@@ -46,23 +46,24 @@ class PowerCosine:
 
 
 @dataclass(frozen=True)
-class Beckmann:
-    """Radial weight exp(−tan²δ/m²) of eqs. 2.8/2.9: t = 1 − exp(−tan²δ/m²)."""
+class MicrofacetLobe:
+    """Radial weight of a microfacet distribution in the half-vector frame (eqs. 2.8/2.9): t is the
+    distribution's own radial CDF (:meth:`brdfs.physics.distributions.Beckmann.cdf`)."""
 
-    m: float
+    distribution: object
     frame: str = "half"
-    # exp(−x) carries x ulps of the rounding of x; the weight matters up to x ≈ ln(1/ε) ≈ 36.
-    rounding = 40.0
+
+    @property
+    def rounding(self):
+        return self.distribution.rounding
 
     def angle(self, t):
-        tan_b = self.m * np.sqrt(-np.log1p(-t))
+        tan_b = self.distribution.tan_of_cdf(t)
         c = 1.0 / np.sqrt(1.0 + tan_b * tan_b)
         return c, tan_b * c
 
     def solid_angle_per_t(self, t, cos_b, sin_b):
-        """sin δ dδ/dt = m² cos³δ / (2 (1 − t))."""
-        return self.m ** 2 * cos_b ** 3 / (2.0 * (1.0 - t))
+        return self.distribution.solid_angle_per_t(t, cos_b)
 
     def t_of(self, beta):
-        beta = np.clip(beta, 0.0, np.pi / 2)
-        return -np.expm1(-(np.tan(beta) / self.m) ** 2)
+        return self.distribution.cdf(np.tan(np.clip(beta, 0.0, np.pi / 2)))

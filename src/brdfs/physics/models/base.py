@@ -1,30 +1,96 @@
-"""What every BRDF of the package offers the integration engine.
+"""The BRDF protocol: the verbs every model of the package answers, with their defaults.
 
 A model is a small frozen value type.  Calling it, ``f(L, V)``, evaluates the BRDF on arrays of
-unit vectors (…, 3) with N = (0, 0, 1); directions below the horizon give 0.  Besides the value,
-a model tells the engine how its integrand is shaped, so that the albedo integral can follow it:
+unit vectors (…, 3) with N = (0, 0, 1); directions below the horizon give 0.  A subclass
+implements ``_eval`` and ``lobe`` and overrides whichever other verbs it knows more about:
 
-* ``lobe``: the change of variables that follows the lobe (:mod:`brdfs.numerics.integrate.lobes`): which
-  frame (around the mirror direction R or around the normal for the half vector H) and which
-  radial distribution (cosine power or Beckmann).
+Shape of the integrand (read by the integration engine, :mod:`brdfs.numerics.integrate`):
+
+* ``lobe``: the change of variables that follows the lobe (:mod:`brdfs.numerics.integrate.lobes`):
+  which frame (around the mirror direction R, around N for the half vector H, or the scattering
+  vector) and which radial distribution (cosine power, a microfacet distribution).
 * ``nv_levels(nl)``: values of N·V where the integrand has a kink (e.g. N·V = N·L for the
   max(N·L, N·V) of the new model).  The horizon N·V = 0 is always added by the engine.
 * ``lh_levels(nl, cos_delta)``: kinks given as levels of L·H (half-vector frame only).
+* ``delta_albedo(theta_deg)``: the albedo of a Dirac part of the BRDF (zero by default), which
+  the albedo adds to the integral of the density (He–Torrance's specular term).
+
+What is known in closed form (``None`` where nothing is):
+
+* ``grazing_law()``: the law of a(θ) as cos θ → 0 (:class:`GrazingLaw`).
+* ``limit_cos_power``: k with lim_{n→∞} a(θ) = cos^k θ for θ < 90° (cosine-lobe models).
+* ``limit_albedo_90``: lim_{n→∞} a(90°).
+* ``exact_albedo(theta_deg)``: a(θ) in closed form at the angles where one exists, else NaN.
+
+Sampling (for Monte Carlo and rendering): ``sample(L, u) -> (V, weight, pdf)`` and ``pdf(L, V)``;
+the default draws V from the cosine distribution, which every model accepts.
+
+Parameters: ``params`` (the values, as ``data/published_values.csv`` names them) and
+``param_columns()`` (the names, from the dataclass fields).
 """
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
+
+from brdfs.numerics.integrate.gauss_kronrod import Estimate
+
+
+@dataclass(frozen=True)
+class GrazingLaw:
+    """a(θ) ~ constant · (cos θ_L)^(−exponent) as cos θ_L → 0; exponent 0 is a finite limit a(90°)."""
+
+    exponent: float
+    constant: Estimate
+    derivation: str
+
+    def __call__(self, mu):
+        return self.constant.value * np.asarray(mu, float) ** -self.exponent
+
+
+def exact(value) -> Estimate:
+    """A closed-form value with its rounding error (4 ulps)."""
+    value = float(value)
+    return Estimate(value, 4 * np.finfo(float).eps * abs(value))
+
+
+_COUNTERS: list[list[int]] = []
+
+
+@contextlib.contextmanager
+def counting_evaluations():
+    """Count the BRDF values computed inside the block (every model, every method).
+
+    >>> from brdfs import model
+    >>> with counting_evaluations() as count:
+    ...     _ = model("phong", n=2)([0, 0, 1.0], [[0, 0, 1.0]] * 5)
+    >>> count[0]
+    5
+    """
+    box = [0]
+    _COUNTERS.append(box)
+    try:
+        yield box
+    finally:
+        _COUNTERS.remove(box)
 
 
 @dataclass(frozen=True)
 class BRDF:
     """Base class: subclasses implement ``_eval(L, V, nl, nv)`` and ``lobe``."""
 
-    reciprocal = True
-    name = "brdf"
-    sqrt_at_horizon = False   # integrand ~ sqrt(N·V) at the horizon (Ward): the engine clusters nodes there
+    reciprocal: ClassVar[bool] = True
+    name: ClassVar[str] = "brdf"
+    #: Integrand ~ sqrt(N·V) at the horizon (Ward): the engine clusters nodes there.
+    sqrt_at_horizon: ClassVar[bool] = False
+    #: lim_{n→∞} a(θ) = cos^k θ (θ < 90°), None where not derived.
+    limit_cos_power: ClassVar[int | None] = None
+    #: lim_{n→∞} a(90°), None where not derived.
+    limit_albedo_90: ClassVar[float | None] = None
 
     def __call__(self, L, V):
         L = np.asarray(L, float)
@@ -32,11 +98,15 @@ class BRDF:
         nl, nv = L[..., 2], V[..., 2]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             f = self._eval(L, V, nl, nv)
-        return np.where((nl >= 0) & (nv > 0), f, 0.0)
+        f = np.where((nl >= 0) & (nv > 0), f, 0.0)
+        for box in _COUNTERS:
+            box[0] += f.size
+        return f
 
     def _eval(self, L, V, nl, nv):
         raise NotImplementedError
 
+    # --- the integrand's shape ---------------------------------------------------------------
     @property
     def lobe(self):
         raise NotImplementedError
@@ -47,10 +117,54 @@ class BRDF:
     def lh_levels(self, nl, cos_delta):
         return ()
 
+    def delta_albedo(self, theta_deg) -> Estimate:
+        """Albedo of the Dirac part of the BRDF: none by default."""
+        zero = np.zeros(np.shape(theta_deg))
+        return Estimate(zero, zero)
+
+    # --- closed forms -------------------------------------------------------------------------
+    def grazing_law(self) -> GrazingLaw | None:
+        """The law of a(θ) as cos θ → 0 where it is known in closed form; None otherwise."""
+        return None
+
+    def grazing_limit_model(self) -> "BRDF":
+        """The integrand whose albedo at 90° is lim a(θ), θ → 90°: the model itself by default."""
+        return self
+
+    def exact_albedo(self, theta_deg) -> np.ndarray:
+        """a(θ) in closed form where one exists, NaN elsewhere."""
+        return np.full(np.shape(theta_deg), np.nan)
+
+    # --- sampling ------------------------------------------------------------------------------
+    def pdf(self, L, V):
+        """Density (per solid angle) of :meth:`sample`'s directions: cos θ_V / π by default."""
+        nv = np.asarray(V, float)[..., 2]
+        return np.where(nv > 0, nv / np.pi, 0.0)
+
+    def sample(self, L, u):
+        """Directions V from uniform numbers ``u`` (…, 2), with weight f cos θ_V / pdf and the pdf.
+
+        The default draws the cosine distribution (Malley's method).
+        """
+        u = np.asarray(u, float)
+        r, phi = np.sqrt(u[..., 0]), 2.0 * np.pi * u[..., 1]
+        nv = np.sqrt(np.maximum(1.0 - u[..., 0], 0.0))
+        V = np.stack([r * np.cos(phi), r * np.sin(phi), nv], -1)
+        pdf = self.pdf(L, V)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            weight = np.where(pdf > 0, self(L, V) * nv / pdf, 0.0)
+        return V, weight, pdf
+
+    # --- parameters ---------------------------------------------------------------------------
     @property
     def params(self) -> dict:
         """Parameters as the published-values file names them (n, m, C, ...)."""
-        return {k: v for k, v in self.__dict__.items()}
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    @classmethod
+    def param_columns(cls) -> tuple[str, ...]:
+        """The names of the model's parameters (its CSV columns)."""
+        return tuple(f.name for f in dataclasses.fields(cls))
 
 
 def positive_power(x, n):

@@ -4,19 +4,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import erfc
+from scipy.special import gamma
 
+from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.numerics.integrate.lobes import MicrofacetLobe
+from brdfs.physics.distributions import Beckmann, half_vector_tan2
 from brdfs.physics.geometry import dot, half_vector
-from brdfs.numerics.integrate.lobes import Beckmann
-from brdfs.physics.models.base import BRDF, check_positive
+from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact
 
 
 def beckmann_exponential(L, V, m):
-    """exp(−tan²δ / m²) with tan²δ = (1 − NH²)/NH² computed from h = L + V without cancellation."""
-    h = L + V
-    hz2 = h[..., 2] ** 2
-    tan2 = (h[..., 0] ** 2 + h[..., 1] ** 2) / hz2
-    return np.exp(-tan2 / m ** 2), np.sqrt(hz2 / (hz2 + h[..., 0] ** 2 + h[..., 1] ** 2))
+    """(exp(−tan²δ/m²), cos δ) of the half vector of L and V (:class:`Beckmann` weight)."""
+    tan2, cos_d = half_vector_tan2(L, V)
+    return Beckmann(m).slope_weight(tan2), cos_d
 
 
 @dataclass(frozen=True)
@@ -29,8 +29,13 @@ class _BeckmannFamily(BRDF):
         check_positive("C", self.C)
 
     @property
-    def lobe(self):
+    def distribution(self) -> Beckmann:
+        """The Beckmann distribution of slopes with roughness α = m."""
         return Beckmann(self.m)
+
+    @property
+    def lobe(self):
+        return MicrofacetLobe(self.distribution)
 
 
 @dataclass(frozen=True)
@@ -43,6 +48,10 @@ class Ward(_BeckmannFamily):
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
         return self.C / (4 * np.pi * self.m ** 2) * e / np.sqrt(nl * nv)
+
+    def grazing_law(self):
+        """Diverges: a(μ) √μ → K (:func:`ward_constant`)."""
+        return GrazingLaw(0.5, ward_constant(self.m, self.C), "K U(7/4,1/4,1/m^2) / sqrt(cos)")
 
 
 @dataclass(frozen=True)
@@ -58,6 +67,14 @@ class WardCosmin(_BeckmannFamily):
     def nv_levels(self, nl):
         return (nl,)
 
+    def grazing_law(self):
+        """Finite: a(90°) = C Γ(3/2) U(3/2, 1/2, 1/m²)/(π m²) (:func:`ward_cosmin_limit`)."""
+        return GrazingLaw(0.0, ward_cosmin_limit(self.m, self.C), "a(90) = U(3/2,1/2,1/m^2)/(pi m^2)")
+
+    def exact_albedo(self, theta_deg):
+        theta = np.asarray(theta_deg, float)
+        return np.where(theta == 90.0, ward_cosmin_limit(self.m, self.C).value, np.nan)
+
 
 def g_torrance_sparrow(nh, nl, nv, lh):
     """G = min{1, 2 NH NV / VH, 2 NH NL / LH} (eq. 2.10; V·H = L·H)."""
@@ -65,14 +82,9 @@ def g_torrance_sparrow(nh, nl, nv, lh):
 
 
 def g_smith_beckmann(nl, nv, m):
-    """G = G*(N·L) G*(N·V) with Smith's G* for a Beckmann surface (eq. 1.38)."""
-    return _smith_g1(nl, m) * _smith_g1(nv, m)
-
-
-def _smith_g1(x, m):
-    h = x * x / (2 * m * m * (1 - x * x))
-    g = np.sqrt(np.pi * h) * (2 - erfc(np.sqrt(h)))
-    return np.where(x >= 1.0, 1.0, g / (g + 1))
+    """G = G*(N·L) G*(N·V) with Smith's G* as eq. 1.38 prints it (:meth:`Beckmann.smith_g1_thesis`)."""
+    d = Beckmann(m)
+    return d.smith_g1_thesis(nl) * d.smith_g1_thesis(nv)
 
 
 GEOMETRY_FACTORS = ("torrance_sparrow", "smith", "none")
@@ -107,6 +119,19 @@ class CookTorrance(_BeckmannFamily):
             return g_smith_beckmann(nl, nv, self.m)
         return 1.0
 
+    def grazing_law(self):
+        """G = 1: diverges, a(μ) μ → C m/(2√π); G of eq. 2.10: a(90°) = C (G → 2 NH NL/LH);
+        Smith's G: no closed form (the limit integrand is :meth:`grazing_limit_model`)."""
+        if self.G == "none":
+            return GrazingLaw(1.0, exact(self.C * self.m / (2 * np.sqrt(np.pi))), "m/(2 sqrt(pi) cos)")
+        if self.G == "torrance_sparrow":
+            return GrazingLaw(0.0, exact(self.C), "a(90) = 1 (G of eq. 2.10 -> 2 NH NL/LH)")
+        return None
+
+    def grazing_limit_model(self):
+        """With Smith's G the BRDF is singular at N·L = 0; a(90°) integrates :class:`SmithGrazingLimit`."""
+        return SmithGrazingLimit(self.m, self.C) if self.G == "smith" else self
+
     def lh_levels(self, nl, cos_delta):
         """Where the shadowing (LH = 2 NH NL) and masking (LH (4 NH² − 1) = 2 NH NL) terms of eq. 2.10 reach 1."""
         if self.G != "torrance_sparrow":
@@ -114,3 +139,67 @@ class CookTorrance(_BeckmannFamily):
         with np.errstate(divide="ignore"):
             masking = 2 * cos_delta * nl / (4 * cos_delta ** 2 - 1)
         return (2 * cos_delta * nl, np.where(4 * cos_delta ** 2 > 1, masking, np.inf))
+
+
+# --- closed forms at grazing incidence (Sec. 2.2.1) ------------------------------------------
+
+#: u = v² beyond which exp(−u²) = exp(−v⁴) < 1e-35: the truncation of the 1-D integrals in v.
+_V_MAX = 3.0
+_EPS = np.finfo(float).eps
+
+
+def _v_integral(fn):
+    """∫₀^∞ fn(u) e^(−u²) du over u = v², v ∈ [0, 3], by the engine's Gauss–Kronrod driver."""
+    def integrand(v, elem):
+        u = v * v
+        g = fn(u) * np.exp(-u * u) * 2 * v
+        return g, g, None
+
+    est = integrate(integrand, np.array([[0.0, 0.5, 1.0, 1.5, 2.0, _V_MAX]]), rtol=1e-13, atol=1e-300)
+    tail = 1e-35 * abs(float(est.value[0]))  # e^(−81) relative, beyond v = 3
+    return Estimate(float(est.value[0]), float(est.error[0]) + tail + 8 * _EPS * abs(float(est.value[0])))
+
+
+def ward_constant(m, C=1.0):
+    """K_Ward = lim √μ a(μ) for Ward (eq. 2.8).
+
+    √μ a = ∫ C e^(−tan²δ/m²)/(4π m²) √(N·V) dω_V → (L horizontal, dω_V = 4 L·H dω_H,
+    N·V = sin 2δ cos φ, L·H = sin δ cos φ):
+    K = C/(π m²) · ∫cos^{3/2}φ dφ · ∫ e^(−tan²δ/m²) √(sin 2δ) sin²δ dδ
+      = C/(π m²) · √π Γ(5/4)/Γ(7/4) · √2 m^{7/2} ∫₀^∞ u^{5/2} (1 + m²u²)^{−5/2} e^{−u²} du
+      = C Γ(5/4) U(7/4, 1/4, 1/m²) / (√(2π) m²)   (tan δ = m u; the limit by dominated convergence).
+    """
+    inner = _v_integral(lambda u: u ** 2.5 * (1 + (m * u) ** 2) ** -2.5)
+    scale = C / (np.pi * m * m) * np.sqrt(np.pi) * gamma(1.25) / gamma(1.75) * np.sqrt(2.0) * m ** 3.5
+    return Estimate(scale * inner.value, scale * inner.error + 4 * _EPS * scale * inner.value)
+
+
+def ward_cosmin_limit(m, C=1.0):
+    """a(90°) of the corrected Ward (eq. 3.36): f = D/N·V at N·L = 0, so
+    a = C/(4π m²) ∫ e^(−tan²δ/m²) 4 L·H dω_H = 2C/(π m²) ∫ e^(−tan²δ/m²) sin²δ dδ
+      = 2C m/π ∫₀^∞ u² (1 + m²u²)^(−2) e^(−u²) du = C Γ(3/2) U(3/2, 1/2, 1/m²)/(π m²)."""
+    inner = _v_integral(lambda u: u * u * (1 + (m * u) ** 2) ** -2.0)
+    scale = 2 * C * m / np.pi
+    return Estimate(scale * inner.value, scale * inner.error + 4 * _EPS * scale * inner.value)
+
+
+@dataclass(frozen=True)
+class SmithGrazingLimit(BRDF):
+    """The integrand of lim a(θ_L), θ_L → 90°, of Cook–Torrance with Smith's G (eq. 1.38).
+
+    G*(x) ~ √(π/2) x/m as x → 0, so G/(N·L N·V) → √(π/2)/m · G*(N·V)/N·V and
+    a(90°) = ∫ f_lim cos θ_V dω_V with f_lim = D √(π/2) G*(N·V) / (4π m³ cos⁴δ N·V) at N·L = 0.
+    """
+
+    m: float
+    C: float = 1.0
+    name = "cook_torrance_smith_grazing_limit"
+
+    @property
+    def lobe(self):
+        return MicrofacetLobe(Beckmann(self.m))
+
+    def _eval(self, L, V, nl, nv):
+        e, nh = beckmann_exponential(L, V, self.m)
+        d = self.C * e / (4 * np.pi * self.m ** 2 * nh ** 4)
+        return d * np.sqrt(np.pi / 2) / self.m * g_smith_beckmann(np.ones_like(nv), nv, self.m) / nv

@@ -7,7 +7,9 @@ import numpy as np
 
 from brdfs.physics.geometry import r_dot_v
 from brdfs.numerics.integrate.lobes import PowerCosine
-from brdfs.physics.models.base import BRDF, check_positive, positive_power
+from scipy.special import beta
+
+from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive_power
 
 
 def phong_constant(n):
@@ -39,9 +41,20 @@ class Phong(_PhongFamily):
     """Reciprocal Phong, f = c (R·V)^n (eq. 2.6 / 3.5), c = (n+2)/2π by default."""
 
     name = "phong"
+    limit_cos_power = 1          # the lobe → a delta at R of weight 1: a → cos θ
+    limit_albedo_90 = 0.0        # a(90°) ≤ c·2π/(n+1) · max N·V over the lobe → 0
 
     def _eval(self, L, V, nl, nv):
         return self._lobe_value(L, V)
+
+    def grazing_law(self):
+        """Finite: a(90°) = c B(3/2, (n+1)/2)."""
+        return GrazingLaw(0.0, exact(self.C * beta(1.5, (self.n + 1) / 2)), "a(90) = c B(3/2,(n+1)/2)")
+
+    def exact_albedo(self, theta_deg):
+        """a(0) = c 2π/(n+2) (eq. 3.6: 1 for c = (n+2)/2π)."""
+        theta = np.asarray(theta_deg, float)
+        return np.where(theta == 0.0, self.C * 2 * np.pi / (self.n + 2), np.nan)
 
 
 @dataclass(frozen=True)
@@ -60,12 +73,23 @@ class PhongCosmin(_PhongFamily):
     """The new model, f = c (R·V)^n / max(N·L, N·V) (eq. 3.10)."""
 
     name = "phong_cosmin"
+    limit_cos_power = 0          # g = 1/max(cos θ_L, cos θ_V) at V = R: a → 1 for θ < 90°
+    limit_albedo_90 = 0.5        # eq. 3.27: (n+2)/(2(n+1)) → 1/2
 
     def _eval(self, L, V, nl, nv):
         return self._lobe_value(L, V) / np.maximum(nl, nv)
 
     def nv_levels(self, nl):
         return (nl,)
+
+    def grazing_law(self):
+        """Finite: a(90°) = c π/(n+1) (eq. 3.27)."""
+        return GrazingLaw(0.0, exact(self.C * np.pi / (self.n + 1)), "a(90) = c pi/(n+1)")
+
+    def exact_albedo(self, theta_deg):
+        """a(90°) = c π/(n+1), i.e. (n+2)/(2(n+1)) for c = (n+2)/2π (eq. 3.27)."""
+        theta = np.asarray(theta_deg, float)
+        return np.where(theta == 90.0, self.C * np.pi / (self.n + 1), np.nan)
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,7 @@ def _random_directions(count, seed):
 
 def test_table_error_is_honest_and_tight(phong_table):
     theta = np.linspace(0.3, 89.7, 37)                         # off the Lobatto nodes
-    engine = albedo(model("phong", n=N_EXP), theta, tol=1e-12)
+    engine = albedo(model("phong", n=N_EXP), theta, rtol=1e-12)
     diff = np.abs(phong_table(cos_incidence(theta)) - engine.value)
     assert np.all(diff <= phong_table.error + engine.error)
     assert phong_table.error <= 1000 * max(diff.max(), 1e-13)
@@ -58,7 +58,7 @@ def test_pumping_raises_the_albedo_but_not_above_one(request, base, table, corre
     tab = request.getfixturevalue(table)
     brdf = model(base, n=N_EXP, C=BLINN_C if base == "blinn" else None)
     pumped = pumping.Pumped(brdf, tab, correction)
-    before, after = albedo(brdf, THETA, tol=1e-10), albedo(pumped, THETA, tol=1e-10)
+    before, after = albedo(brdf, THETA, rtol=1e-10), albedo(pumped, THETA, rtol=1e-10)
     slack = after.error + after.value * pumping.model_rtol(pumped)
     assert np.all(after.value <= 1 + slack)
     assert np.all(after.value[1:] > before.value[1:] + before.error[1:] + slack[1:])
@@ -68,7 +68,7 @@ def test_pumping_raises_the_albedo_but_not_above_one(request, base, table, corre
 def test_phong_albedo_is_above_cosine_so_controlled_pumping_equals_plain(phong_table):
     """a(θ) = cos θ + ∫_{R·V>0, N·V<0} c (R·V)^n |N·V| ≥ cos θ, hence g2 = g1 for reciprocal Phong."""
     theta = np.linspace(0, 90, 46)
-    a = albedo(model("phong", n=N_EXP), theta, tol=1e-12)
+    a = albedo(model("phong", n=N_EXP), theta, rtol=1e-12)
     assert np.all(a.value + a.error >= cos_incidence(theta))
     base = model("phong", n=N_EXP)
     L, V = _random_directions(400, 3), _random_directions(400, 4)
@@ -119,7 +119,7 @@ def test_new_model_albedo_tends_to_one_below_grazing():
     theta = np.array([30.0, 60.0, 80.0, 90.0])
     gaps = []
     for n in (10, 100, 1000):
-        a = albedo(model("phong_cosmin", n=n), theta, tol=1e-10)
+        a = albedo(model("phong_cosmin", n=n), theta, rtol=1e-10)
         assert abs(a.value[-1] - (n + 2) / (2 * (n + 1))) <= a.error[-1]
         gaps.append(1 - a.value[:-1])
     gaps = np.array(gaps)

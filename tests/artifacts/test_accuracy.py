@@ -4,7 +4,8 @@ import pandas as pd
 import pytest
 
 from brdfs import model
-from brdfs.artifacts._accuracy import CASES, CountingBRDF, accuracy_cost, engine, monte_carlo, product_grid
+from brdfs import albedo
+from brdfs.artifacts._accuracy import CASES, accuracy_cost
 
 SMALL = dict(engine_rtol=[1e-4, 1e-8, 1e-11], grid_n=[16, 64], dblquad_epsrel=[1e-3], mc_samples=[1000], seed=7)
 ALL_CASES = [{"case": "phong_normal_incidence", "n": 512}, {"case": "new_model_at_90", "n": 20},
@@ -31,29 +32,22 @@ def test_engine_errors_are_honest_in_both_directions(rows):
 
 
 def test_tighter_tolerance_costs_more_evaluations_and_gains_accuracy():
-    brdf = model("ward_cosmin", m=0.1)
-    loose, tight = engine(brdf, 90.0, 1e-4), engine(brdf, 90.0, 1e-10)
-    exact = CASES["ward_cosmin_at_90"].exact(0.1)
-    assert tight[2] > loose[2]
-    assert abs(tight[0] - exact) < 1e-4 * abs(loose[0] - exact)
+    brdf = CASES["ward_cosmin_at_90"].brdf(0.1)
+    loose, tight = albedo(brdf, 90.0, rtol=1e-4), albedo(brdf, 90.0, rtol=1e-10)
+    exact = float(brdf.exact_albedo(90.0))
+    assert tight.evaluations > loose.evaluations
+    assert abs(tight.value - exact) < 1e-4 * abs(loose.value - exact)
 
 
-def test_counting_counts_directions():
-    counted = CountingBRDF(model("phong", n=4))
-    counted(np.array([0.0, 0.0, 1.0]), np.zeros((5, 7, 3)) + [0.0, 0.0, 1.0])
-    assert counted.count == 35
-    assert product_grid(model("phong", n=4), 0.0, 16)[2] == 256
-
-
-def test_product_grid_converges_to_the_closed_form_of_eq_3_27():
-    brdf = model("phong_cosmin", n=20)
-    value, err, _ = product_grid(brdf, 90.0, 64)
-    assert abs(value - 22 / 42) < 1e-12
+def test_product_grid_counts_its_two_grids_and_converges_to_eq_3_27():
+    assert albedo(model("phong", n=4), 0.0, "product_grid", n=16).evaluations == 16 * 16 + 8 * 8
+    est = albedo(model("phong_cosmin", n=20), 90.0, "product_grid", n=64)
+    assert abs(est.value - 22 / 42) < 1e-12
 
 
 def test_monte_carlo_is_seeded_and_its_error_is_a_standard_error():
     brdf = model("phong", n=4)
-    a = monte_carlo(brdf, 0.0, 20000, [3])
-    b = monte_carlo(brdf, 0.0, 20000, [3])
-    assert a == b
-    assert abs(a[0] - 1.0) < 5 * a[1]
+    a = albedo(brdf, 0.0, "monte_carlo", n_samples=20000, seed=[3])
+    b = albedo(brdf, 0.0, "monte_carlo", n_samples=20000, seed=[3])
+    assert (a.value, a.error) == (b.value, b.error)
+    assert abs(a.value - 1.0) < 5 * a.error

@@ -227,7 +227,7 @@ def test_dd_albedo_agrees_with_an_independent_integration(params, theta):
     assert abs(float(tight.value) - reference) <= float(tight.error) + reference_err
     assert float(tight.error) <= 1e-10 * reference
     for tol in (1e-5, 1e-7):
-        loose = albedo(f, theta, tol=tol)
+        loose = albedo(f, theta, rtol=tol)
         assert_honest(float(loose.value), float(loose.error), reference, rel_floor=1e-11)
 
 

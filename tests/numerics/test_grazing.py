@@ -12,8 +12,9 @@ from brdfs import model
 from brdfs import albedo
 from brdfs.artifacts._albedo_curves import build
 from brdfs.physics.geometry import cos_incidence
-from brdfs.numerics.grazing import (NORMALISATION_FACTORS, SmithGrazingLimit, approach_angles, asymptotic_law,
-                           grid_albedo, incidence_grid, monte_carlo_albedo, ward_constant, ward_cosmin_limit)
+from brdfs.numerics.albedo import monte_carlo_albedo
+from brdfs.numerics.grazing import NORMALISATION_FACTORS, approach_angles, asymptotic_law, incidence_grid
+from brdfs.physics.models.microfacet import SmithGrazingLimit, ward_constant, ward_cosmin_limit
 from brdfs.numerics.integrate.disk import disk_albedo
 from brdfs.physics.models import MODELS
 
@@ -101,7 +102,7 @@ def test_bounded_limits_closed_forms():
 def test_grid_reading_converges_and_monte_carlo_is_unbiased():
     brdf, theta = model("ward", m=M), 60.0
     exact = float(albedo(brdf, theta).value)
-    errs = [abs(grid_albedo(brdf, theta, k, 4 * k).value - exact) for k in (90, 180, 900)]
+    errs = [abs(albedo(brdf, theta, "midpoint_grid", n_theta=k, n_phi=4 * k).value - exact) for k in (90, 180, 900)]
     assert errs[2] < errs[1] < errs[0] and errs[2] < 1e-3
     for sampler in ("uniform", "cosine", "beckmann_half_vector"):
         est, stderr = monte_carlo_albedo(brdf, theta, sampler, 200_000, np.random.SeedSequence([1, 2]))

@@ -15,7 +15,7 @@ import pytest
 import yaml
 
 from brdfs.physics.models import MODELS
-from brdfs.pipeline.config import CONFIG_SCHEMA, CONFIG_YAML, ConfigError, load_config, validate_config
+from brdfs.pipeline.config import CONFIG_SCHEMA, CONFIG_YAML, ConfigError, load_config, load_schema, validate_config
 from brdfs.pipeline.io import REPO_ROOT
 
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
@@ -135,7 +135,7 @@ def test_malformed_config_stops_with_one_line_naming_key_and_value(key, value):
 
 
 def test_a_missing_required_key_is_named():
-    with pytest.raises(ConfigError, match=r"^invalid config: grazing\.readings\.grids is missing"):
+    with pytest.raises(ConfigError, match=r"^Error validating config file: grazing\.readings\.grids is missing"):
         validate_config(delete_key(raw_config(), "grazing.readings.grids"))
 
 
@@ -168,7 +168,7 @@ def test_every_key_of_the_schema_has_a_description_and_every_number_a_range():
 
 
 def test_the_schemas_model_names_are_the_registered_models():
-    assert sorted(schema()["$defs"]["model_name"]["enum"]) == sorted(MODELS)
+    assert load_schema()["$defs"]["model_name"]["enum"] == sorted(MODELS)
 
 
 def dry_run(tmp_path: Path, *config_args: str) -> subprocess.CompletedProcess:
@@ -193,9 +193,9 @@ def test_dry_run_of_the_valid_config_plans_every_rule(tmp_path):
 @pytest.mark.parametrize(
     ("argument", "line"),
     [
-        ("tolerance=-1", "invalid config: tolerance = -1: must be of type object"),
-        ("seed=-5", "invalid config: seed = -5: must be >= 0"),
-        ("colour=red", "invalid config: colour = 'red': unknown key"),
+        ("tolerance=-1", "Error validating config file: tolerance = -1: must be of type object"),
+        ("seed=-5", "Error validating config file: seed = -5: must be >= 0"),
+        ("colour=red", "Error validating config file: colour = 'red': unknown key"),
     ],
 )
 def test_snakemake_stops_on_a_malformed_command_line_config(tmp_path, argument, line):
