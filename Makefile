@@ -44,8 +44,8 @@ benchmark: $(STAMP)
 baseline: $(STAMP)
 	$(BIN)/python -m brdfs.pipeline.regression --write tests/data/regression_baseline.csv
 
-# The self-contained HTML report of whatever has been built (run `make all` first for everything).
-report: $(STAMP)
+# The self-contained HTML report of the whole build (builds what is missing first).
+report: all
 	$(SNAKEMAKE) --cores 1 --report results/report.html
 
 # Debian's Chromium, for report-check only (needs root; does nothing when already installed).

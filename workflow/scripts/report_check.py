@@ -92,8 +92,11 @@ def run_chromium(args: list[str], profile: Path) -> subprocess.CompletedProcess:
     return subprocess.run(command, capture_output=True, text=True, timeout=300)
 
 
-def strip_tags(html: str) -> str:
-    return " ".join(re.sub(r"<[^>]+>", " ", html).split())
+def strip_tags(markup: str) -> str:
+    """The text of an HTML fragment, entities decoded, white space collapsed."""
+    import html as html_lib
+
+    return " ".join(html_lib.unescape(re.sub(r"<[^>]+>", " ", markup)).split())
 
 
 def check(report: Path, out_dir: Path) -> list[str]:

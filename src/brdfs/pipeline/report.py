@@ -101,7 +101,7 @@ def _format(value) -> str:
         return str(value)
 
 
-def _clean(text, limit: int = 220) -> str:
+def _clean(text, limit: int = 400) -> str:
     """One line of plain text safe inside an RST bullet."""
     text = " ".join(str(text).split()).replace("*", "\\*").replace("`", "'").replace("|", "/")
     return text if len(text) <= limit else text[: limit - 3] + "..."
@@ -137,6 +137,8 @@ def verdict(name: str, comparison: pd.DataFrame | None, sources: dict[str, Itera
             f"* ``{artifact}`` ({_clean(group['source'].iloc[0], 80)}): "
             f"{len(group) - len(differs)} of {len(group)} printed numbers reproduce, {len(differs)} differ."
         )
+        if len(differs):
+            lines.append("")  # a nested RST list needs a blank line before it
         for _, row in differs.head(6).iterrows():
             lines.append(
                 f"  - {_clean(row['model'], 40)} {_clean(row['param_value'], 30)} {_clean(row['quantity'], 40)}: "
@@ -144,6 +146,7 @@ def verdict(name: str, comparison: pd.DataFrame | None, sources: dict[str, Itera
             )
         if len(differs) > 6:
             lines.append(f"  - ... and {len(differs) - 6} more (see published_comparison.csv).")
+        lines.append("")
     return "**Against the print** (results/checks/published_comparison.csv):\n\n" + "\n".join(lines)
 
 
