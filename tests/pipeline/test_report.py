@@ -45,3 +45,15 @@ def test_verdict_counts_the_printed_numbers_and_lists_each_difference_with_its_r
     assert html.count("<li>") == 2 and "<ul" in html  # the difference is a nested bullet
     assert report.summary(table) == ("3 printed numbers compared: 2 reproduce, 1 differ "
                                      "(each with its reason and evidence).")
+
+
+def test_comparison_html_shows_every_row_and_column_escaped_and_coloured_by_verdict():
+    table = comparison([
+        ["metal_a0", "Table 1.2", "fresnel", "chromium", "a0", "69.8", "67.66", "differs", "k = 4.85 <misprint>"],
+        ["metal_a0", "Table 1.2", "fresnel", "gold", "a0", "81.5", "81.54", "reproduces", ""],
+    ])
+    page = report.comparison_html(table)
+    assert page.count('<tr class="differs">') == 1 and page.count('<tr class="reproduces">') == 1
+    assert page.count("<th>") == len(table.columns)
+    assert "&lt;misprint&gt;" in page and "<misprint>" not in page
+    assert report.comparison_html(table) == page

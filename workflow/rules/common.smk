@@ -15,6 +15,7 @@ except ConfigError as error:
 
 PUBLISHED = "data/published_values.csv"
 COMPARISON = "results/checks/published_comparison.csv"
+COMPARISON_HTML = "results/checks/published_comparison.html"
 
 ARTIFACTS = registry.artifacts()
 COMPARISONS = registry.comparisons()

@@ -169,3 +169,36 @@ def context(names: Iterable[str], sources: dict[str, Iterable[str]],
         "verdicts": {n: verdict(n, comparison, sources) for n in names},
         "summary": summary(comparison),
     }
+
+
+_HTML_STYLE = """
+body { font-family: sans-serif; font-size: 12px; margin: 1em; }
+table { border-collapse: collapse; }
+th, td { border: 1px solid #ccc; padding: 2px 4px; vertical-align: top; text-align: left; }
+th { background: #eee; position: sticky; top: 0; }
+tr.differs td { background: #fff3e0; }
+tr.reproduces td { background: #f1f8e9; }
+td.reason, td.evidence { min-width: 24em; max-width: 40em; }
+"""
+
+
+def comparison_html(comparison: pd.DataFrame) -> str:
+    """``published_comparison.csv`` as a standalone HTML page (the report shows it in a frame).
+
+    One row per printed number, coloured by verdict, every column shown; deterministic.
+    """
+    import html as html_lib
+
+    columns = list(comparison.columns)
+    head = "".join(f"<th>{html_lib.escape(c)}</th>" for c in columns)
+    body = []
+    for _, row in comparison.iterrows():
+        cells = "".join(
+            f'<td class="{html_lib.escape(c)}">{html_lib.escape(str(row[c]))}</td>' for c in columns
+        )
+        body.append(f'<tr class="{html_lib.escape(str(row.get("verdict", "")))}">{cells}</tr>')
+    return (
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>published_comparison</title>"
+        f"<style>{_HTML_STYLE}</style></head><body>\n<p>{html_lib.escape(summary(comparison))}</p>\n"
+        f"<table>\n<thead><tr>{head}</tr></thead>\n<tbody>\n" + "\n".join(body) + "\n</tbody></table>\n</body></html>\n"
+    )
