@@ -1,7 +1,9 @@
 """requirements.lock (pip-compile of pyproject.toml) pins what pyproject.toml pins."""
 
 import re
-import tomllib
+import pytest
+
+tomllib = pytest.importorskip("tomllib")  # Python >= 3.11
 
 from brdfs.pipeline.io import REPO_ROOT
 
