@@ -1,11 +1,12 @@
 """requirements.lock (pip-compile of pyproject.toml) pins what pyproject.toml pins."""
 
 import re
+
 import pytest
 
-tomllib = pytest.importorskip("tomllib")  # Python >= 3.11
-
 from brdfs.pipeline.io import REPO_ROOT
+
+tomllib = pytest.importorskip("tomllib")  # Python >= 3.11
 
 
 def locked() -> dict[str, str]:
