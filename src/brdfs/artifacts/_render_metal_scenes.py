@@ -1,0 +1,59 @@
+"""Scenes of Figures 3.9-3.11 and 4.16-4.17 (metals of the new model and of the patch model)."""
+from __future__ import annotations
+
+from brdfs.artifacts import _render_figures as rf
+from brdfs.numerics.render import shapes
+
+
+def _key(model):
+    return "n" if model == "phong_cosmin" else "s"
+
+
+def describe(entries, model="phong_cosmin"):
+    """'silver n=20, aluminium n=40, ...' from config entries (panel titles follow the config)."""
+    return ", ".join(f"{e['metal']} {_key(model)}={e[_key(model)]:g}" for e in entries)
+
+
+def _metal(entry, model="phong_cosmin"):
+    key = "n" if model == "phong_cosmin" else "s"
+    return {"metal": entry["metal"], "model": model, key: entry[key]}
+
+
+def tank_and_spheres(cfg, entries, model, title, base=None):
+    """A 'tank' (box + cylinder) behind a row of spheres on a plate (Figs. 3.9, 4.16)."""
+    section = cfg[rf.SECTION]
+    tank, spheres = entries[0], entries[1:]
+    plate = {"diffuse": section["diffuse_reflectance"]} if base is None else _metal(base, model)
+    hull, turret = rf.tank(0.0, 1.2)
+    objects = [("floor", rf.floor(), plate),
+               ("tank hull", hull, _metal(tank, model)), ("tank turret", turret, _metal(tank, model))]
+    xs = [-2.1 + 4.2 * k / max(len(spheres) - 1, 1) for k in range(len(spheres))]
+    for k, (x, entry) in enumerate(zip(xs, spheres)):
+        objects.append((f"sphere {k + 1} {entry['metal']}", rf.sphere(x, -1.4, 0.55), _metal(entry, model)))
+    return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA, aspect=1.6,
+                     reference=("floor",) if base is None else ("tank hull",))]
+
+
+def row_of_objects(cfg, entries, title, shapes_of, model="phong_cosmin"):
+    section = cfg[rf.SECTION]
+    objects = [("floor", rf.floor(), {"diffuse": section["diffuse_reflectance"]})]
+    for k, (entry, (kind, shape)) in enumerate(zip(entries, shapes_of)):
+        objects.append((f"{kind} {k + 1} {entry['metal']}", shape, _metal(entry, model)))
+    return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA)]
+
+
+def three_spheres():
+    """Three spheres in a row, the middle one a little behind (it mirrors the other two)."""
+    return [("sphere", rf.sphere(-1.9, -0.6, 0.8)), ("sphere", rf.sphere(0.0, 0.4, 0.9)),
+            ("sphere", rf.sphere(1.9, -0.6, 0.8))]
+
+
+def mirror_scene(cfg, entries, title):
+    """Fig. 3.11: a large gold sphere ('Beethoven'), a copper sphere and a copper box ('pyramid')
+    on a near-mirror silver plate."""
+    head, ball, pyramid, plate = entries
+    objects = [("floor (mirror)", rf.floor(), _metal(plate)),
+               ("head", rf.sphere(0.0, 0.6, 1.1), _metal(head)),
+               ("sphere", rf.sphere(-2.0, -0.9, 0.6), _metal(ball)),
+               ("box", shapes.Box((2.0, -0.8, 0.5), (0.5, 0.5, 0.5)), _metal(pyramid))]
+    return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA, reference=("head",))]

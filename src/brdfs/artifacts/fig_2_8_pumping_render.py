@@ -1,0 +1,43 @@
+"""Figure 2.8: metals with the reciprocal Phong model (top) and pumped once (bottom), n = 20 and 5000.
+
+Reciprocal Phong (eq. 2.6, c = (n+2)/2π) times the metal's Fresnel reflectance at Θ_min, and the
+same divided once by its albedo (g1, eq. 2.20; albedo table of brdfs.numerics.pumping); point
+lights plus homogeneous daylight, Monte Carlo paths. One display scale for the four panels.
+"""
+from __future__ import annotations
+
+import pandas as pd
+
+from brdfs.artifacts import _render_figures as rf
+from brdfs.pipeline.registry import figure
+
+NAME = "fig_2_8_pumping_render"
+
+
+def panels(cfg: dict) -> list:
+    section = cfg[rf.SECTION]
+    p = section["pumping"]
+    out = []
+    for pumped, row in ((0, "reciprocal Phong"), (1, "pumped once (g1)")):
+        for n in p["n"]:
+            spec = {"model": "phong", "n": n, "pumped": pumped}
+            hull, turret = rf.tank(0.0, 1.2)
+            objects = [("floor", rf.floor(), {"diffuse": section["diffuse_reflectance"]}),
+                       ("tank hull", hull, {**spec, "metal": p["tank"]}),
+                       ("tank turret", turret, {**spec, "metal": p["tank"]})]
+            xs = [-2.1 + 4.2 * k / max(len(p["spheres"]) - 1, 1) for k in range(len(p["spheres"]))]
+            for x, metal in zip(xs, p["spheres"]):
+                objects.append((f"{metal} sphere", rf.sphere(x, -1.4, 0.55), {**spec, "metal": metal}))
+            out.append(rf.Panel(f"{row}, n = {n:g}", objects, rf.TWO_LIGHTS, rf.STREET_CAMERA,
+                                aspect=1.6))
+    return out
+
+
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    return rf.compute_panels(cfg, NAME, panels(cfg))
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    rf.plot_panels(df, path, "Fig. 2.8: metals, reciprocal Phong (top) and pumped once (bottom)",
+                   columns=len(set(df["n"].dropna())))

@@ -1,0 +1,34 @@
+"""Figure 3.13: two ceramic objects, eq. 3.31 with a dominant diffuse part, n = 100 and 20.
+
+The teapots are replaced by a sphere standing on a short cylinder (a 'pot'); r, g, b channels,
+two point lights plus homogeneous daylight, Monte Carlo paths.
+"""
+from __future__ import annotations
+
+import pandas as pd
+
+from brdfs.artifacts import _render_figures as rf
+from brdfs.numerics.render import shapes
+from brdfs.pipeline.registry import figure
+
+NAME = "fig_3_13_ceramics"
+
+
+def panels(cfg: dict) -> list:
+    c = cfg[rf.SECTION]["ceramics"]
+    objects = [("floor", rf.floor(), dict(c["plate"]))]
+    for k, spec in enumerate(c["objects"]):
+        x = -1.3 + 2.6 * k / max(len(c["objects"]) - 1, 1)
+        objects.append((f"pot {k + 1} body n={spec['n']:g}", shapes.Sphere((x, 0.0, 1.05), 0.85), dict(spec)))
+        objects.append((f"pot {k + 1} foot n={spec['n']:g}", shapes.Cylinder((x, 0.0, 0.0), 0.45, 0.3), dict(spec)))
+    title = "ceramics, n = " + ", ".join(f"{s['n']:g}" for s in c["objects"])
+    return [rf.Panel(title, objects, rf.TWO_LIGHTS, rf.STREET_CAMERA, channels=3)]
+
+
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 2})
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    return rf.compute_panels(cfg, NAME, panels(cfg))
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    rf.plot_panels(df, path, "Fig. 3.13: ceramic objects (eq. 3.31)")

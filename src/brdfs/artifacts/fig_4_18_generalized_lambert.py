@@ -1,0 +1,40 @@
+"""Figure 4.18: generalized Lambertian spheres d = 1, 0.75, 0.5, 0.25, direct illumination only.
+
+f = C min(ξ(m), ξ(m_clip)) (eqs. 4.58/4.59, C = 1/max albedo); gray; top: one point light at the
+eye (d = 1 shows the 'full moon', a disk of almost constant radiance); bottom: two point lights.
+Each panel has its own display scale (the light at the eye is farther away).
+Direct lighting needs no sampling: each pixel is f I cos θ_L / r² at its centre (no noise).
+"""
+from __future__ import annotations
+
+import pandas as pd
+
+from brdfs.artifacts import _render_figures as rf
+from brdfs.pipeline.registry import figure
+
+NAME = "fig_4_18_generalized_lambert"
+CAMERA = {"eye": (0.0, -12.0, 0.8), "target": (0.0, 0.0, 0.8), "fov_deg": 14.0}
+
+
+def panels(cfg: dict) -> list:
+    ds = cfg[rf.SECTION]["generalized_lambertian"]["d"]
+    objects = []
+    for k, d in enumerate(ds):
+        x = -3.3 + 6.6 * k / max(len(ds) - 1, 1)
+        objects.append((f"d={d:g}", rf.sphere(x, 0.0, 1.0), {"model": "generalized_lambertian", "d": d}))
+    labels = tuple(label for label, _, _ in objects)
+    light_at_eye = [(CAMERA["eye"], 1.0)]
+    return [rf.Panel("point light at the eye", objects, light_at_eye, CAMERA, sky=False, channels=3,
+                     background=0.0, reference=labels, aspect=3.0),
+            rf.Panel("two point lights", objects, rf.TWO_LIGHTS, CAMERA, sky=False, channels=3,
+                     background=0.0, reference=labels, aspect=3.0)]
+
+
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 1})
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    return rf.compute_panels(cfg, NAME, panels(cfg), shared_scale=False)
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    rf.plot_panels(df, path, "Fig. 4.18: generalized Lambertian spheres d = "
+                   + ", ".join(f"{d:g}" for d in df["d"].dropna().unique()) + " (direct only)", columns=1)

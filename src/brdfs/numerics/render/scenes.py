@@ -1,0 +1,70 @@
+"""Materials from config entries, and rendering a scene into display pixels plus statistics.
+
+Material entries (one dict per object):
+
+* ``{metal: gold, model: phong_cosmin, n: 20}`` — eq. 3.29: the package's model × Fresnel of the
+  metal's measured complex index at the eight wavelengths, at Θ_min (Phong-type models) or at
+  θ' of eq. 4.53 (patch models, eq. 4.54); ``pumped: 1`` divides the model by its albedo once
+  (eq. 2.20, :class:`brdfs.numerics.pumping.Pumped`);
+* ``{rgb: [r, g, b], a_s: 0.04, n: 169}`` — the plastic of eq. 3.31 (r, g, b channels);
+* ``{diffuse: 0.5}`` — Lambert, flat spectrum;
+* ``{model: generalized_lambertian, d: 0.5}`` — any package model with F = 1 (gray).
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+import brdfs
+from brdfs.numerics import pumping
+from brdfs.numerics.render import materials, spectrum
+from brdfs.physics import optical_constants
+
+SPECTRAL = len(spectrum.WAVELENGTHS_NM)
+PATCH_MODELS = ("patch_exponential", "patch_elliptical", "patch_basic")
+#: Accuracy of the albedo table a pumped model divides by (a render needs no more).
+PUMPING_TABLE_RTOL = 1e-6
+
+
+def complex_indices(metal: str) -> np.ndarray:
+    """n + ik of ``metal`` at the eight wavelengths (``complex_index`` of the spectral module)."""
+    ior = np.asarray(optical_constants.complex_index(metal, spectrum.WAVELENGTHS_NM), complex)
+    return ior.real + 1j * np.abs(ior.imag)
+
+
+@functools.lru_cache(maxsize=None)
+def pumped(base, levels: int):
+    """``base`` divided ``levels`` times by its albedo (g1, eq. 2.20), from albedo tables."""
+    for _ in range(levels):
+        table = pumping.tabulate_albedo(base, target_rtol=PUMPING_TABLE_RTOL, engine_rtol=1e-8)
+        base = pumping.Pumped(base, table, "g1")
+    return base
+
+
+def _model(spec: dict):
+    params = {k: v for k, v in spec.items() if k not in ("metal", "model", "pumped", "label", "channels")}
+    return pumped(brdfs.model(spec["model"], **params), int(spec.get("pumped", 0)))
+
+
+def make_material(spec: dict, channels: int = SPECTRAL):
+    """A :class:`~brdfs.numerics.render.materials.Material` from a config entry (module docstring)."""
+    spec = dict(spec)
+    label = spec.pop("label", "")
+    if "diffuse" in spec:
+        return materials.lambert(np.full(channels, float(spec["diffuse"])), label=label or "diffuse")
+    if "rgb" in spec:
+        if channels != 3:
+            raise ValueError(f"plastic {spec!r}: eq. 3.31 is an r, g, b model, the scene has {channels} channels")
+        model = brdfs.model("phong_cosmin", n=spec["n"])
+        return materials.plastic(spec["rgb"], spec["a_s"], model, label=label or "plastic")
+    if "metal" in spec:
+        if channels != SPECTRAL:
+            raise ValueError(f"metal {spec!r}: metals are rendered at the {SPECTRAL} wavelengths")
+        model = _model(spec)
+        angle = "theta_prime" if spec["model"] in PATCH_MODELS else "theta_min"
+        return materials.specular(model, channels, ior=complex_indices(spec["metal"]), fresnel_angle=angle,
+                                  label=label or spec["metal"])
+    if "model" in spec:
+        return materials.specular(_model(spec), channels, label=label or spec["model"])
+    raise ValueError(f"material entry {spec!r} has none of the keys diffuse, rgb, metal, model")

@@ -1,0 +1,239 @@
+"""Physical tests of the renderer (brdfs.numerics.render) on tiny images."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import stats
+
+import brdfs
+from brdfs.numerics import patch_geometry
+from brdfs.numerics.render import materials, sampling, shapes, spectrum, tracer
+from brdfs.numerics.render.shapes import normalize
+
+
+def _pixel_hits(camera, scene):
+    o, d = camera.rays(np.full((camera.height, camera.width, 2), 0.5))
+    t, index = scene.intersect(o, d)
+    return o, d, t, index
+
+
+def test_white_furnace_lambert_spheres_return_the_sky_radiance():
+    """Two albedo-1 Lambert spheres that see each other, under a uniform sky S: every pixel is S."""
+    white = materials.lambert(np.ones(3))
+    sky = np.array([0.7, 0.7, 0.7])
+    scene = tracer.Scene([tracer.SceneObject(shapes.Sphere((-1.05, 0, 0), 1.0), white, "a"),
+                          tracer.SceneObject(shapes.Sphere((1.05, 0, 0), 1.0), white, "b")], sky=sky)
+    camera = tracer.Camera((0, -8, 1), (0, 0, 0), 16, 10, fov_deg=20)
+    image = tracer.render(scene, camera, spp=8, depth=40, seed=3)
+    hit = image.index >= 0
+    assert hit.sum() > 60
+    rows = tracer.object_statistics(image, scene)
+    for row in rows:
+        assert abs(row["radiance"] - 0.7) <= 5 * row["radiance_err"] + 1e-12
+    # the interreflected paths (between the spheres) matter: with one bounce the gap darkens
+    one_bounce = tracer.render(scene, camera, spp=8, depth=2, seed=3)
+    assert one_bounce.radiance[hit].min() < 0.69
+
+
+def test_white_furnace_holds_with_a_mixture_proposal():
+    """A Lambert ρ = 1 sampled through the plastic mixture (cosine + new-model lobe + defensive
+    cosine) still returns S: the mixture weights are unbiased, not just exact for the cosine."""
+    mixed = materials.Material((materials.Lobe(materials.Lambert(np.ones(3)), np.ones(3)),
+                                materials.Lobe(brdfs.model("phong_cosmin", n=30), np.zeros(3), share=1.0)))
+    assert len(mixed.proposals) == 3
+    scene = tracer.Scene([tracer.SceneObject(shapes.Sphere((0, 0, 0), 1.0), mixed, "s")], sky=np.ones(3))
+    camera = tracer.Camera((0, -6, 0), (0, 0, 0), 8, 8, fov_deg=22)
+    image = tracer.render(scene, camera, spp=64, depth=2, seed=5)
+    row = tracer.object_statistics(image, scene)[0]
+    assert row["radiance_err"] > 0
+    assert abs(row["radiance"] - 1.0) <= 5 * row["radiance_err"]
+
+
+@pytest.mark.parametrize("n", [20, 500])
+def test_new_model_sphere_under_uniform_sky_shows_sky_times_albedo(n):
+    """Eq. 3.32: a lone sphere of the new model under a uniform sky S shows S·a(θ_V) per pixel."""
+    model = brdfs.model("phong_cosmin", n=n)
+    S = 2.0
+    scene = tracer.Scene([tracer.SceneObject(shapes.Sphere((0, 0, 0), 1.0), materials.specular(model, 3), "s")],
+                         sky=np.full(3, S))
+    camera = tracer.Camera((0, -10, 0), (0, 0, 0), 9, 9, fov_deg=12)
+    image = tracer.render(scene, camera, spp=200, depth=2, seed=11, jitter=False)
+    o, d, t, index = _pixel_hits(camera, scene)
+    hit = index >= 0
+    normal = o[hit] + t[hit, None] * d[hit]
+    theta_v = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", normal, -d[hit]), 0, 1)))
+    expected = S * brdfs.albedo(model, np.minimum(theta_v, 89.9)).value
+    got = image.radiance[hit].mean(axis=-1)
+    z = (got - expected) / np.sqrt(image.variance_of_mean[hit])
+    assert hit.sum() >= 40
+    assert stats.chi2.sf(np.sum(z * z), z.size) > 1e-4, np.round(z, 2)
+
+
+@pytest.mark.parametrize("name, params", [
+    ("phong_cosmin", {"n": 12}),
+    ("patch_elliptical", {"b": 0.4, "ratio": 0.5, "u_angle_deg": 30.0}),
+    ("patch_exponential", {"s": 6.0}),
+])
+def test_brdf_from_a_pixel_is_the_same_when_camera_and_light_swap(name, params):
+    """radiance / (I cos θ_L / r²) at one floor point is f(L, V), and f(V, L) after the swap."""
+    model = brdfs.model(name, **params)
+    floor = tracer.SceneObject(shapes.Rectangle((0, 0, 0), (3, 3)), materials.specular(model, 3), "floor")
+    point = np.array([0.2, -0.1, 0.0])
+    A, B = np.array([-1.0, -2.0, 1.5]), np.array([1.2, 1.5, 1.9])
+    intensity = 5.0
+    recovered = []
+    for eye, lamp in ((A, B), (B, A)):
+        scene = tracer.Scene([floor], [tracer.PointLight(tuple(lamp), np.full(3, intensity))])
+        camera = tracer.Camera(tuple(eye), tuple(point), 3, 3, fov_deg=5)
+        radiance = tracer.render(scene, camera).radiance[1, 1, 0]
+        to_lamp = lamp - point
+        r2 = to_lamp @ to_lamp
+        recovered.append(radiance / (intensity * to_lamp[2] / np.sqrt(r2) / r2))
+    L, V = normalize(B - point), normalize(A - point)
+    assert recovered[0] == pytest.approx(float(model(L, V)), rel=1e-9)
+    assert recovered[1] == pytest.approx(recovered[0], rel=1e-9)
+    assert recovered[0] > 0
+
+
+def test_direct_image_of_a_sphere_is_the_closed_form_shading():
+    """Every pixel of a point-lit sphere (gold, new model with Fresnel at Θ_min) equals
+    f(L, V) F I cos θ_L / r² computed here from the ray–sphere geometry in closed form."""
+    model = brdfs.model("phong_cosmin", n=8)
+    ior = np.array([0.33 + 2.78j, 1.46 + 1.86j, 0.17 + 4.0j])
+    center, radius = np.array([0.1, 0.2, 0.3]), 0.8
+    lamp, intensity = np.array([2.0, -3.0, 4.0]), np.array([10.0, 20.0, 30.0])
+    scene = tracer.Scene([tracer.SceneObject(shapes.Sphere(tuple(center), radius),
+                                             materials.specular(model, 3, ior=ior), "gold")],
+                         [tracer.PointLight(tuple(lamp), intensity)])
+    camera = tracer.Camera((0, -5, 1), tuple(center), 24, 18, fov_deg=25)
+    image = tracer.render(scene, camera)
+    o, d, _, index = _pixel_hits(camera, scene)
+    hit = index >= 0
+    # closed form: ray-sphere root, normal, mirror-frame-free dot products
+    oc = o[hit] - center
+    b = np.einsum("ij,ij->i", oc, d[hit])
+    t = -b - np.sqrt(b * b - (np.einsum("ij,ij->i", oc, oc) - radius ** 2))
+    p = o[hit] + t[:, None] * d[hit]
+    N = (p - center) / radius
+    Lw = normalize(lamp - p)
+    V = -d[hit]
+    nl, nv = np.einsum("ij,ij->i", N, Lw), np.einsum("ij,ij->i", N, V)
+    rv = np.einsum("ij,ij->i", 2 * nl[:, None] * N - Lw, V)
+    f = model.C * np.where(rv > 0, rv, 0) ** model.n / np.maximum(nl, nv)
+    from brdfs.physics.fresnel import unpolarised_reflectance
+    F = unpolarised_reflectance(np.maximum(nl, nv)[:, None], ior.real, ior.imag)
+    r2 = np.sum((lamp - p) ** 2, axis=1)
+    expected = np.where((nl > 0)[:, None], f[:, None] * F * intensity * (nl / r2)[:, None], 0.0)
+    assert hit.sum() > 100 and expected.max() > 0
+    np.testing.assert_allclose(image.radiance[hit], expected, rtol=1e-9, atol=1e-14)
+    assert np.all(image.radiance[~hit] == 0)
+
+
+@pytest.mark.parametrize("name, params, theta", [
+    ("phong_cosmin", {"n": 5000}, 60.0),
+    ("phong", {"n": 20}, 30.0),
+    ("patch_exponential", {"s": 10.0}, 45.0),
+    ("patch_elliptical", {"b": 0.3, "ratio": 0.5, "u_angle_deg": 20.0}, 50.0),
+])
+def test_material_sampling_weights_average_to_the_engine_albedo(name, params, theta):
+    """E[weight] of the proposal mixture is the albedo a(θ_V) = ∫ f cos θ_L dω (independent engine)."""
+    model = brdfs.model(name, **params)
+    material = materials.specular(model, 1)
+    rng = np.random.default_rng(7)
+    n = 200_000
+    V = np.broadcast_to([np.sin(np.radians(theta)), 0.0, np.cos(np.radians(theta))], (n, 3))
+    _, weight = material.sample(V, rng.random((n, 2)), rng.random(n))
+    mean, err = weight[:, 0].mean(), weight[:, 0].std() / np.sqrt(n)
+    if name == "patch_exponential":
+        expected, expected_err = patch_geometry.mixture_albedo(patch_geometry.ExponentialProfile(model.s), theta, C=model.C).value, 0.0
+    elif name == "patch_elliptical":   # no closed form: plain cosine sampling, 10^6 samples
+        L = sampling.CosineSampler().sample(None, rng.random((1_000_000, 2)))
+        plain = model(L, np.broadcast_to(V[0], L.shape)) * np.pi
+        expected, expected_err = plain.mean(), plain.std() / 1000.0
+    else:
+        expected, expected_err = brdfs.albedo(model, theta).value, 0.0
+    assert abs(mean - expected) <= 4.5 * np.hypot(err, expected_err) + 1e-9, (mean, err, expected)
+    assert err < 0.02 * expected
+
+
+def test_renders_are_identical_for_the_same_seed():
+    gold = materials.specular(brdfs.model("phong_cosmin", n=10), 3)
+    scene = tracer.Scene([tracer.SceneObject(shapes.Sphere((0, 0, 1), 1.0), gold, "g"),
+                          tracer.SceneObject(shapes.Rectangle((0, 0, 0), (3, 3)), materials.lambert(np.ones(3) / 2), "f")],
+                         [tracer.PointLight((2, -2, 4), np.ones(3))], sky=np.ones(3))
+    camera = tracer.Camera((0, -6, 2), (0, 0, 1), 10, 8)
+    a = tracer.render(scene, camera, spp=4, depth=3, seed=9)
+    b = tracer.render(scene, camera, spp=4, depth=3, seed=9)
+    assert np.array_equal(a.radiance, b.radiance)
+
+
+def test_shapes_hit_where_their_surface_is():
+    """Each shape's hit point lies on its surface and the normal is a unit vector facing the ray."""
+    rng = np.random.default_rng(1)
+    o = rng.normal(size=(2000, 3)) * 0.3 + [0, -5, 0.5]
+    d = normalize(rng.normal(size=(2000, 3)) * 0.2 + [0, 1, 0])
+    for shape, on_surface in [
+        (shapes.Sphere((0, 0, 0.5), 0.7), lambda p: np.linalg.norm(p - [0, 0, 0.5], axis=1) - 0.7),
+        (shapes.Box((0, 0, 0.5), (0.5, 0.4, 0.3)), lambda p: np.max(np.abs(p - [0, 0, 0.5]) / [0.5, 0.4, 0.3], axis=1) - 1),
+        (shapes.Cylinder((0, 0, 0), 0.5, 1.0),
+         lambda p: np.minimum(np.abs(np.hypot(p[:, 0], p[:, 1]) - 0.5), np.minimum(np.abs(p[:, 2]), np.abs(p[:, 2] - 1)))),
+    ]:
+        t = shape.hit(o, d)
+        hit = np.isfinite(t)
+        assert 100 < hit.sum() < 2000
+        p = o[hit] + t[hit, None] * d[hit]
+        assert np.max(np.abs(on_surface(p))) < 1e-9
+        N, T = shape.frame(p)
+        assert np.allclose(np.linalg.norm(N, axis=1), 1) and np.allclose(np.einsum("ij,ij->i", N, T), 0, atol=1e-12)
+
+
+def test_flat_spectrum_is_neutral_gray():
+    rgb = spectrum.spectral_to_rgb_matrix() @ np.ones(len(spectrum.WAVELENGTHS_NM))
+    np.testing.assert_allclose(rgb, 1.0, atol=1e-3)
+    assert spectrum.spectral_to_xyz_matrix()[1].sum() == pytest.approx(1.0)
+
+
+def test_proposal_for_uses_the_models_own_sampler_when_it_has_one():
+    class WithSampler:
+        name = "x"
+
+        def sample(self, L, u):
+            return L, None, None
+
+        def pdf(self, L, V):
+            return 1.0
+
+    assert isinstance(sampling.proposal_for(WithSampler()), sampling.ModelSampler)
+    assert isinstance(sampling.proposal_for(brdfs.model("phong_cosmin", n=5)), sampling.PowerLobeSampler)
+
+
+def test_a_models_own_sampler_is_used_and_its_weights_stay_unbiased():
+    """Duck typing: a model carrying sample/pdf (the sampling helper's interface) is sampled with
+    them; the material's mixture weights still average to the engine's albedo."""
+    from dataclasses import dataclass
+
+    from brdfs.physics.models.phong import PhongCosmin
+
+    calls = []
+
+    @dataclass(frozen=True)
+    class SampledNewModel(PhongCosmin):
+        def sample(self, L, u):
+            calls.append(len(u))
+            V = sampling.PowerLobeSampler(self.n).sample(L, u)
+            pdf = self.pdf(L, V)
+            return V, np.where(pdf > 0, self(L, V) * np.maximum(V[..., 2], 0) / np.where(pdf > 0, pdf, 1), 0.0), pdf
+
+        def pdf(self, L, V):
+            return sampling.PowerLobeSampler(self.n).pdf(L, V)
+
+    model = SampledNewModel(n=200.0)
+    material = materials.specular(model, 1)
+    assert isinstance(material.proposals[0], sampling.ModelSampler)
+    rng = np.random.default_rng(2)
+    n, theta = 200_000, 40.0
+    V = np.broadcast_to([np.sin(np.radians(theta)), 0.0, np.cos(np.radians(theta))], (n, 3))
+    _, weight = material.sample(V, rng.random((n, 2)), rng.random(n))
+    assert calls and sum(calls) > 0.8 * n
+    expected = brdfs.albedo(brdfs.model("phong_cosmin", n=200.0), theta).value
+    assert abs(weight.mean() - expected) <= 4.5 * weight.std() / np.sqrt(n)
