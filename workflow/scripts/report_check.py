@@ -11,7 +11,7 @@ click on it does), waits until the browser has decoded the ``<img>``, records it
 opens the result's info panel and records the caption the app displays. Chromium prints the
 final DOM (``--dump-dom``); this script then asserts that every ``<img>`` loaded (natural width
 and height > 0) and that every figure has a written caption (not the placeholder). A second
-Chromium run saves a screenshot of the report showing the first chapter.
+Chromium run saves a screenshot of the report showing a thesis figure with its caption.
 """
 
 from __future__ import annotations
@@ -63,9 +63,12 @@ PROBE = r"""
       record.info_text = (document.querySelector("#app") || document.body).innerText.slice(0, 20000);
       out.results.push(record);
     }
-    const first = Object.keys(categories).sort()[0];
-    app.showCategory(first);
-    app.setView({content: "img", contentPath: results[Object.values(categories[first])[0][0]].data_uri});
+    // The screenshot: a thesis figure with its caption, as a reader sees it after one click.
+    const paths = Object.keys(results).sort();
+    const shown = paths.find((p) => p.includes("/figures/fig_")) || paths[0];
+    app.showResultInfo(shown);
+    await wait(100);
+    app.setView({content: "img", contentPath: results[shown].data_uri, resultPath: shown});
     await wait(200);
     const pre = document.createElement("pre");
     pre.id = "report-check";
