@@ -1,6 +1,7 @@
 # One rule for every registered table and figure: its CSV and PNG from its module's
 # compute() and plot(). Inputs are the CSVs of its declared deps and the package files
-# its module imports; params are the config sections it reads.
+# its module imports; params are the config sections it reads. The PNG goes into the
+# HTML report under its thesis chapter, with its caption (brdfs.pipeline.report).
 
 
 rule artifact:
@@ -9,7 +10,13 @@ rule artifact:
         code=lambda wc: ARTIFACTS[wc.name].sources,
     output:
         csv="results/{kind}/{name}.csv",
-        png="results/{kind}/{name}.png",
+        png=report(
+            "results/{kind}/{name}.png",
+            caption="../report/artifact.rst",
+            category=lambda wc: report_text.category(wc.name),
+            subcategory=lambda wc: report_text.subcategory(wc.name),
+            labels=lambda wc: {"artifact": wc.name, "thesis": report_text.thesis_number(wc.name) or "extra"},
+        ),
     params:
         artifact=lambda wc: wc.name,
         config=lambda wc: registry.config_subset(config, ARTIFACTS[wc.name].config),

@@ -30,7 +30,8 @@ rule merge_comparison:
         fragments=FRAGMENTS,
         published=PUBLISHED,
     output:
-        COMPARISON,
+        csv=report(COMPARISON, caption="../report/comparison.rst", category="Comparison with the print"),
+        html=report(COMPARISON_HTML, caption="../report/comparison.rst", category="Comparison with the print"),
     resources:
         mem_mb=1000,
         runtime=5,

@@ -1,16 +1,32 @@
 # Configuration check and the registry-derived names every rule uses.
-from brdfs.pipeline import registry
-from brdfs.pipeline.config import check_config
+import sys
 
-check_config(config)
+from brdfs.pipeline import registry
+from brdfs.pipeline import report as report_text
+from brdfs.pipeline.config import ConfigError, validate_config
+
+# The schema (workflow/schemas/config.schema.yaml) is applied, with its defaults, to the
+# config as Snakemake sees it (config.yaml updated by --config/--configfile), before any rule
+# is planned. A bad value stops the run with one line naming the key and the value.
+try:
+    validate_config(config)
+except ConfigError as error:
+    sys.exit(str(error))
 
 PUBLISHED = "data/published_values.csv"
 COMPARISON = "results/checks/published_comparison.csv"
+COMPARISON_HTML = "results/checks/published_comparison.html"
 
 ARTIFACTS = registry.artifacts()
 COMPARISONS = registry.comparisons()
 ARTIFACT_OUTPUTS = [path for a in ARTIFACTS.values() for path in (a.csv, a.png)]
 FRAGMENTS = [c.fragment_csv for c in COMPARISONS.values()]
+
+# Captions and verdicts for the HTML report's caption templates (workflow/report/*.rst),
+# which Snakemake renders with this config; no rule reads this key.
+config[report_text.CONFIG_KEY] = report_text.context(
+    ARTIFACTS, {name: c.tables for name, c in COMPARISONS.items()}, COMPARISON
+)
 
 
 def wildcard_choice(names):

@@ -49,29 +49,32 @@ def curves(specs, theta_deg, tol) -> pd.DataFrame:
 
 
 def plot_curves(df: pd.DataFrame, path, title: str, ymax: float = 3.0) -> None:
-    """Two panels: a(θ) over 0°–90° (clipped at ``ymax``, as the thesis's axes), and against 90° − θ on log axes."""
+    """Two panels: a(θ) over 0°–90° (clipped at ``ymax``, as the thesis's axes), and against 90° − θ on log axes.
+
+    The legend sits below the panels, so that it covers no curve.
+    """
     fig, (ax, ax_log) = plotting.plt.subplots(1, 2, figsize=(11, 4.2))
+    handles, labels = [], []
     for name, g in df.groupby("label", sort=False):
-        line, = ax.plot(g["theta_deg"], g["albedo"], label=name)
+        line, = ax.plot(g["theta_deg"], g["albedo"])
         ax_log.loglog(90.0 - g["theta_deg"], g["albedo"], color=line.get_color())
         ax.fill_between(g["theta_deg"], g["albedo"] - g["albedo_err"], g["albedo"] + g["albedo_err"],
                         color=line.get_color(), alpha=0.3, lw=0)
+        handles.append(line)
+        labels.append(name)
     ax.set(xlabel="incidence angle θ_L [deg]", ylabel="albedo a(θ_L)", xlim=(0, 90), ylim=(0, ymax))
+    ax.set_title("0°–90° (clipped at a = %g)" % ymax, fontsize=8)
     ax.axhline(1.0, color="k", lw=0.6, ls=":")
     ax_log.axhline(1.0, color="k", lw=0.6, ls=":")
     ax_log.invert_xaxis()
-    ax_log.set(xlabel="90° − θ_L [deg] (log)", ylabel="albedo (log)")
-    fig.suptitle(title, fontsize=9)
-    ax.legend(fontsize=7, loc="lower left")
+    ax_log.set(xlabel="90° − θ_L [deg] (log)", ylabel="albedo a(θ_L) (log)")
+    ax_log.set_title("toward grazing incidence", fontsize=8)
+    fig.suptitle(title, fontsize=10, y=1.0)
+    fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=7)
+    fig.tight_layout()
     plotting.savefig(fig, path)
 
 
 def figure_title(number: str, df: pd.DataFrame) -> str:
-    """The caption: the models drawn, F = 1, the incidence grid (a choice), and He–Torrance if absent."""
-    models = "; ".join(dict.fromkeys(df["label"]))
-    theta = np.unique(df["theta_deg"])
-    step = np.min(np.diff(theta[theta < 80.0]))
-    grid = f"step {step:g}° on [0°, 90°) plus {np.sum(theta > 80.0)} points up to 90° − {90.0 - theta[-1]:.0e}°"
-    missing = (" He–Torrance: wavelength lambda_um a choice (the thesis gives none)." if (df["model"] == "he_torrance").any()
-               else " He–Torrance not drawn (model not available).")
-    return f"Figure {number}: albedo with F = 1 of {models}.\nIncidence grid (a choice): {grid}.{missing}"
+    """The short title: the thesis number, the quantity and F = 1 (models, grid and choices: the caption)."""
+    return f"Figure {number}: albedo of {df['label'].nunique()} models, F = 1"

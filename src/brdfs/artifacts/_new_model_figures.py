@@ -72,6 +72,6 @@ def plot_slices(df: pd.DataFrame, path, quantity: str, ylabel: str, title: str) 
     for ax, name in zip(np.atleast_1d(axes), names):
         for theta, g in df[df["model"] == name].groupby("theta_deg"):
             ax.plot(g["theta_v_deg"], g[quantity], label=f"θ_L = {theta:g}°")
-        ax.set(xlabel="viewing angle θ_V [deg] (< 0: side of L, > 0: side of R)", ylabel=ylabel, title=name)
-    fig.suptitle(title, fontsize=8)
+        ax.set(xlabel="viewing angle θ_V [deg] (< 0: side of L)", ylabel=ylabel, title=name)
+    fig.suptitle(title, fontsize=10)
     plotting.savefig(fig, path)

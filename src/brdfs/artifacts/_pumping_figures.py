@@ -100,23 +100,6 @@ def distance_to_new_model(cfg: dict, df: pd.DataFrame) -> pd.DataFrame:
     return pd.concat(rows, ignore_index=True)
 
 
-def _level_summary(df: pd.DataFrame) -> str:
-    """Measured statements for the caption: a(60°) and max L_out/C per level."""
-    parts = []
-    curves = df[df["albedo"].notna() | df["radiance"].notna()]
-    for level, g in curves[curves["model"] != "phong_cosmin"].groupby("level"):
-        a60 = g.loc[g["theta_deg"] == 60.0, "albedo"]
-        peak = (g["radiance"] / g["C"]).max()
-        a60_text = f"a(60°)={a60.dropna().iloc[0]:.3f}, " if not a60.dropna().empty else ""
-        parts.append(f"k={int(level)}: {a60_text}max L/C={peak:.3f}")
-    text = "; ".join(parts)
-    if "distance_to_eq_2_22" in df:
-        dist = df.dropna(subset=["distance_to_eq_2_22"])
-        text += "\nmax rel. distance of albedo to eq. 2.22 with c fitted to each level: " + "; ".join(
-            f"k={int(r.level)}: {r.distance_to_eq_2_22:.3f} (c={r.c_fit:.3f})" for r in dist.itertuples())
-    return text
-
-
 def plot_curves(df: pd.DataFrame, path, title: str) -> None:
     """Albedo (left) and mirror-direction radiance relative to C (right) per pumping level."""
     fig, (left, right) = plotting.plt.subplots(1, 2, figsize=(10, 4.2))
@@ -133,10 +116,10 @@ def plot_curves(df: pd.DataFrame, path, title: str) -> None:
     left.plot(theta, cos_incidence(theta), ":", color="grey", label="cos θ_L")
     right.axhline(1.0, color="grey", ls=":", label="L/C = 1 (unpumped, θ_L = 0)")
     left.set(xlabel="incidence angle θ_L [deg]", ylabel="albedo a(θ_L)")
+    left.legend(fontsize=7, loc="lower left")
+    right.legend(fontsize=7, loc="upper left")
     right.set(xlabel="incidence angle θ_L [deg]", ylabel="L_out(R) / C,  L_out = f(L,R) cos θ_L")
-    n, C, levels = df["n"].iloc[0], df["C"].iloc[0], int(pumped["level"].max())
-    choices = f"n = {n:g}, C = {C:.6g}; choices: levels 0..{levels}, radiance at V = R, point light 4π at distance 1"
-    fig.suptitle(f"{title}\n{choices}\n{_level_summary(df)}", fontsize=8)
+    fig.suptitle(f"{title} (n = {df['n'].iloc[0]:g})", fontsize=10)
     plotting.savefig(fig, path)
 
 

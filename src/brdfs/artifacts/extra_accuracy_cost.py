@@ -44,6 +44,11 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.set_xlabel("BRDF evaluations")
         ax.set_ylabel("albedo error (absolute)")
         ax.grid(True, which="major", alpha=0.3)
-    axes[0][0].legend(fontsize=7)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    for ax in axes[0]:
+        for line in ax.get_lines():
+            line.set_label("_" + line.get_label())  # one legend for the figure, below the panels
+    fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4, fontsize=7)
     fig.suptitle("Accuracy against cost of albedo integration methods (errors below 1e-17 drawn at 1e-17)")
+    fig.tight_layout()
     plotting.savefig(fig, path)

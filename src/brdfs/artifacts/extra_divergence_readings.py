@@ -102,8 +102,7 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.invert_xaxis()
         ax.set(title=f"{name}: {sub.groupby(['G', 'normalisation', 'method', 'n_theta', 'n_samples']).ngroups} readings",
                xlabel="90° − θ_L [deg]", ylabel="albedo")
-    fig.suptitle("Readings of the printed divergence numbers (Secs. 3.7.2–3.7.3); solid: exact integrals, "
-                 "dotted: grids and Monte Carlo (seeded)", fontsize=9)
+    fig.suptitle("Readings of the printed divergence numbers (solid: exact; dotted: grids, Monte Carlo)", fontsize=10)
     plotting.savefig(fig, path)
 
 

@@ -38,9 +38,9 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    """Computed points (markers) and laws (lines), log–log against cos θ_L."""
+    """Computed points (markers) and laws (lines), log–log against cos θ_L; the legend beside the axes."""
     fig, ax = plotting.new_axes("cos θ_L (log)", "albedo a(θ_L) (log)")
-    fig.set_size_inches(8.5, 6)
+    fig.set_size_inches(7.0, 5.0)
     for name, g in df.groupby("label", sort=False):
         dots, = ax.loglog(g["cos_theta"], g["albedo"], ".", ms=3, label=f"{name}")
         law = g["law"].iloc[0]
@@ -48,8 +48,6 @@ def plot(df: pd.DataFrame, path) -> None:
                   label=f"   law: {law}, constant {g['law_constant'].iloc[0]:.6g}")
     ax.axhline(1.0, color="k", lw=0.6, ls=":")
     ax.invert_xaxis()
-    ax.set_title("Albedo toward grazing incidence (80°–89.9999°), points: engine; lines: asymptotic laws\n"
-                 "diverging: Ward ~ K/√cos θ_L, Cook–Torrance with G = 1 ~ m/(2√π cos θ_L); "
-                 "G of eq. 2.10 and Smith's G: bounded", fontsize=8)
-    ax.legend(fontsize=6, loc="upper left")
+    ax.set_title("Albedo toward grazing incidence, 80°–89.9999° (points: engine; lines: laws)", fontsize=9)
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     plotting.savefig(fig, path)

@@ -70,11 +70,6 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.plot(g["theta_deg"], g["albedo"], label=names[term])
     ax.axhline(1.0, color="k", lw=0.6, ls=":")
     ax.set(xlim=(0, 90), ylim=(0, 1.1))
-    dd = df[df["term"] == "dd"].sort_values("theta_deg")["albedo"].to_numpy()
-    shape = "decreases monotonically" if np.all(np.diff(dd) < 0) else "is not monotone"
-    ax.set_title(
-        f"He–Torrance albedo, σ0 = {first['sigma0_um']:g} µm, τ = {first['tau_um']:g} µm, F = 1, "
-        f"λ = {first['lambda_um']:g} µm (a choice)\n{overshoot(df)}\n"
-        f"dd only {shape} from {dd[0]:.4f} to {dd[-1]:.4f}: the thesis's 'badly decrease' (Figs. 2.1, 3.4)",
-        fontsize=8)
+    ax.set_title(f"He–Torrance albedo (σ0 = {first['sigma0_um']:g} µm, τ = {first['tau_um']:g} µm, F = 1)", fontsize=10)
+    ax.legend(loc="lower left")
     plotting.savefig(fig, path)

@@ -76,7 +76,7 @@ def plot(df: pd.DataFrame, path) -> None:
     ax.invert_xaxis()
     bad = int((~sweep_rows["finite"] | ~sweep_rows["nonnegative"]).sum())
     inconsistent = int((~disk["consistent"].astype(bool)).sum())
-    ax.set_title(f"Stability toward 90°: {len(sweep_rows)} sweep values ({bad} NaN or negative), "
-                 f"{len(disk)} disk cross-checks ({inconsistent} outside the reported errors)", fontsize=8)
-    ax.legend(fontsize=6)
+    ax.set_title(f"Engine toward 90°: {bad} bad of {len(sweep_rows)} values, "
+                 f"{inconsistent} of {len(disk)} disk checks outside the errors", fontsize=9)
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     plotting.savefig(fig, path)

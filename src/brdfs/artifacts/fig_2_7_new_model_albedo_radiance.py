@@ -25,8 +25,6 @@ def plot(df: pd.DataFrame, path) -> None:
     rad = df[df["radiance"].notna()]
     right.plot(rad["theta_deg"], rad["radiance"] / rad["C"], label=f"new model, n = {rad['n'].iloc[0]:g}")
     right.set(xlabel="incidence angle θ_L [deg]", ylabel="L_out(R) / c,  L_out = f(L,R) cos θ_L", ylim=(0, 1.2))
-    ns = ", ".join(f"{n:g}" for n in df.loc[df["albedo"].notna(), "n"].unique())
-    fig.suptitle("Fig. 2.7: albedo of the new model for different n and its output radiance (n = "
-                 f"{rad['n'].iloc[0]:g})\nchoices: n = {ns}; c = (n+2)/2π; radiance at V = R, point light 4π at "
-                 f"distance 1; max |L_out/c − 1| = {abs(rad['radiance'] / rad['C'] - 1).max():.1e}", fontsize=8)
+    left.legend(fontsize=7, loc="lower left")
+    fig.suptitle(f"Figure 2.7: albedo of the new model, and its output radiance (n = {rad['n'].iloc[0]:g})", fontsize=10)
     plotting.savefig(fig, path)

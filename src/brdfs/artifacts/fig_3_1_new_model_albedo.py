@@ -19,8 +19,6 @@ def plot(df: pd.DataFrame, path) -> None:
     """Albedo against incidence angle, one curve per n, with 1 − a(60°) per n in the caption."""
     fig, ax = plotting.plt.subplots()
     shared.plot_albedo(ax, df)
-    at60 = df[df["theta_deg"] == 60.0].set_index("n")["albedo"]
-    gaps = ", ".join(f"{1 - a:.3g}" for a in at60)
-    ax.set_title(f"Fig. 3.1: albedo of the new model for different n (choice: n = "
-                 f"{', '.join(f'{n:g}' for n in at60.index)})\nc = (n+2)/2π; 1 − a(60°) = {gaps}", fontsize=8)
+    ax.set_title("Figure 3.1: albedo of the new model for different n", fontsize=10)
+    ax.legend(fontsize=7, loc="lower left")
     plotting.savefig(fig, path)

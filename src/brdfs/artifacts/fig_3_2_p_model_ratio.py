@@ -41,7 +41,5 @@ def plot(df: pd.DataFrame, path) -> None:
         for p, g in df[df["theta_deg"] == theta].groupby("p"):
             ax.plot(g["theta_v_deg"], g["ratio"], label=f"p = {p:g}")
         ax.set(xlabel="viewing angle θ_V [deg]", ylabel="f_p-model / f_Phong", title=f"θ_L = {theta:g}°", ylim=(0, 6))
-    fig.suptitle("Fig. 3.2: ratio of the p-model and the Phong BRDFs for different viewing angles\nchoices: p = "
-                 + ", ".join(f"{p:g}" for p in sorted(df["p"].unique()))
-                 + "; θ_L = " + ", ".join(f"{t:g}°" for t in thetas) + "; V in the plane of incidence", fontsize=8)
+    fig.suptitle(f"Figure 3.2: ratio of the p-model and the Phong BRDFs (n = {df['n'].iloc[0]:g})", fontsize=10)
     plotting.savefig(fig, path)

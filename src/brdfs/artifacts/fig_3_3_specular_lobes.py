@@ -130,14 +130,6 @@ def plot(df: pd.DataFrame, path) -> None:
     delta = df[df["quantity"] == "specular_albedo"].iloc[0]
     ax.plot([np.radians(theta)] * 2, [0, top], color="0.3", ls="--", lw=0.8,
             label=f"He–Torrance specular delta (albedo ρ_s = {delta['value']:.4f}, scaled)")
-    scales = ", ".join(f"{m} {s:.4g}" for m, s in lobes.groupby("model", sort=False)["scale"].first().items())
-    first = df[df["model"] == "he_torrance"].iloc[0]
-    ct = df[df["model"] == "cook_torrance"].iloc[0]
-    ax.set_title(
-        f"Figure 3.3: lobes at θ_L = {theta:g}° in the plane of incidence, plotted: {lobes['quantity'].iloc[0]} "
-        f"(a choice)\ncalibration (a choice): {first['calibration']} — scales {scales}\n"
-        f"Cook–Torrance 'n = 5' read as refractive index {ct['ior_re']:g} (F(L·H) from it; a reading); "
-        f"He–Torrance dd term, n = {first['ior_re']:g} + {first['ior_im']:g}i, λ = {first['lambda_um']:g} µm (a choice)",
-        fontsize=7.5)
+    ax.set_title(f"Figure 3.3: specular lobes at θ_L = {theta:g}° ({lobes['quantity'].iloc[0]})", fontsize=10)
     ax.legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.1, -0.15))
     plotting.savefig(fig, path)

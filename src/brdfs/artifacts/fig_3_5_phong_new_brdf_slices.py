@@ -18,8 +18,5 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 def plot(df: pd.DataFrame, path) -> None:
     """One panel per model."""
-    peaks = df.groupby(["model", "theta_deg"])["brdf_normalised"].max()
-    text = "; ".join(f"{m} θ_L={t:g}°: peak {v:.3f}" for (m, t), v in peaks.items())
     shared.plot_slices(df, path, "brdf_normalised", "f(L,V) / f(N,N)",
-                       f"Fig. 3.5: BRDFs of Phong and the new model (n = {df['n'].iloc[0]:g}), normalised to 1 "
-                       f"at 0° incidence\n{text}")
+                       f"Figure 3.5: BRDFs of Phong and the new model (n = {df['n'].iloc[0]:g})")

@@ -17,9 +17,6 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    """One panel per model; the caption gives the peak radiance per incidence angle."""
-    peaks = df.groupby(["model", "theta_deg"])["radiance_normalised"].max().unstack(0)
-    text = "; ".join(f"θ_L={t:g}°: Phong {r['phong']:.3f}, new {r['phong_cosmin']:.3f}" for t, r in peaks.iterrows())
+    """One panel per model, one curve per incidence angle."""
     shared.plot_slices(df, path, "radiance_normalised", "L_out(V) / c,  L_out = f(L,V) cos θ_L",
-                       f"Fig. 3.6: output radiance of Phong and the new model (n = {df['n'].iloc[0]:g}; choice: θ_L = "
-                       f"{', '.join(f'{t:g}°' for t in peaks.index)})\npeak L_out/c: {text}")
+                       f"Figure 3.6: output radiance of Phong and the new model (n = {df['n'].iloc[0]:g})")

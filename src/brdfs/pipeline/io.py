@@ -12,6 +12,8 @@ import contextlib
 import logging
 import os
 import tempfile
+import threading
+import time
 import uuid
 from collections.abc import Iterator
 from pathlib import Path
@@ -67,14 +69,53 @@ def roundtrip_csv(df: pd.DataFrame) -> pd.DataFrame:
         return read_csv(path)
 
 
+#: Seconds between the progress lines of :func:`logged` while a step runs.
+HEARTBEAT_S = 10.0
+
+
 @contextlib.contextmanager
-def logged(path: str | os.PathLike) -> Iterator[logging.Logger]:
-    """Send logging, stdout and stderr of the block to ``path``; log any exception.
+def _heartbeat(logger: logging.Logger, every_s: float) -> Iterator[None]:
+    """Log ``running: <step>, <elapsed> s`` every ``every_s`` seconds until the block ends.
+
+    The step is the last message logged with :func:`step` (``logger.step``).
+    """
+    stop = threading.Event()
+    start = time.monotonic()
+
+    def beat():
+        while not stop.wait(every_s):
+            logger.info("running: %s, %.0f s elapsed", getattr(logger, "current_step", "?"), time.monotonic() - start)
+
+    thread = threading.Thread(target=beat, name="brdfs-heartbeat", daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        stop.set()
+        thread.join()
+        logger.info("done in %.1f s", time.monotonic() - start)
+
+
+def step(logger: logging.Logger, name: str) -> None:
+    """Log the start of a step (``compute``, ``plot``, ...), named in the progress lines that follow."""
+    logger.current_step = name
+    logger.info("step: %s", name)
+
+
+@contextlib.contextmanager
+def logged(path: str | os.PathLike, heartbeat_s: float | None = HEARTBEAT_S) -> Iterator[logging.Logger]:
+    """Send logging, stdout and stderr of the block to ``path``; log any exception, and progress.
+
+    Every ``heartbeat_s`` seconds the log gets a line with the current step (see :func:`step`)
+    and the time elapsed, so that a long rule shows it is alive; the last line gives the total.
+    Logs hold wall times; artifacts never do.
 
     Parameters
     ----------
     path : str or os.PathLike
         The log file, overwritten.
+    heartbeat_s : float or None, optional
+        Seconds between progress lines (None: none).
 
     Yields
     ------
@@ -89,8 +130,9 @@ def logged(path: str | os.PathLike) -> Iterator[logging.Logger]:
         handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(message)s"))
         logger.addHandler(handler)
         logger.setLevel(logging.INFO)
+        beat = _heartbeat(logger, heartbeat_s) if heartbeat_s else contextlib.nullcontext()
         try:
-            with contextlib.redirect_stdout(stream), contextlib.redirect_stderr(stream):
+            with contextlib.redirect_stdout(stream), contextlib.redirect_stderr(stream), beat:
                 yield logger
         except BaseException:
             logger.exception("failed")

@@ -1,0 +1,60 @@
+"""The HTML report's grouping, captions and verdicts (brdfs.pipeline.report)."""
+
+import pandas as pd
+from docutils.core import publish_parts
+
+from brdfs.pipeline import registry, report
+
+
+def test_every_artifact_has_a_written_caption_naming_its_thesis_number():
+    for name in registry.artifacts():
+        text = report.caption(name)
+        assert "no caption written yet" not in text, name
+        number = report.thesis_number(name)
+        assert number is None or text.startswith(f"**{number}"), f"{name}: caption does not start from {number}"
+
+
+def test_every_thesis_artifact_is_grouped_under_its_chapter():
+    for name in registry.artifacts():
+        number = report.thesis_number(name)
+        if number:
+            assert report.category(name) == report.CHAPTERS[int(number.split()[1].split(".")[0])], name
+    assert report.category("fig_2_1_albedo_classical") == report.CHAPTERS[2]
+    assert report.subcategory("table_3_2_ward_cmax") == "Tables"
+    assert report.category("extra_unknown_new_check") == "Beyond the thesis"
+
+
+def comparison(rows):
+    columns = ["artifact", "source", "model", "param_value", "quantity", "published", "computed", "verdict", "reason"]
+    return pd.DataFrame(rows, columns=columns)
+
+
+def test_verdict_counts_the_printed_numbers_and_lists_each_difference_with_its_reason():
+    table = comparison([
+        ["ward_cmax", "Table 3.2, eq. 3.36", "ward_cosmin", "0.4", "C_max", "1.63", "1.6204", "differs", "closed form"],
+        ["ward_cmax", "Table 3.2, eq. 3.36", "ward_cosmin", "0.2", "C_max", "1.16", "1.16", "reproduces", ""],
+        ["blinn_cn", "Table 3.1 (= Table 1.1)", "blinn", "1", "C_max", "0.350", "0.3496", "reproduces", ""],
+    ])
+    sources = {"ward_cmax": ("table_3_2_ward_cmax",), "blinn_cn": ("table_3_1_blinn_constants",)}
+    text = report.verdict("table_3_2_ward_cmax", table, sources)
+    assert "1 of 2 printed numbers reproduce, 1 differ" in text
+    assert "printed 1.63, computed 1.6204. closed form" in text
+    # Table 1.1 is compared under Table 3.1: found by its number in the source column.
+    assert "1 of 1 printed numbers reproduce" in report.verdict("table_1_1_blinn_constants", table, sources)
+    assert "prints no number" in report.verdict("fig_4_13_inverse_cdf", table, sources)
+    html = publish_parts(text, writer="html")["body"]
+    assert html.count("<li>") == 2 and "<ul" in html  # the difference is a nested bullet
+    assert report.summary(table) == ("3 printed numbers compared: 2 reproduce, 1 differ "
+                                     "(each with its reason and evidence).")
+
+
+def test_comparison_html_shows_every_row_and_column_escaped_and_coloured_by_verdict():
+    table = comparison([
+        ["metal_a0", "Table 1.2", "fresnel", "chromium", "a0", "69.8", "67.66", "differs", "k = 4.85 <misprint>"],
+        ["metal_a0", "Table 1.2", "fresnel", "gold", "a0", "81.5", "81.54", "reproduces", ""],
+    ])
+    page = report.comparison_html(table)
+    assert page.count('<tr class="differs">') == 1 and page.count('<tr class="reproduces">') == 1
+    assert page.count("<th>") == len(table.columns)
+    assert "&lt;misprint&gt;" in page and "<misprint>" not in page
+    assert report.comparison_html(table) == page
