@@ -1,7 +1,21 @@
-# One rule for every registered table and figure: its CSV and PNG from its module's
-# compute() and plot(). Inputs are the CSVs of its declared deps and the package files
-# its module imports; params are the config sections it reads. The PNG goes into the
-# HTML report under its thesis chapter, with its caption (brdfs.pipeline.report).
+# The rules of every registered table and figure: its CSV and PNG from its module's compute()
+# and plot(). Inputs are the CSVs of its declared deps and the package files its module imports;
+# params are the config sections it reads. Each PNG goes into the HTML report under its thesis
+# chapter, with its caption (brdfs.pipeline.report).
+#
+# Cheap artifacts are computed together, one job per batch (registry.batches(): a chapter, or the
+# extras), so that each does not pay the ~1 s start-up of a Python process; an expensive one
+# (declared with batch=None) gets the generic `artifact` rule, one job of its own.
+
+
+def report_png(path, name):
+    return report(
+        path,
+        caption="../report/artifact.rst",
+        category=report_text.category(name),
+        subcategory=report_text.subcategory(name),
+        labels={"artifact": name, "thesis": report_text.thesis_number(name) or "extra"},
+    )
 
 
 rule artifact:
@@ -18,11 +32,11 @@ rule artifact:
             labels=lambda wc: {"artifact": wc.name, "thesis": report_text.thesis_number(wc.name) or "extra"},
         ),
     params:
-        artifact=lambda wc: wc.name,
+        artifacts=lambda wc: [wc.name],
         config=lambda wc: registry.config_subset(config, ARTIFACTS[wc.name].config),
     wildcard_constraints:
-        kind="tables|figures",
-        name=wildcard_choice(ARTIFACTS),
+        kind="tables|figures|checks",
+        name=wildcard_choice(SOLO),
     threads: lambda wc: ARTIFACTS[wc.name].resources["threads"]
     resources:
         mem_mb=lambda wc: ARTIFACTS[wc.name].resources["mem_mb"],
@@ -33,3 +47,28 @@ rule artifact:
         "results/benchmarks/rules/{kind}/{name}.tsv"
     script:
         "../scripts/artifact.py"
+
+
+for _batch, _members in BATCHES.items():
+
+    rule:
+        name:
+            f"batch_{_batch}"
+        input:
+            tables=batch_inputs(_members),
+            code=sorted({s for a in _members for s in a.sources}),
+        output:
+            [path for a in _members for path in (a.csv, report_png(a.png, a.name))],
+        params:
+            artifacts=[a.name for a in _members],
+            config=registry.config_subset(config, sorted({s for a in _members for s in a.config})),
+        threads: max(a.resources["threads"] for a in _members)
+        resources:
+            mem_mb=max(a.resources["mem_mb"] for a in _members),
+            runtime=sum(a.resources["runtime"] for a in _members),
+        log:
+            f"results/logs/batches/{_batch}.log",
+        benchmark:
+            f"results/benchmarks/rules/batches/{_batch}.tsv"
+        script:
+            "../scripts/artifact.py"

@@ -1,26 +1,25 @@
-# One rule for every registered comparison with the print (a fragment per published
-# artifact), and the merge of all fragments into the published comparison.
+# The comparisons with the print, one fragment per published artifact, computed in one job
+# (each is cheap, and a job of its own would mostly pay a process start-up), and the merge of
+# all fragments into the published comparison.
 
 
 rule check:
     input:
-        tables=lambda wc: [ARTIFACTS[t].csv for t in COMPARISONS[wc.comparison].tables],
+        tables=sorted({ARTIFACTS[t].csv for c in COMPARISONS.values() for t in c.tables}),
         published=PUBLISHED,
-        code=lambda wc: COMPARISONS[wc.comparison].sources,
+        code=sorted({s for c in COMPARISONS.values() for s in c.sources}),
     output:
-        "results/checks/published/{comparison}.csv",
+        FRAGMENTS,
     params:
-        comparison=lambda wc: wc.comparison,
-        config=lambda wc: registry.config_subset(config, COMPARISONS[wc.comparison].config),
-    wildcard_constraints:
-        comparison=wildcard_choice(COMPARISONS),
+        comparisons=list(COMPARISONS),
+        config=registry.config_subset(config, sorted({s for c in COMPARISONS.values() for s in c.config})),
     resources:
         mem_mb=1000,
         runtime=5,
     log:
-        "results/logs/checks/{comparison}.log",
+        "results/logs/checks/comparisons.log",
     benchmark:
-        "results/benchmarks/rules/checks/{comparison}.tsv"
+        "results/benchmarks/rules/checks/comparisons.tsv"
     script:
         "../scripts/fragment.py"
 

@@ -20,6 +20,8 @@ COMPARISON_HTML = "results/checks/published_comparison.html"
 ARTIFACTS = registry.artifacts()
 COMPARISONS = registry.comparisons()
 ARTIFACT_OUTPUTS = [path for a in ARTIFACTS.values() for path in (a.csv, a.png)]
+BATCHES = registry.batches()
+SOLO = [name for name, a in ARTIFACTS.items() if a.batch is None]
 FRAGMENTS = [c.fragment_csv for c in COMPARISONS.values()]
 
 # Captions and verdicts for the HTML report's caption templates (workflow/report/*.rst),
@@ -30,5 +32,11 @@ config[report_text.CONFIG_KEY] = report_text.context(
 
 
 def wildcard_choice(names):
-    """A wildcard constraint admitting exactly ``names``."""
-    return "|".join(sorted(names))
+    """A wildcard constraint admitting exactly ``names`` (none: a name no file has)."""
+    return "|".join(sorted(names)) or "^$"
+
+
+def batch_inputs(members):
+    """The CSVs a batch reads that it does not write itself."""
+    own = {a.name for a in members}
+    return sorted({ARTIFACTS[d].csv for a in members for d in a.deps if d not in own})

@@ -1,9 +1,15 @@
-"""Compare one artifact with the print and write its fragment (atomically)."""
+"""Compare artifacts with the print and write one fragment per published artifact (atomically).
+
+The outputs come in the order of ``params.comparisons``.
+"""
 
 from brdfs.pipeline import io, registry
 
 with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
-    check = registry.get_comparison(snakemake.params.comparison)  # noqa: F821
-    fragment = check.fragment(snakemake.params.config, registry.read_tables(snakemake.input.tables))  # noqa: F821
-    io.write_csv(fragment, snakemake.output[0])  # noqa: F821
-    log.info("%s: %s", check.artifact, fragment["verdict"].value_counts().to_dict())
+    tables = registry.read_tables(snakemake.input.tables)  # noqa: F821
+    for name, path in zip(snakemake.params.comparisons, snakemake.output):  # noqa: F821
+        check = registry.get_comparison(name)
+        io.step(log, f"compare {name}")
+        fragment = check.fragment(snakemake.params.config, tables)  # noqa: F821
+        io.write_csv(fragment, path)
+        log.info("%s: %s", check.artifact, fragment["verdict"].value_counts().to_dict())

@@ -140,6 +140,9 @@ class Artifact:
     resources : dict
         ``threads``, ``mem_mb`` and ``runtime`` (minutes) of its rule, for a cluster's scheduler
         (:data:`DEFAULT_RESOURCES` updated by the decorator's ``resources``).
+    batch : str or None
+        The job it is computed in together with other cheap artifacts (:func:`default_batch`), so
+        that each does not pay a process start-up; None for a job of its own.
     """
 
     name: str
@@ -148,6 +151,7 @@ class Artifact:
     config: tuple[str, ...]
     fn: ComputeFn
     resources: dict = dataclasses.field(default_factory=lambda: dict(DEFAULT_RESOURCES))
+    batch: str | None = None
 
     @property
     def csv(self) -> str:
@@ -242,7 +246,23 @@ def _register(registry: dict, key: str, entry: Artifact | Comparison) -> None:
     registry[key] = entry
 
 
-def _artifact_decorator(kind: str, name: str, deps: Iterable[str], config: Iterable[str], resources: dict | None):
+#: ``batch=`` of a decorator: the artifact goes into :func:`default_batch`.
+AUTO = "auto"
+_CHAPTER = re.compile(r"(?:fig|table)_(\d+)_")
+
+
+def default_batch(name: str) -> str:
+    """The batch of a cheap artifact: its thesis chapter (``chapter_3``), or ``extra``.
+
+    >>> default_batch("fig_4_13_inverse_cdf"), default_batch("extra_ward_in_range")
+    ('chapter_4', 'extra')
+    """
+    match = _CHAPTER.match(name)
+    return f"chapter_{match[1]}" if match else "extra"
+
+
+def _artifact_decorator(kind: str, name: str, deps: Iterable[str], config: Iterable[str], resources: dict | None,
+                        batch: str | None):
     _check_name(kind, name)
     unknown = set(resources or {}) - set(DEFAULT_RESOURCES)
     if unknown:
@@ -253,13 +273,15 @@ def _artifact_decorator(kind: str, name: str, deps: Iterable[str], config: Itera
         others = [a.name for a in _ARTIFACTS.values() if a.fn.__module__ == fn.__module__ and a.name != name]
         if others:
             raise ValueError(f"{fn.__module__} already defines {others}: one table or figure per module")
-        _register(_ARTIFACTS, name, Artifact(name, kind, tuple(deps), tuple(config), fn, declared))
+        group = default_batch(name) if batch == AUTO else batch
+        _register(_ARTIFACTS, name, Artifact(name, kind, tuple(deps), tuple(config), fn, declared, group))
         return fn
 
     return decorate
 
 
-def table(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None):
+def table(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
+          batch: str | None = AUTO):
     """Register ``compute(cfg, deps) -> DataFrame`` as the table ``name``.
 
     Parameters
@@ -273,17 +295,21 @@ def table(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resou
         The config.yaml sections ``compute`` reads (``seed`` and ``tolerance`` always come).
     resources : dict, optional
         Overrides of :data:`DEFAULT_RESOURCES` for its rule.
+    batch : str or None
+        The job it shares with other cheap artifacts (default: its chapter, :func:`default_batch`);
+        None for an expensive artifact, which gets a job of its own.
     """
-    return _artifact_decorator("table", name, deps, config, resources)
+    return _artifact_decorator("table", name, deps, config, resources, batch)
 
 
-def figure(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None):
+def figure(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
+           batch: str | None = AUTO):
     """Register ``compute(cfg, deps) -> DataFrame`` (the plotted data) as the figure ``name``.
 
     As :func:`table`, with names ``fig_<N>_<M>_<slug>`` or ``extra_<slug>``,
     written to ``results/figures/``.
     """
-    return _artifact_decorator("figure", name, deps, config, resources)
+    return _artifact_decorator("figure", name, deps, config, resources, batch)
 
 
 def comparison(artifact: str, tables: Iterable[str] = (), config: Iterable[str] = ()):
@@ -327,6 +353,51 @@ def comparisons() -> dict[str, Comparison]:
     """Every registered comparison, by artifact of the published values."""
     _load_all()
     return dict(_COMPARISONS)
+
+
+def batches() -> dict[str, list[Artifact]]:
+    """The batched artifacts by batch, each list in dependency order (a member's dependencies in
+    the same batch come first).
+
+    Raises
+    ------
+    ValueError
+        If two batches depend on each other (their jobs could never start).
+    """
+    registered = artifacts()
+    groups: dict[str, list[Artifact]] = {}
+    for name in _dependency_order(registered):
+        a = registered[name]
+        if a.batch is not None:
+            groups.setdefault(a.batch, []).append(a)
+    needs = {b: {registered[d].batch or d for a in members for d in a.deps} - {b} for b, members in groups.items()}
+    for b in needs:
+        seen, todo = set(), list(needs[b])
+        while todo:
+            x = todo.pop()
+            if x == b:
+                raise ValueError(f"batch {b!r} depends on itself through other batches")
+            if x not in seen:
+                seen.add(x)
+                todo.extend(needs.get(x, ()))
+    return groups
+
+
+def _dependency_order(registered: dict[str, Artifact]) -> list[str]:
+    order: list[str] = []
+
+    def visit(name, path):
+        if name in order:
+            return
+        if name in path:
+            raise ValueError(f"dependency cycle: {' -> '.join((*path, name))}")
+        for d in registered[name].deps:
+            visit(d, (*path, name))
+        order.append(name)
+
+    for name in sorted(registered):
+        visit(name, ())
+    return order
 
 
 def get_artifact(name: str) -> Artifact:
