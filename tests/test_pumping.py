@@ -124,3 +124,19 @@ def test_new_model_albedo_tends_to_one_below_grazing():
         gaps.append(1 - a.value[:-1])
     gaps = np.array(gaps)
     assert np.all(np.diff(gaps, axis=0) < 0) and gaps[-1].max() < 0.1
+
+
+@pytest.mark.parametrize("base,table", [("phong", "phong_table"), ("blinn", "blinn_table")])
+@pytest.mark.parametrize("correction", [None, "g1", "g2"])
+def test_polar_azimuth_reduction_matches_the_engine(request, base, table, correction):
+    """pumped_albedo (μ_V outside, φ inside, h on the outer nodes only) against the hemisphere engine,
+    including 90° where the Blinn lobe sits in the corner V = −L of the (μ_V, φ) square."""
+    brdf = model(base, n=N_EXP, C=BLINN_C if base == "blinn" else None)
+    if correction is not None:
+        brdf = pumping.Pumped(brdf, request.getfixturevalue(table), correction)
+    theta = np.array([0.0, 20.0, 45.0, 70.0, 85.0, 89.9, 90.0])
+    reduced = pumping.pumped_albedo(brdf, cos_incidence(theta), rtol=1e-11)
+    engine = albedo(brdf, theta, tol=1e-11)
+    diff = np.abs(reduced.value - engine.value)
+    assert np.all(diff <= reduced.error + engine.error)
+    assert np.all(reduced.error <= 1e-10 * reduced.value)
