@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from brdfs.numerics.albedo import albedo
-from brdfs.numerics.integrate.azimuthal import SUPPORTED, albedo_azimuthal, supports
+from brdfs.numerics.integrate.azimuthal import SUPPORTED, albedo_azimuthal, albedo_many, supports
 from brdfs.physics.models import model
 
 THETA = np.array([0.0, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0, 89.9, 89.99, 90.0])
@@ -51,3 +51,11 @@ def test_unsupported_models_and_angles_are_refused():
         albedo_azimuthal(model("ward", m=0.1), 30.0)
     with pytest.raises(ValueError, match="theta_deg"):
         albedo_azimuthal(model("phong", n=2), 91.0)
+
+
+def test_many_models_in_one_call_equal_one_model_at_a_time():
+    models = [model("phong", n=3), model("blinn_cosmin", n=40), model("phong", n=300), model("blinn", n=7, C=2.0)]
+    theta = np.array([12.0, 50.0, 88.0, 70.0])
+    many = albedo_many(models, theta, rtol=1e-11)
+    single = np.array([albedo_azimuthal(m, t, rtol=1e-11).value for m, t in zip(models, theta)])
+    assert np.all(np.abs(many.value - single) <= many.error)

@@ -53,27 +53,53 @@ def albedo_azimuthal(model, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     ValueError
         For a model outside :data:`SUPPORTED` or an angle outside [0, 90] degrees.
     """
-    if not supports(model):
-        raise ValueError(f"albedo_azimuthal supports {sorted(SUPPORTED)}, got {getattr(model, 'name', model)!r}")
     theta_deg = np.asarray(theta_deg, float)
-    if not np.all((theta_deg >= 0) & (theta_deg <= 90)):
-        raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[~((theta_deg >= 0) & (theta_deg <= 90))][:5]!r}")
-    frame, cosmin = SUPPORTED[model.name]
-    lobe = PowerCosine(float(model.n), frame)
-    flat = theta_deg.ravel()
-    mu, st = np.sin(np.radians(90.0 - flat)), np.sin(np.radians(flat))
-    bp = _breakpoints(lobe, np.radians(flat), mu, cosmin)
+    est = albedo_many([model] * theta_deg.size, theta_deg.ravel(), rtol=rtol, atol=atol)
+    return Estimate(est.value.reshape(theta_deg.shape), est.error.reshape(theta_deg.shape))
+
+
+def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
+    """Albedo of ``models[i]`` at ``theta_deg[i]`` (as :func:`.hemisphere.albedo_many`), one adaptive
+    run per model family, the exponents and constants varying per element."""
+    models = list(models)
+    theta_deg = np.asarray(theta_deg, float).ravel()
+    if len(models) != theta_deg.size:
+        raise ValueError("albedo_many needs one model per angle")
+    bad = [m for m in models if not supports(m)]
+    if bad:
+        raise ValueError(f"albedo_azimuthal supports {sorted(SUPPORTED)}, got {getattr(bad[0], 'name', bad[0])!r}")
+    outside = ~((theta_deg >= 0) & (theta_deg <= 90))
+    if outside.any():
+        raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
+    value, error = np.zeros(theta_deg.size), np.zeros(theta_deg.size)
+    names = np.array([m.name for m in models])
+    for name in np.unique(names):
+        chosen = names == name
+        n = np.array([float(m.n) for m, c in zip(models, chosen) if c])
+        C = np.array([float(m.C) for m, c in zip(models, chosen) if c])
+        est = _family(name, n, C, theta_deg[chosen], rtol, atol)
+        value[chosen], error[chosen] = est.value, est.error
+    return Estimate(value, error)
+
+
+def _family(name, n, C, theta_deg, rtol, atol):
+    """One adaptive run for elements of one model family with exponents n and constants C."""
+    frame, cosmin = SUPPORTED[name]
+    lobe = PowerCosine(n, frame)
+    mu, st = np.sin(np.radians(90.0 - theta_deg)), np.sin(np.radians(theta_deg))
+    bp = _breakpoints(lobe, np.radians(theta_deg), mu, cosmin)
     inner = _mirror if frame == "mirror" else _half
-    scale = model.C / (lobe.n + 1.0)
+    scale = C / (n + 1.0)
 
     def integrand(t, elem):
-        cb, sb = lobe.angle(np.minimum(t, 1.0 - _EPS))
+        el_lobe = PowerCosine(n[elem, None], frame)
+        cb, sb = el_lobe.angle(np.minimum(t, 1.0 - _EPS))
         value, rounding = inner(cb, sb, mu[elem, None], st[elem, None], cosmin)
-        value = np.where(t < 1.0, value, 0.0)
-        return scale * value, scale * value, scale * (rounding + (lobe.n + 4) * _EPS * np.abs(value))
+        value = scale[elem, None] * np.where(t < 1.0, value, 0.0)
+        rounding = scale[elem, None] * rounding + (n[elem, None] + 4) * _EPS * np.abs(value)
+        return value, value, rounding
 
-    est = integrate(integrand, bp, rtol=rtol, atol=atol)
-    return Estimate(est.value.reshape(theta_deg.shape), est.error.reshape(theta_deg.shape))
+    return integrate(integrand, bp, rtol=rtol, atol=atol)
 
 
 def _breakpoints(lobe, theta, mu, cosmin):
@@ -86,7 +112,8 @@ def _breakpoints(lobe, theta, mu, cosmin):
     beta = np.column_stack(cols)
     beta = np.where((beta > 0) & (beta < beta_max[:, None]), beta, beta_max[:, None])
     beta[:, 0] = 0.0
-    return np.sort(lobe.t_of(beta), axis=1)
+    n = np.broadcast_to(np.asarray(lobe.n, float), theta.shape)[:, None]
+    return np.sort(PowerCosine(n, lobe.frame).t_of(beta), axis=1)
 
 
 def _positive_part(a, b):
