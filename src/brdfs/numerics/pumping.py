@@ -253,9 +253,11 @@ def tabulate_albedo(model, edges=(0.0, 1.0), target_rtol=1e-9, engine_rtol=1e-11
     """Tabulate the albedo of ``model`` on pieces ``edges`` of x = cos θ.
 
     The degree D of every piece is doubled until the interpolant through D + 1 Lobatto points
-    matches the engine at the D midpoints (the new points of degree 2D) within
+    matches the integrated albedo at the D midpoints (the new points of degree 2D) within
     ``target_rtol`` × min a.  The reported error is ``10 ×`` the largest mismatch there plus the
-    largest engine error, so it bounds the error between the check points too.
+    largest integration error, so it bounds the error between the check points too.  The nodes
+    are integrated to ``engine_rtol`` by :func:`pumped_albedo` for pumped Phong/Blinn chains,
+    else by the hemisphere engine (:func:`_engine`).
 
     Raises
     ------
