@@ -335,7 +335,7 @@ def get_artifact(name: str) -> Artifact:
     Imports only the module of the same name (one job need not import every artifact, nor the
     libraries only some of them use: 1.6 s → ~1 s of start-up); every module only if that fails.
     """
-    if name not in _ARTIFACTS:
+    if name not in _ARTIFACTS and name.isidentifier():
         try:
             importlib.import_module(f"brdfs.artifacts.{name}")
         except ModuleNotFoundError as exc:
