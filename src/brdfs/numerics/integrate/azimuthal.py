@@ -52,6 +52,15 @@ def albedo_azimuthal(model, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     ------
     ValueError
         For a model outside :data:`SUPPORTED` or an angle outside [0, 90] degrees.
+
+    Examples
+    --------
+    The new model at grazing incidence, eq. 3.27: a(90°) = (n+2)/(2(n+1)) = 22/42 for n = 20.
+
+    >>> from brdfs.physics.models import model
+    >>> a = albedo_azimuthal(model("phong_cosmin", n=20), 90.0)
+    >>> abs(float(a.value) - 22 / 42) <= float(a.error) < 1e-10
+    True
     """
     theta_deg = np.asarray(theta_deg, float)
     est = albedo_many([model] * theta_deg.size, theta_deg.ravel(), rtol=rtol, atol=atol)
