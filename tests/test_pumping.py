@@ -140,3 +140,15 @@ def test_polar_azimuth_reduction_matches_the_engine(request, base, table, correc
     diff = np.abs(reduced.value - engine.value)
     assert np.all(diff <= reduced.error + engine.error)
     assert np.all(reduced.error <= 1e-10 * reduced.value)
+
+
+def test_models_outside_the_reduction_go_through_the_engine(monkeypatch):
+    """Ward (a Beckmann lobe) is not reducible: its table nodes come from the hemisphere engine."""
+    called = []
+    monkeypatch.setattr(pumping, "pumped_albedo", lambda *a, **k: called.append(a))
+    x = np.array([0.3, 0.9])
+    est = pumping._engine(model("ward", m=0.2), x, 1e-8)
+    assert not called
+    assert np.allclose(est.value, albedo(model("ward", m=0.2), np.degrees(np.arccos(x)), tol=1e-8).value, rtol=1e-7)
+    pumping._engine(model("phong", n=3), x, 1e-8)
+    assert called

@@ -36,9 +36,13 @@ from numpy.polynomial import chebyshev as cheb
 
 from brdfs.numerics.albedo import albedo
 from brdfs.numerics.integrate.gauss_kronrod import integrate
+from brdfs.numerics.integrate.lobes import PowerCosine
 from brdfs.physics.models.base import BRDF
 
 CORRECTIONS = ("g1", "g2")
+#: Original models whose pumped chains :func:`pumped_albedo` integrates (cosine-power lobes around
+#: R or H without kinks of their own); any other model goes through the hemisphere engine.
+REDUCIBLE_ROOTS = ("phong", "blinn")
 _BISECTIONS = 60            # halves a segment of [0, 1] below the spacing of doubles
 _CHECK_SAFETY = 10.0        # measured interpolation error at off-grid points × this = reported
 _MAX_DEGREE = 256
@@ -168,7 +172,7 @@ def _engine(model, x, rtol):
     """Albedo at x = cos θ: the polar-azimuth reduction :func:`pumped_albedo` for a pumped
     Phong/Blinn chain (its root in the mirror or half frame), else the hemisphere engine."""
     root, _ = _chain(model)
-    if getattr(root.lobe, "frame", None) in ("mirror", "half") and root.reciprocal and not root.nv_levels(0.5):
+    if root.name in REDUCIBLE_ROOTS and isinstance(root.lobe, PowerCosine):
         return pumped_albedo(model, x, rtol=rtol)
     theta = np.degrees(np.arccos(np.clip(x, 0.0, 1.0)))
     return albedo(model, theta, tol=rtol)
