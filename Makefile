@@ -39,6 +39,8 @@ test: $(STAMP)
 
 benchmark: $(STAMP)
 	$(BIN)/python benchmarks/bench_tables.py
+	$(BIN)/python benchmarks/bench_model_cost.py
+	$(BIN)/python benchmarks/bench_albedo_curves.py
 
 # Re-record the regression baseline after a deliberate, reviewed change of numbers.
 baseline: $(STAMP)

@@ -124,3 +124,31 @@ def test_new_model_albedo_tends_to_one_below_grazing():
         gaps.append(1 - a.value[:-1])
     gaps = np.array(gaps)
     assert np.all(np.diff(gaps, axis=0) < 0) and gaps[-1].max() < 0.1
+
+
+@pytest.mark.parametrize("base,table", [("phong", "phong_table"), ("blinn", "blinn_table")])
+@pytest.mark.parametrize("correction", [None, "g1", "g2"])
+def test_polar_azimuth_reduction_matches_the_engine(request, base, table, correction):
+    """pumped_albedo (μ_V outside, φ inside, h on the outer nodes only) against the hemisphere engine,
+    including 90° where the Blinn lobe sits in the corner V = −L of the (μ_V, φ) square."""
+    brdf = model(base, n=N_EXP, C=BLINN_C if base == "blinn" else None)
+    if correction is not None:
+        brdf = pumping.Pumped(brdf, request.getfixturevalue(table), correction)
+    theta = np.array([0.0, 20.0, 45.0, 70.0, 85.0, 89.9, 90.0])
+    reduced = pumping.pumped_albedo(brdf, cos_incidence(theta), rtol=1e-11)
+    engine = albedo(brdf, theta, tol=1e-11)
+    diff = np.abs(reduced.value - engine.value)
+    assert np.all(diff <= reduced.error + engine.error)
+    assert np.all(reduced.error <= 1e-10 * reduced.value)
+
+
+def test_models_outside_the_reduction_go_through_the_engine(monkeypatch):
+    """Ward (a Beckmann lobe) is not reducible: its table nodes come from the hemisphere engine."""
+    called = []
+    monkeypatch.setattr(pumping, "pumped_albedo", lambda *a, **k: called.append(a))
+    x = np.array([0.3, 0.9])
+    est = pumping._engine(model("ward", m=0.2), x, 1e-8)
+    assert not called
+    assert np.allclose(est.value, albedo(model("ward", m=0.2), np.degrees(np.arccos(x)), tol=1e-8).value, rtol=1e-7)
+    pumping._engine(model("phong", n=3), x, 1e-8)
+    assert called

@@ -12,6 +12,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.numerics import pumping
+from brdfs.numerics.integrate.azimuthal import albedo_azimuthal
 from brdfs.physics.geometry import cos_incidence, light_direction, mirror
 from brdfs.physics.models import model, phong_constant
 from brdfs.numerics.quantities import maximal_constant
@@ -77,6 +78,7 @@ def curves(cfg: dict, tables: pd.DataFrame, correction: str) -> pd.DataFrame:
 def distance_to_new_model(cfg: dict, df: pd.DataFrame) -> pd.DataFrame:
     """How far each level of controlled Phong pumping is from eq. 2.22 with a fitted c.
 
+    The new model's albedo is the closed-form-azimuth integral (:mod:`brdfs.numerics.integrate.azimuthal`).
     For each level k, c is chosen to minimise max_θ |c a_new(θ)/c₀ / a_k(θ) − 1| (a fit to our
     own pumped model, never to a print); the minimum is the distance.  Rows: the new model's
     albedo with c₀ = (n+2)/2π and one distance row per level.
@@ -85,8 +87,7 @@ def distance_to_new_model(cfg: dict, df: pd.DataFrame) -> pd.DataFrame:
     albedo_rows = df[df["albedo"].notna()]
     theta = np.sort(albedo_rows["theta_deg"].unique())
     new = model("phong_cosmin", n=n)
-    from brdfs.numerics.albedo import albedo
-    est = albedo(new, theta, rtol=cfg["tolerance"]["rtol"])
+    est = albedo(new, theta, "azimuthal", rtol=cfg["tolerance"]["rtol"], atol=cfg["tolerance"]["atol"])
     rows = [pd.DataFrame({"theta_deg": theta, "albedo": est.value, "albedo_err": est.error})
             .assign(model="phong_cosmin", n=n, C=new.C, pumping="none")]
     for level, g in albedo_rows.groupby("level"):

@@ -1,7 +1,8 @@
 """Albedo tables of the reciprocal Phong model (n = 20) pumped 0 ... K times with g1 and g2 (eqs. 2.20, 2.21).
 
-One piecewise Chebyshev interpolant in cos θ per level, its error measured against the engine
-(:func:`brdfs.numerics.pumping.tabulate_albedo`); each level's table builds the next level's model.
+One piecewise Chebyshev interpolant in cos θ per level, its error measured at off-node points
+(:func:`brdfs.numerics.pumping.tabulate_albedo`; nodes by the polar-azimuth reduction
+:func:`brdfs.numerics.pumping.pumped_albedo`); each level's table builds the next level's model.
 Figures 2.3 and 2.5 read them.
 """
 from __future__ import annotations

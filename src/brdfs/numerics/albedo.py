@@ -4,7 +4,9 @@
 colour-science manner (one function per method and a table of them, :data:`ALBEDO_METHODS`):
 
 * ``engine`` — the lobe-following adaptive Gauss–Kronrod of :mod:`brdfs.numerics.integrate`
-  (the default, and the only method that meets 1e-10 everywhere);
+  (the default, and the only method that meets 1e-10 everywhere), one-dimensional where the
+  azimuthal integral has a closed form (:mod:`brdfs.numerics.integrate.azimuthal`);
+* ``engine_2d`` — the engine always in two dimensions; ``azimuthal`` — only the 1-D route;
 * ``disk`` — the independent projected-disk integration (:mod:`brdfs.numerics.integrate.disk`);
 * ``product_grid`` — an N × N Gauss–Legendre grid in (cos θ_V, φ_V), error |Q_N − Q_{N/2}|;
 * ``midpoint_grid`` — the midpoint rule on n_θ × n_φ cells of (θ_V, φ_V), as a program of 2001
@@ -14,7 +16,7 @@ colour-science manner (one function per method and a table of them, :data:`ALBED
   ``model`` for the model's own :meth:`~brdfs.physics.models.base.BRDF.sample`); error = standard error.
 
 Every method returns an :class:`Estimate` with ``value`` and ``error`` shaped like ``theta_deg``,
-the number of BRDF evaluations it cost and a ``status`` per value (``converged`` when the error
+its cost in BRDF evaluations (nodes of a closed-form inner integral count as such) and a ``status`` per value (``converged`` when the error
 meets the tolerance asked for).
 """
 from __future__ import annotations
@@ -25,6 +27,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.integrate import IntegrationWarning, dblquad
 
+from brdfs.numerics.integrate import azimuthal
 from brdfs.numerics.integrate.disk import disk_albedo
 from brdfs.numerics.integrate.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
@@ -48,20 +51,27 @@ def _check_angles(theta_deg):
 
 # --- the engine ------------------------------------------------------------------------------
 
-def _albedo_pairs(models, theta, rtol, atol):
-    """Albedo of ``models[i]`` at ``theta[i]``: the density integrated in the frame its lobe asks for
-    (Kirchhoff lobes in the scattering-vector frame, :mod:`.integrate.scattering`; the others around R
-    or N, :mod:`.integrate.hemisphere`), plus the albedo of its Dirac part (``model.delta_albedo``,
+def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
+    """Albedo of ``models[i]`` at ``theta[i]``: the density integrated in the coordinates its lobe
+    asks for — a cosine-power lobe with a closed-form azimuthal integral in one dimension
+    (:mod:`.integrate.azimuthal`, unless ``closed_form_azimuth`` is False), Kirchhoff lobes in the
+    scattering-vector frame (:mod:`.integrate.scattering`), the others in two dimensions around R
+    or N (:mod:`.integrate.hemisphere`) — plus the albedo of its Dirac part (``model.delta_albedo``,
     e.g. He–Torrance's specular term; zero for most models)."""
     value, error = np.zeros(theta.size), np.zeros(theta.size)
     status = np.full(theta.size, CONVERGED, dtype=object)
     kirchhoff = np.array([m.lobe.frame == SCATTERING_FRAME for m in models], bool)
-    for chosen, scheme in ((kirchhoff, albedo_scattering), (~kirchhoff, albedo_many)):
+    one_d = np.array([closed_form_azimuth and azimuthal.supports(m) for m in models], bool) & ~kirchhoff
+    schemes = ((one_d, azimuthal.albedo_many), (kirchhoff, albedo_scattering), (~kirchhoff & ~one_d, albedo_many))
+    closed_form_nodes = 0          # the 1-D route evaluates a closed form, not the BRDF: count its nodes
+    for chosen, scheme in schemes:
         if chosen.any():
             est = scheme([m for m, c in zip(models, chosen) if c], theta[chosen], rtol=rtol, atol=atol)
             value[chosen], error[chosen] = est.value, est.error
             if est.status is not None:
                 status[chosen] = est.status
+            if scheme is azimuthal.albedo_many:
+                closed_form_nodes += est.evaluations or 0
     groups: dict[int, list[int]] = {}
     for i, m in enumerate(models):
         groups.setdefault(id(m), []).append(i)
@@ -69,10 +79,20 @@ def _albedo_pairs(models, theta, rtol, atol):
         delta = models[rows[0]].delta_albedo(theta[rows])
         value[rows] += delta.value
         error[rows] += delta.error
-    return Estimate(value, error, status=status.astype(str))
+    return Estimate(value, error, closed_form_nodes, status.astype(str))
 
 
 def _engine(model, theta, rtol, atol):
+    return _albedo_pairs([model] * theta.size, theta, rtol, atol)
+
+
+def _engine_2d(model, theta, rtol, atol):
+    return _albedo_pairs([model] * theta.size, theta, rtol, atol, closed_form_azimuth=False)
+
+
+def _azimuthal(model, theta, rtol, atol):
+    if not azimuthal.supports(model):
+        raise ValueError(f"the azimuthal method needs a closed-form azimuth, which {model.name!r} lacks")
     return _albedo_pairs([model] * theta.size, theta, rtol, atol)
 
 
@@ -201,6 +221,8 @@ def _monte_carlo(model, theta, rtol, atol, n_samples=100_000, sampler="cosine", 
 #: The albedo methods by name: ``method(model, theta (1-D), rtol, atol, **options) -> Estimate``.
 ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
     "engine": _engine,
+    "engine_2d": _engine_2d,
+    "azimuthal": _azimuthal,
     "disk": _disk,
     "product_grid": _product_grid,
     "midpoint_grid": _midpoint_grid,
@@ -254,7 +276,8 @@ def albedo(model, theta_deg, method="engine", *, rtol=None, atol=None, **options
     with counting_evaluations() as count:
         est = run(model, theta.ravel(), rtol, atol, **options)
     shape = theta.shape
-    return Estimate(est.value.reshape(shape), est.error.reshape(shape), count[0], est.status.reshape(shape))
+    cost = count[0] + (est.evaluations or 0)
+    return Estimate(est.value.reshape(shape), est.error.reshape(shape), cost, est.status.reshape(shape))
 
 
 def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
@@ -265,7 +288,8 @@ def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
         est = _albedo_pairs([p[0] for p in pairs], np.array([p[1] for p in pairs]),
                             DEFAULT_RTOL if rtol is None else rtol, DEFAULT_ATOL if atol is None else atol)
     shape = (len(models), theta.size)
-    return Estimate(est.value.reshape(shape), est.error.reshape(shape), count[0], est.status.reshape(shape))
+    cost = count[0] + (est.evaluations or 0)
+    return Estimate(est.value.reshape(shape), est.error.reshape(shape), cost, est.status.reshape(shape))
 
 
 def albedo_pairs(models, theta_deg, rtol=None, atol=None) -> Estimate:
@@ -275,4 +299,4 @@ def albedo_pairs(models, theta_deg, rtol=None, atol=None) -> Estimate:
     with counting_evaluations() as count:
         est = _albedo_pairs(list(models), theta, DEFAULT_RTOL if rtol is None else rtol,
                             DEFAULT_ATOL if atol is None else atol)
-    return Estimate(est.value, est.error, count[0], est.status)
+    return Estimate(est.value, est.error, count[0] + (est.evaluations or 0), est.status)

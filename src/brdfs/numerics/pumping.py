@@ -19,6 +19,12 @@ products are exact, |g̃_k / g_k − 1| ≤ δ_k and
     ε_{k+1} = (1 + ε_k) / (1 − δ_k) − 1,      δ_k = ε_k + (interpolation + engine error) / min ã_k.
 
 Every value computed from ``f̃_k`` therefore carries the relative error ε_k on top of its own.
+
+Speed.  The table nodes are integrated by :func:`pumped_albedo`, not by the hemisphere engine: in
+V's polar coordinates every correction g depends on N·V alone, so the tables (a Chebyshev sum per
+evaluation) are evaluated on the 1-D outer nodes only, and the azimuthal kernel of the original
+lobe is shared by all levels.  This cut the two pumping tables from 75 s (Phong) and ~170 s
+(Blinn) to about 1.3 s and 2.5 s; the tests compare it with the engine at 1e-11.
 """
 from __future__ import annotations
 
@@ -29,12 +35,18 @@ import pandas as pd
 from numpy.polynomial import chebyshev as cheb
 
 from brdfs.numerics.albedo import albedo
+from brdfs.numerics.integrate.gauss_kronrod import integrate
+from brdfs.numerics.integrate.lobes import PowerCosine
 from brdfs.physics.models.base import BRDF
 
 CORRECTIONS = ("g1", "g2")
+#: Original models whose pumped chains :func:`pumped_albedo` integrates (cosine-power lobes around
+#: R or H without kinks of their own); any other model goes through the hemisphere engine.
+REDUCIBLE_ROOTS = ("phong", "blinn")
 _BISECTIONS = 60            # halves a segment of [0, 1] below the spacing of doubles
 _CHECK_SAFETY = 10.0        # measured interpolation error at off-grid points × this = reported
 _MAX_DEGREE = 256
+_PEAK_GRADES = 6          # azimuth breakpoints w, 4w, 16w, ... around a lobe's peak of width w
 
 
 def lobatto_points(degree):
@@ -157,17 +169,102 @@ class AlbedoTable:
 
 
 def _engine(model, x, rtol):
+    """Albedo at x = cos θ: the polar-azimuth reduction :func:`pumped_albedo` for a pumped
+    Phong/Blinn chain (its root in the mirror or half frame), else the hemisphere engine."""
+    root, _ = _chain(model)
+    if root.name in REDUCIBLE_ROOTS and isinstance(root.lobe, PowerCosine):
+        return pumped_albedo(model, x, rtol=rtol)
     theta = np.degrees(np.arccos(np.clip(x, 0.0, 1.0)))
     return albedo(model, theta, rtol=rtol)
+
+
+def _chain(model):
+    """(root model, [pumped levels from the outermost in]) of a possibly pumped model."""
+    levels = []
+    while isinstance(model, Pumped):
+        levels.append(model)
+        model = model.base
+    return model, levels
+
+
+def pumping_factor(model, nl, nv):
+    """h(N·L, N·V) = f / f_root = Π 1/g_j over the levels of a pumped model (1 for an original one)."""
+    _, levels = _chain(model)
+    h = np.ones(np.broadcast_shapes(np.shape(nl), np.shape(nv)))
+    for level in levels:
+        h = h / level.correction_term(nl, nv)
+    return h
+
+
+def pumped_albedo(model, x, rtol=1e-10, atol=1e-14):
+    """a*(x) for a model f = f_root(L, V) · h(N·L, N·V) whose root is a Phong (R·V) or Blinn
+    (N·H) lobe without kinks of its own, at x = N·L (array), as a nested 1-D × 1-D integral.
+
+    In V's own polar coordinates (μ_V = N·V, azimuth φ from the mirror azimuth) the correction
+    h of every pumping level depends on μ_V only, so
+
+        a*(μ_L) = 2 ∫₀¹ μ_V h(μ_L, μ_V) K(μ_L, μ_V) dμ_V,   K = ∫₀^π f_root(L, V(μ_V, φ)) dφ.
+
+    h — the expensive part (Chebyshev tables, one per level) — is evaluated only on the outer
+    nodes instead of on every two-dimensional node.  Outer breakpoints: the kinks of h
+    (``model.nv_levels``) and μ_V = sin θ_L, where the support R·V > 0 of a Phong lobe starts to
+    cut the azimuth circle; inner breakpoints: the azimuth where R·V = 0 and a graded set w, 4w,
+    16w, … at the lobe's peak φ = 0 of width w — for Blinn at grazing incidence the lobe sits in
+    the corner V = −L (μ_V → 0, φ → 0) with w ∝ μ_L + μ_V, which an ungraded rule steps over
+    (it lost 1e-8 at 90° before the grading; the tests hold it to the engine).  The inner integral is
+    asked for rtol/10 and its error is carried into the outer one (as in :mod:`.integrate.mean`).
+    """
+    x = np.atleast_1d(np.asarray(x, float))
+    root, _ = _chain(model)
+    mu_l = np.clip(x, 0.0, 1.0)
+    s_l = np.sqrt(np.maximum(1.0 - mu_l * mu_l, 0.0))
+    levels = [np.broadcast_to(np.asarray(c, float), mu_l.shape) for c in model.nv_levels(mu_l)]
+    cols = [np.zeros_like(mu_l), *levels, s_l, np.ones_like(mu_l)]
+    bp = np.sort(np.clip(np.column_stack(cols), 0.0, 1.0), axis=1)
+    mirror_frame = root.lobe.frame == "mirror"
+
+    def kernel(mu_v, elem):
+        """K(μ_L, μ_V) at outer nodes mu_v (m, 21) of elements elem: an Estimate, flattened."""
+        ml, sl = (np.broadcast_to(v[elem, None], mu_v.shape).ravel() for v in (mu_l, s_l))
+        mv = mu_v.ravel()
+        sv = np.sqrt(np.maximum(1.0 - mv * mv, 0.0))
+        a, b = ml * mv, sl * sv                                 # R·V = a + b cos φ
+        # the lobe peaks at φ = 0 with width w; near V = −L (Blinn, both grazing) w → 0
+        peak = np.sqrt(2.0) if mirror_frame else np.sqrt(np.maximum(2.0 + 2.0 * (a - b), 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            w = np.clip(peak / np.sqrt((root.lobe.n + 1.0) * b), 1e-12, np.pi)
+        cols = [np.zeros_like(mv), *(np.minimum(w * 4.0 ** k, np.pi) for k in range(_PEAK_GRADES))]
+        if mirror_frame:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cols.append(np.arccos(np.clip(np.where(b > 0, -a / b, -1.0), -1.0, 1.0)))
+        inner_bp = np.sort(np.column_stack(cols + [np.full_like(mv, np.pi)]), axis=1)
+
+        def f_root(phi, e):
+            L = np.stack(np.broadcast_arrays(sl[e, None], 0.0, ml[e, None]), -1)
+            V = np.stack([-sv[e, None] * np.cos(phi), sv[e, None] * np.sin(phi),
+                          np.broadcast_to(mv[e, None], phi.shape)], -1)
+            return root(L, V)
+
+        return integrate(f_root, inner_bp, rtol=rtol / 10, atol=atol / 10)
+
+    def outer(mu_v, elem):
+        k = kernel(mu_v, elem)
+        weight = 2.0 * mu_v * pumping_factor(model, mu_l[elem, None], mu_v)
+        value = weight * k.value.reshape(mu_v.shape)
+        return value, value, weight * k.error.reshape(mu_v.shape)
+
+    return integrate(outer, bp, rtol=rtol, atol=atol)
 
 
 def tabulate_albedo(model, edges=(0.0, 1.0), target_rtol=1e-9, engine_rtol=1e-11, degree=16, model_rtol=0.0):
     """Tabulate the albedo of ``model`` on pieces ``edges`` of x = cos θ.
 
     The degree D of every piece is doubled until the interpolant through D + 1 Lobatto points
-    matches the engine at the D midpoints (the new points of degree 2D) within
+    matches the integrated albedo at the D midpoints (the new points of degree 2D) within
     ``target_rtol`` × min a.  The reported error is ``10 ×`` the largest mismatch there plus the
-    largest engine error, so it bounds the error between the check points too.
+    largest integration error, so it bounds the error between the check points too.  The nodes
+    are integrated to ``engine_rtol`` by :func:`pumped_albedo` for pumped Phong/Blinn chains,
+    else by the hemisphere engine (:func:`_engine`).
 
     Raises
     ------

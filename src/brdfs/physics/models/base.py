@@ -91,6 +91,9 @@ class BRDF:
     limit_cos_power: ClassVar[int | None] = None
     #: lim_{n→∞} a(90°), None where not derived.
     limit_albedo_90: ClassVar[float | None] = None
+    #: (frame, divided by max(N·L, N·V)) of a cosine-power lobe whose azimuthal integral is known in
+    #: closed form (:mod:`brdfs.numerics.integrate.azimuthal`), None otherwise.
+    closed_form_azimuth: ClassVar[tuple[str, bool] | None] = None
 
     def __call__(self, L, V):
         L = np.asarray(L, float)

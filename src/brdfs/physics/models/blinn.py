@@ -29,6 +29,7 @@ class Blinn(_BlinnFamily):
     """Reciprocal Blinn, f = C (N·H)^n (eq. 1.34 / 2.6 / 3.33)."""
 
     name = "blinn"
+    closed_form_azimuth = ("half", False)
     limit_cos_power = 2          # dω_V = 4 (L·H) dω_H at H = N, C_n scaling the maximum to 1: a → cos²θ
 
     def _eval(self, L, V, nl, nv):
@@ -51,6 +52,7 @@ class BlinnCosmin(_BlinnFamily):
     """Corrected Blinn, f = C (N·H)^n / max(N·L, N·V) (eq. 3.34)."""
 
     name = "blinn_cosmin"
+    closed_form_azimuth = ("half", True)
     limit_cos_power = 1          # as Blinn, divided by max(N·L, N·V) = cos θ: a → cos θ
 
     def _eval(self, L, V, nl, nv):

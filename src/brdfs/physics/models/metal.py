@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from brdfs.physics.fresnel import unpolarised_reflectance
+from brdfs.physics.models.base import BRDF
 from brdfs.physics.models.phong import PhongCosmin
 
 
@@ -25,6 +26,12 @@ class PhongCosminMetal(PhongCosmin):
     ior_re: float = field(kw_only=True)
     ior_im: float = field(kw_only=True, default=0.0)
     name = "phong_cosmin_metal"
+    # The Fresnel factor voids the closed forms of the new model it extends.
+    closed_form_azimuth = None
+    limit_cos_power = None
+    limit_albedo_90 = None
+    grazing_law = BRDF.grazing_law
+    exact_albedo = BRDF.exact_albedo
 
     def __post_init__(self):
         super().__post_init__()

@@ -1,0 +1,63 @@
+"""The closed-form-azimuth albedo (integrate.azimuthal) against the two-dimensional engine and closed forms."""
+import numpy as np
+import pytest
+
+from brdfs.numerics.albedo import albedo_table
+from brdfs.numerics.integrate.azimuthal import SUPPORTED, albedo_azimuthal, albedo_many, supports
+from brdfs.physics.models import model
+
+THETA = np.array([0.0, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0, 89.9, 89.99, 90.0])
+
+
+@pytest.mark.parametrize("name", sorted(SUPPORTED))
+def test_matches_the_engine_to_1e_10(name):
+    """Every exponent of the sweep at every angle, both methods in one vectorised run each."""
+    ns = [0.5, 2.0, 20.0, 150.0, 512.0, 10000.0]
+    models = [model(name, n=n) for n in ns]
+    reduced = albedo_many([m for m in models for _ in THETA], np.tile(THETA, len(ns)), rtol=1e-11)
+    engine = albedo_table(models, THETA, tol=1e-11)
+    value, error = reduced.value.reshape(engine.value.shape), reduced.error.reshape(engine.value.shape)
+    diff = np.abs(value - engine.value)
+    assert np.all(diff <= 1e-10 * engine.value)
+    assert np.all(diff <= error + engine.error)      # both error bars cover the difference
+
+
+def test_lambertian_limits_are_exact():
+    """n = 0, C = 1/π: Blinn is Lambert (N·H > 0 always), a = 1 at every θ; Phong is Lambert
+    restricted to R·V > 0, which is the whole hemisphere at θ = 0."""
+    theta = np.linspace(0, 90, 19)
+    a = albedo_azimuthal(model("blinn", n=0, C=1 / np.pi), theta, rtol=1e-12)
+    assert np.all(np.abs(a.value - 1) <= a.error + 1e-15)
+    a = albedo_azimuthal(model("phong", n=0, C=1 / np.pi), 0.0, rtol=1e-12)
+    assert abs(a.value - 1) <= a.error + 1e-15
+
+
+def test_new_model_at_grazing_is_eq_3_27():
+    """a(90°) = (n+2)/(2(n+1)) for the new model with c = (n+2)/2π (eq. 3.27)."""
+    for n in (1, 20, 150, 1000):
+        a = albedo_azimuthal(model("phong_cosmin", n=n), 90.0, rtol=1e-12)
+        assert abs(a.value - (n + 2) / (2 * (n + 1))) <= a.error
+
+
+def test_error_is_honest_but_not_inflated():
+    brdf = model("phong", n=150)
+    loose, tight = albedo_azimuthal(brdf, THETA, rtol=1e-6), albedo_azimuthal(brdf, THETA, rtol=1e-13)
+    true = np.abs(loose.value - tight.value)
+    assert np.all(true <= loose.error + tight.error)
+    assert np.all(loose.error <= 1e-5 * loose.value)
+
+
+def test_unsupported_models_and_angles_are_refused():
+    assert not supports(model("ward", m=0.1))
+    with pytest.raises(ValueError, match="ward"):
+        albedo_azimuthal(model("ward", m=0.1), 30.0)
+    with pytest.raises(ValueError, match="theta_deg"):
+        albedo_azimuthal(model("phong", n=2), 91.0)
+
+
+def test_many_models_in_one_call_equal_one_model_at_a_time():
+    models = [model("phong", n=3), model("blinn_cosmin", n=40), model("phong", n=300), model("blinn", n=7, C=2.0)]
+    theta = np.array([12.0, 50.0, 88.0, 70.0])
+    many = albedo_many(models, theta, rtol=1e-11)
+    single = np.array([albedo_azimuthal(m, t, rtol=1e-11).value for m, t in zip(models, theta)])
+    assert np.all(np.abs(many.value - single) <= many.error)
