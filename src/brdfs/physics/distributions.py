@@ -198,6 +198,16 @@ class Beckmann(_SmithVisibleNormals):
         """Exact Smith masking G1 = 1/(1 + Λ) of a Beckmann surface."""
         return 1.0 / (1.0 + self.smith_lambda(cos_theta))
 
+    def smith_lambda_cos(self, cos_theta):
+        """λ(μ) = Λ(θ) cos θ = α sin θ e^{−a²}/(2√π) − cos θ erfc(a)/2, a = cot θ/α: finite at the
+        horizon (α/(2√π)), 0 at normal incidence; G1 = μ/(μ + λ(μ))."""
+        c = np.clip(np.asarray(cos_theta, float), 0.0, 1.0)
+        s = np.sqrt((1.0 - c) * (1.0 + c))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            a = c / (self.alpha * s)
+            lam = self.alpha * s * np.exp(-a * a) / (2.0 * np.sqrt(np.pi)) - 0.5 * c * erfc(a)
+        return np.where(s > 0, lam, 0.0)
+
     def smith_g1_thesis(self, cos_theta):
         """G*(x) as the thesis prints it (eq. 1.38): with h = x²/(2α²(1 − x²)),
         G* = g/(g + 1), g = √(πh) (2 − erfc √h).
@@ -317,6 +327,14 @@ class GGX(_SmithVisibleNormals):
     def smith_g1(self, cos_theta):
         """Exact Smith masking G1 = 1/(1 + Λ) = 2/(1 + √(1 + α² tan²θ)) of a GGX surface."""
         return 1.0 / (1.0 + self.smith_lambda(cos_theta))
+
+    def smith_lambda_cos(self, cos_theta):
+        """λ(μ) = Λ(θ) cos θ = (√(μ² + α² sin²θ) − μ)/2 = α² sin²θ / (2 (√(μ² + α² sin²θ) + μ)):
+        finite at the horizon (α/2); G1 = μ/(μ + λ(μ))."""
+        c = np.clip(np.asarray(cos_theta, float), 0.0, 1.0)
+        s2 = (1.0 - c) * (1.0 + c)
+        a2 = self.alpha ** 2
+        return 0.5 * a2 * s2 / (np.sqrt(c * c + a2 * s2) + c)
 
     def _grazing_area(self):
         return self.alpha / 2.0
