@@ -109,6 +109,8 @@ class _SmithMicrofacet(BRDF):
         if self.ior_re is not None:
             check_positive("ior_re", self.ior_re)
             check_positive("ior_im", self.ior_im, allow_zero=True)
+        if self.compensation == "kulla_conty":
+            self.energy_table()     # built (or fetched from the cache) now, not inside an integration
 
     # --- shape ---------------------------------------------------------------------------------
     @property
