@@ -168,6 +168,17 @@ class _SmithMicrofacet(BRDF):
         table, e_avg = self.energy_table()
         return self.fresnel_ms() * (1.0 - table(nl)) * (1.0 - table(nv)) / (np.pi * (1.0 - e_avg.value))
 
+    def multiple_scattering_error(self, nl, nv):
+        """Bound on |f_ms − f_ms(exact E)| from the E table's error ε (E_L, E_V and E_avg each off by ≤ ε):
+        F_ms ε ((1 − E_L) + (1 − E_V)) / (π (1 − E_avg)) + f_ms ε / (1 − E_avg) (F_ms's own dependence on
+        E_avg neglected: it is 1 for F = 1)."""
+        if self.compensation == "none":
+            return np.zeros(np.broadcast_shapes(np.shape(nl), np.shape(nv)))
+        table, e_avg = self.energy_table()
+        eps, rest = table.error, 1.0 - e_avg.value
+        first = self.fresnel_ms() * eps * ((1.0 - table(nl)) + (1.0 - table(nv))) / (np.pi * rest)
+        return first + self.multiple_scattering(nl, nv) * eps / rest
+
     def _eval(self, L, V, nl, nv):
         f = self.single_scattering(L, V, nl, nv)
         if self.compensation == "kulla_conty":

@@ -1,0 +1,59 @@
+"""Single-scattering albedo E(μ) of GGX and Beckmann microfacet conductors (F = 1, Smith's separable and
+height-correlated G2, exact Λ) over roughness α and μ = cos θ, and its cosine-weighted average
+E_avg(α) = 2 ∫₀¹ E(μ) μ dμ, the two ingredients of Kulla–Conty's compensation.
+
+E(μ) comes from the engine (:func:`brdfs.albedo`) at ``microfacet.table_rtol``; E_avg from the Chebyshev
+E table the compensated models use (:func:`brdfs.physics.models.smith_microfacet.energy_table`), its error
+the table's error bound.  Rows: ``quantity = E`` (one per μ) and ``quantity = E_avg`` (``mu`` empty).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from brdfs.numerics.albedo import albedo
+from brdfs.physics.models import model
+from brdfs.physics.models.smith_microfacet import energy_table
+from brdfs.pipeline import plotting
+from brdfs.pipeline.registry import table
+
+COLUMNS = ["model", "G2", "alpha", "quantity", "mu", "albedo", "albedo_err"]
+
+
+@table("extra_microfacet_albedo", config=("microfacet",))
+def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    """Columns ``model, G2, alpha, quantity (E | E_avg), mu, albedo, albedo_err``."""
+    c = cfg["microfacet"]
+    mu = np.asarray(c["table_mu"], float)
+    theta = np.degrees(np.arccos(np.clip(mu, 0.0, 1.0)))
+    frames = []
+    for name in ("ggx", "beckmann"):
+        for G2 in c["table_G2"]:
+            for alpha in c["table_alpha"]:
+                est = albedo(model(name, alpha=float(alpha), G2=G2), theta, rtol=c["table_rtol"])
+                frames.append(pd.DataFrame({"model": name, "G2": G2, "alpha": float(alpha), "quantity": "E",
+                                            "mu": mu, "albedo": est.value, "albedo_err": est.error}))
+            if G2 in c["average_G2"]:
+                for alpha in c["average_alpha"]:
+                    e_avg = energy_table(name, float(alpha), G2)[1]
+                    frames.append(pd.DataFrame({"model": [name], "G2": [G2], "alpha": [float(alpha)],
+                                                "quantity": ["E_avg"], "mu": [np.nan],
+                                                "albedo": [e_avg.value], "albedo_err": [e_avg.error]}))
+    return pd.concat(frames, ignore_index=True)[COLUMNS]
+
+
+def plot(df: pd.DataFrame, path) -> None:
+    """E(μ) per α (one panel per distribution), height-correlated solid, separable dashed; E_avg in the legend."""
+    fig, axes = plotting.plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
+    averages = df[df["quantity"] == "E_avg"]
+    for ax, name in zip(axes, ("ggx", "beckmann")):
+        curves = df[(df["quantity"] == "E") & (df["model"] == name)]
+        for (G2, alpha), g in curves.groupby(["G2", "alpha"], sort=True):
+            avg = averages[(averages["model"] == name) & (averages["G2"] == G2) & (averages["alpha"] == alpha)]
+            label = f"α = {alpha:g}, {G2}" + (f", E_avg = {avg['albedo'].iloc[0]:.4f}" if not avg.empty else "")
+            ax.plot(g["mu"], g["albedo"], "-" if G2 == "height_correlated" else "--", marker=".", label=label)
+        ax.set(xlabel="μ = cos θ", ylabel="single-scattering albedo E(μ), F = 1", title=name.upper() if name == "ggx"
+               else "Beckmann")
+        ax.legend(fontsize=6, loc="lower right")
+    fig.suptitle("Single-scattering albedo of microfacet conductors with Smith's G2 (engine)", fontsize=9)
+    plotting.savefig(fig, path)
