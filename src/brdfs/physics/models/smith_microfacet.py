@@ -148,8 +148,12 @@ class _SmithMicrofacet(BRDF):
         return 1.0 / (4.0 * (nl + lam(nl)) * (nv + lam(nv)))
 
     def masking_shadowing(self, nl, nv):
-        """Smith's G2(L, V) (separable G1 G1 or height-correlated 1/(1 + Λ_L + Λ_V))."""
-        return 4.0 * nl * nv * self.g2_over_4_nl_nv(nl, nv)
+        """Smith's G2(L, V) (separable G1 G1 or height-correlated 1/(1 + Λ_L + Λ_V)); 0 at the horizon."""
+        lam = self.distribution.smith_lambda
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if self.G2 == "height_correlated":
+                return 1.0 / (1.0 + lam(nl) + lam(nv))
+            return 1.0 / ((1.0 + lam(nl)) * (1.0 + lam(nv)))
 
     def single_scattering(self, L, V, nl, nv):
         """f_ss = F(L·H) D(H) G2 / (4 N·L N·V)."""
