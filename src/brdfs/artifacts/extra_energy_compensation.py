@@ -13,8 +13,9 @@ Panel 2 (``quantity = loss``): 1 − a against α at ``sweep_theta_deg`` for the
 call per point (microfacet single scattering, the new model, Phong), and at the tabulated α for the
 compensated and pumped ones.
 
-``quantity = max_deviation_from_walk``: max over θ of |a − a_walk| per remedy (θ of the maximum in
-``theta_deg``).  ``quantity = gold_albedo``: with a gold conductor (Fresnel from n, k) the walk,
+``quantity = max_deviation_from_walk``: max over the walk's angles of |a − a_walk| per remedy (θ of the
+maximum in ``theta_deg``); ``max_deviation_from_one``: max over the whole θ grid of |a − 1|, the walk's
+value for F = 1 (no path lost, all energy leaves).  ``quantity = gold_albedo``: with a gold conductor (Fresnel from n, k) the walk,
 the compensated model (Kulla–Conty's F_ms) and single scattering, a measured comparison.
 """
 from __future__ import annotations
@@ -83,12 +84,14 @@ def _microfacet_rows(family, alpha, theta, walk_theta, c, seed, family_index):
 
 
 def _sweep_rows(family, n_thesis, c):
-    """1 − a against α at the sweep angles (microfacet single scattering, new model, original)."""
+    """1 − a against α at the sweep angles (new model, original Phong; microfacet single scattering once,
+    in the rows of family ``phong``)."""
     theta = np.asarray(c["sweep_theta_deg"], float)
     frames = []
     for alpha in c["sweep_alpha"]:
         n = float(mf.n_of_alpha(family, alpha))
-        brdfs = [(name, mf.microfacet(name, alpha), "single_scattering", np.nan) for name in ("ggx", "beckmann")]
+        brdfs = [] if family != "phong" else [
+            (name, mf.microfacet(name, alpha), "single_scattering", np.nan) for name in ("ggx", "beckmann")]
         if n > 0:
             brdfs += [(f"{family}_cosmin", model(f"{family}_cosmin", n=n), "new_model", n)]
             if family == "phong":
@@ -107,6 +110,20 @@ def _loss_at_tabulated(albedo_rows, theta):
     picked["quantity"] = "loss"
     picked["value"] = 1.0 - picked["value"]
     return picked
+
+
+def _deviation_from_one_rows(albedo_rows):
+    """max_θ |a − 1| over the whole θ grid: the walk's value for F = 1 wherever it was run (every path
+    leaves with all its energy, so a_walk = 1 with zero variance; ``walk`` rows and ``lost`` = 0)."""
+    frames = []
+    curves = albedo_rows[~albedo_rows["variant"].isin(["walk", "walk_single"])]
+    for keys, g in curves.groupby(["family", "model", "variant", "pumping", "level"], dropna=False):
+        dev = (g["value"] - 1.0).abs()
+        row = g.loc[[dev.idxmax()]].copy()
+        row["quantity"] = "max_deviation_from_one"
+        row["value"] = float(dev.max())
+        frames.append(row[mf.COLUMNS])
+    return frames
 
 
 def _deviation_rows(albedo_rows):
@@ -171,11 +188,13 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     for family in ("phong", "blinn"):
         out += _sweep_rows(family, None, c)
     out += _deviation_rows(albedo_rows)
+    out += _deviation_from_one_rows(albedo_rows)
     out += _gold_rows(alphas, c, cfg["seed"])
     return pd.concat(out, ignore_index=True)[mf.COLUMNS]
 
 
 STYLES = {"single_scattering": "-", "kulla_conty": "--", "new_model": "-.", "original": ":", "pumped": "-"}
+ANGLE_STYLES = {0.0: "-", 60.0: "--", 85.0: ":"}
 
 
 def _label(r):
@@ -188,7 +207,8 @@ def _label(r):
 
 def plot(df: pd.DataFrame, path) -> None:
     """Left/middle: albedo against θ (Phong-matched, Blinn-matched); right: 1 − a against α."""
-    fig, axes = plotting.plt.subplots(1, 3, figsize=(15, 5))
+    fig, axes = plotting.plt.subplots(1, 3, figsize=(16, 6.2))
+    fig.subplots_adjust(bottom=0.36, wspace=0.28)
     curves = df[df["quantity"] == "albedo"]
     for ax, family in zip(axes[:2], ("phong", "blinn")):
         fam = curves[curves["family"] == family]
@@ -204,22 +224,27 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.axhline(1.0, color="0.6", lw=0.6)
         ax.set(xlabel="incidence angle θ_L [deg]", ylabel="albedo a(θ_L), F = 1",
                title=f"{family}-matched roughness (α = {fam['alpha'].dropna().iloc[0]:.3f})")
-        ax.legend(fontsize=5.5, loc="lower left", ncol=2)
+        ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     ax = axes[2]
     loss = df[(df["quantity"] == "loss")]
-    for (family, name, variant, theta), g in loss.groupby(["family", "model", "variant", "theta_deg"], sort=False):
+    colours = {}
+    for (name, variant, theta), g in loss.groupby(["model", "variant", "theta_deg"], sort=False):
         if variant in ("walk", "walk_single", "pumped", "kulla_conty") or len(g) < 2:
             continue
         g = g.sort_values("alpha")
-        ax.plot(g["alpha"], g["value"], STYLES.get(variant, "-"), lw=0.9, label=f"{name} {variant} {theta:g}°")
+        colour = colours.setdefault((name, variant), f"C{len(colours)}")
+        ax.plot(g["alpha"], g["value"], ANGLE_STYLES.get(theta, "-"), color=colour, lw=1.0,
+                label=f"{name} {variant.replace('_', ' ')}" if theta == 0.0 else None)
     for (name, variant, pump, level), g in loss[loss["variant"].isin(["pumped", "kulla_conty"])].groupby(
             ["model", "variant", "pumping", "level"], dropna=False):
-        ax.plot(g["alpha"], g["value"], "x" if variant == "pumped" else "+", ms=5,
-                label=f"{name} {variant} {pump if variant == 'pumped' else ''}{'×%d' % level if variant == 'pumped' else ''} (0/60/85°)")
+        text = f"{name} pumped {pump} ×{int(level)}" if variant == "pumped" else f"{name} Kulla–Conty"
+        ax.plot(g["alpha"], g["value"], "x" if variant == "pumped" else "+", ms=5, label=f"{text} (0°, 60°, 85°)")
+    for theta, style in ANGLE_STYLES.items():
+        ax.plot([], [], style, color="0.3", label=f"θ_L = {theta:g}°")
     ax.axhline(0.0, color="0.6", lw=0.6)
-    ax.set(xlabel="roughness α (Phong n = (2/α² − 2)/4, Blinn n = 2/α² − 2)", ylabel="1 − a (energy lost > 0, created < 0)",
-           title="energy lost or created at 0°, 60°, 85°", xscale="log")
-    ax.legend(fontsize=4.5, loc="upper left", ncol=2)
+    ax.set(xlabel="roughness α (Phong n = (2/α² − 2)/4, Blinn n = 2/α² − 2)",
+           ylabel="1 − a (energy lost > 0, created < 0)", title="energy lost or created", xscale="log")
+    ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     fig.suptitle("White furnace (F = 1): the thesis's remedies vs GGX/Beckmann + Kulla–Conty vs the Smith random walk",
                  fontsize=10)
     plotting.savefig(fig, path)
