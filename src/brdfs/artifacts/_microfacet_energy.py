@@ -15,6 +15,7 @@ import pandas as pd
 
 from brdfs.artifacts import _pumping_figures as pumping_figures
 from brdfs.numerics import pumping
+from brdfs.numerics.quantities import maximal_constant
 from brdfs.numerics.random_walk import random_walk
 from brdfs.physics.distributions import GGX, Beckmann
 from brdfs.physics.fresnel import unpolarised_reflectance
@@ -44,6 +45,15 @@ def pumped_family(family: str, table_df: pd.DataFrame, correction: str, levels: 
     tables = pumping.tables_from_frame(table_df, correction)
     models = pumping.pumped_models(pumping_figures.base_model(name, n, C), tables[:-1], correction)
     return [(k, models[k], tables[k]) for k in range(min(levels, len(models) - 1) + 1)], float(n)
+
+
+def new_model(family: str, n: float):
+    """The thesis's new model of the family: phong_cosmin with c = (n+2)/2π (eq. 3.10), or blinn_cosmin
+    (eq. 3.34) with C = 1/max a (its Table 3.1 constant, computed)."""
+    if family == "phong":
+        return model("phong_cosmin", n=n)
+    C = float(maximal_constant([model("blinn_cosmin", n=n)], rtol=1e-9)[0].value[0])
+    return model("blinn_cosmin", n=n, C=C)
 
 
 def microfacet(name: str, alpha: float, compensation: str = "none", G2: str = "height_correlated", **fresnel):

@@ -17,7 +17,6 @@ import pandas as pd
 from brdfs.artifacts import _microfacet_energy as mf
 from brdfs.numerics.random_walk import random_walk
 from brdfs.physics.geometry import direction, light_direction
-from brdfs.physics.models import model
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
@@ -69,7 +68,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
         for level, brdf, _ in levels:
             frames += _curve(family, family, "pumped" if level else "original", brdf, theta, theta_v,
                              pumping="g1" if level else "none", level=level, n=n, alpha=alpha)
-        new = model(f"{family}_cosmin", n=n)
+        new = mf.new_model(family, n)
         frames += _curve(family, new.name, "new_model", new, theta, theta_v, n=n, alpha=alpha)
         for k, name in enumerate(("ggx", "beckmann")):
             single = mf.microfacet(name, alpha)

@@ -6,12 +6,12 @@ roughness matched to the thesis's lobes (Phong n ↔ α = √(2/(4n + 2)), Blinn
 :mod:`brdfs.artifacts._microfacet_energy`), the same with Kulla–Conty compensation, the random walk
 (variant ``walk``: all bounces; ``walk_single``: its first bounce, an independent estimate of E), the
 thesis's Phong and Blinn (n of the pumping tables) unpumped and pumped once and twice (g1, eq. 2.20, and
-g2, eq. 2.21, from the deps' albedo tables) and the new model (phong_cosmin, blinn_cosmin, c = (n+2)/2π
-resp. C = 1).
+g2, eq. 2.21, from the deps' albedo tables) and the new model (phong_cosmin with c = (n+2)/2π;
+blinn_cosmin with C = 1/max a, Table 3.1's constant, computed).
 
 Panel 2 (``quantity = loss``): 1 − a against α at ``sweep_theta_deg`` for the models that cost one engine
-call per point (microfacet single scattering, the new model, Phong), and at the tabulated α for the
-compensated and pumped ones.
+call per point (microfacet single scattering, phong_cosmin, Phong), and at the α of panel 1 for the
+compensated, pumped and Blinn models.
 
 ``quantity = max_deviation_from_walk``: max over the walk's angles of |a − a_walk| per remedy (θ of the
 maximum in ``theta_deg``); ``max_deviation_from_one``: max over the whole θ grid of |a − 1|, the walk's
@@ -59,7 +59,7 @@ def _thesis_rows(family, deps, theta, c, rtol):
                                   pumping=correction if level else "none", level=level, n=n,
                                   alpha=mf.alpha_of_n(family, n), quantity="albedo", theta_deg=theta,
                                   value=a, value_err=table.error + a * table.model_rtol))
-    new = model(f"{family}_cosmin", n=n)
+    new = mf.new_model(family, n)
     frames.append(_engine_rows(family, new, "new_model", theta, rtol, model=new.name, n=n,
                                alpha=mf.alpha_of_n(family, n)))
     return frames, n
@@ -92,10 +92,9 @@ def _sweep_rows(family, n_thesis, c):
         n = float(mf.n_of_alpha(family, alpha))
         brdfs = [] if family != "phong" else [
             (name, mf.microfacet(name, alpha), "single_scattering", np.nan) for name in ("ggx", "beckmann")]
-        if n > 0:
-            brdfs += [(f"{family}_cosmin", model(f"{family}_cosmin", n=n), "new_model", n)]
-            if family == "phong":
-                brdfs += [("phong", model("phong", n=n), "original", n)]
+        if n > 0 and family == "phong":     # blinn_cosmin's C_n needs a maximisation per n: panel 1 only
+            brdfs += [("phong_cosmin", model("phong_cosmin", n=n), "new_model", n),
+                      ("phong", model("phong", n=n), "original", n)]
         for name, brdf, variant, n_col in brdfs:
             est = albedo(brdf, theta, rtol=c["rtol"])
             frames.append(mf.rows(family=family, model=name, variant=variant, n=n_col, alpha=alpha,
