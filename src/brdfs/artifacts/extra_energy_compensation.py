@@ -13,7 +13,8 @@ Panel 2 (``quantity = loss``): 1 − a against α at ``sweep_theta_deg`` for the
 call per point (microfacet single scattering, phong_cosmin, Phong), and at the α of panel 1 for the
 compensated, pumped and Blinn models.
 
-``quantity = max_deviation_from_walk``: max over the walk's angles of |a − a_walk| per remedy (θ of the
+``quantity = max_albedo``: the new model's largest albedo on the θ grid per α of the sweep (above 1 where it
+creates energy).  ``quantity = max_deviation_from_walk``: max over the walk's angles of |a − a_walk| per remedy (θ of the
 maximum in ``theta_deg``); ``max_deviation_from_one``: max over the whole θ grid of |a − 1|, the walk's
 value for F = 1 (no path lost, all energy leaves).  ``quantity = gold_albedo``: with a gold conductor (Fresnel from n, k) the walk,
 the compensated model (Kulla–Conty's F_ms) and single scattering, a measured comparison.
@@ -100,6 +101,13 @@ def _sweep_rows(family, n_thesis, c):
             frames.append(mf.rows(family=family, model=name, variant=variant, n=n_col, alpha=alpha,
                                   G2="height_correlated" if variant == "single_scattering" else "",
                                   quantity="loss", theta_deg=theta, value=1.0 - est.value, value_err=est.error))
+            if variant == "new_model":      # where it creates energy: the largest albedo on the θ grid
+                grid = _theta_grid(c)
+                full = albedo(brdf, grid, rtol=c["rtol"])
+                k = int(np.argmax(full.value))
+                frames.append(mf.rows(family=family, model=name, variant=variant, n=n_col, alpha=alpha,
+                                      quantity="max_albedo", theta_deg=grid[k], value=full.value[k],
+                                      value_err=full.error[k]))
     return frames
 
 
