@@ -1,5 +1,5 @@
 """Random walk on the Smith microsurface (Heitz, Hanika, d'Eon, Dachsbacher 2016, "Multiple-scattering
-microfacet BSDFs with the Smith model", ACM TOG 35(4), Sec. 4 and Algorithm 1): the physical reference
+microfacet BSDFs with the Smith model", ACM TOG 35(4); the walk of their reference implementation): the physical reference
 for the energy a microfacet conductor reflects, all bounces included.
 
 The microsurface is Smith's: microfacet normals distributed by D, heights independent of the normals
@@ -8,7 +8,8 @@ travelling along w:
 
 * **next height** — above the horizon (w·N > 0) it leaves with probability G1(w, h) = C1(h)^Λ(w), else
   it meets the surface at h' = C1⁻¹(C1(h) / (1 − U)^{1/Λ(w)}); below the horizon it always meets the
-  surface, the same formula with Λ(w) = −1 − Λ(−w) (Heitz et al. 2016, eqs. 9–13);
+  surface, the same formula with Λ(w) = −1 − Λ(−w) (Heitz et al. 2016, the height sampling of the
+  microsurface's free path);
 * **scattering** — the microfacet normal H is drawn from the visible normals seen from −w
   (:meth:`~brdfs.physics.distributions.GGX.sample_visible_normal`), the ray reflected about it
   and its energy multiplied by F(−w·H).
@@ -16,7 +17,7 @@ travelling along w:
 Every path starts above the surface along −L.  A path still on the surface after ``max_order``
 scatterings is counted as lost (its number is returned; with F ≤ 1 the energy lost that way is at
 most that fraction).  The single-scattering part (order 1) of the albedo is, in expectation, the
-albedo of f_ss with the height-correlated G2 (Heitz et al. 2016, Sec. 5.1) — a test of both.
+albedo of f_ss with the height-correlated G2 (Heitz et al. 2016) — a test of both.
 """
 from __future__ import annotations
 

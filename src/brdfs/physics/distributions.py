@@ -17,7 +17,7 @@ References
 ----------
 Beckmann & Spizzichino (1963); Walter et al. (2007), "Microfacet models for refraction through
 rough surfaces", eqs. 25–27 (Beckmann D, Λ, G1); Heitz (2014), "Understanding the
-masking-shadowing function", eqs. 17, 38, 72, 86 (projected area, visible normals, Λ);
+masking-shadowing function" (projected area, visible normals, Λ of both distributions);
 Heitz & d'Eon (2014) and Heitz (2018), "Sampling the GGX distribution of visible normals".
 """
 from __future__ import annotations
@@ -50,12 +50,13 @@ def _frame_angle(w):
 
 
 class _SmithVisibleNormals:
-    """Smith's Λ on the whole sphere and the distribution of visible normals (Heitz 2014, eqs. 2, 17;
+    """Smith's Λ on the whole sphere and the distribution of visible normals (Heitz 2014;
     Heitz & d'Eon 2014), shared by :class:`Beckmann` and :class:`GGX`.
 
     For a direction w below the horizon (a ray leaving the microsurface in a random walk, seen
-    from the surface), Λ(w) = −1 − Λ(−w) (Heitz et al. 2016, Sec. 3), so that (1 + Λ(w)) cos θ_w
-    is still the projected area ∫⟨w·H⟩⁺ D(H) dω_H of the microsurface seen from w.
+    from the surface), Λ(w) = −1 − Λ(−w) (Heitz et al. 2016), so that (1 + Λ(w)) cos θ_w
+    is still the projected area ∫⟨w·H⟩⁺ D(H) dω_H of the microsurface seen from w (its value for the
+    lower hemisphere of directions).
     """
 
     def smith_lambda_signed(self, cos_theta):
@@ -66,7 +67,7 @@ class _SmithVisibleNormals:
         return np.where(c > 0, up, np.where(c < 0, down, np.inf))
 
     def projected_area(self, cos_theta):
-        """(1 + Λ(w)) cos θ_w = ∫⟨w·H⟩⁺ D(H) dω_H (Heitz 2014, eq. 17), any direction."""
+        """(1 + Λ(w)) cos θ_w = ∫⟨w·H⟩⁺ D(H) dω_H (Heitz 2014), any direction."""
         c = np.asarray(cos_theta, float)
         with np.errstate(invalid="ignore"):
             area = (1.0 + self.smith_lambda_signed(c)) * c
@@ -77,7 +78,7 @@ class _SmithVisibleNormals:
         raise NotImplementedError
 
     def visible_normal_pdf(self, w, H):
-        """D_w(H) = ⟨w·H⟩⁺ D(H) / ((1 + Λ(w)) cos θ_w) per solid angle of H (Heitz 2014, eq. 38);
+        """D_w(H) = ⟨w·H⟩⁺ D(H) / ((1 + Λ(w)) cos θ_w) per solid angle of H (Heitz 2014, the distribution of visible normals);
         = G1(w) max(0, w·H) D(H) / cos θ_w above the horizon."""
         w, H = np.asarray(w, float), np.asarray(H, float)
         wh = np.sum(w * H, axis=-1)
@@ -316,7 +317,7 @@ class GGX(_SmithVisibleNormals):
         return self.D(cos_delta) * np.asarray(cos_delta, float)
 
     def smith_lambda(self, cos_theta):
-        """Exact Λ(θ) = (−1 + √(1 + α² tan²θ))/2 (Walter et al. 2007, eq. 34; Heitz 2014, eq. 72)."""
+        """Exact Λ(θ) = (−1 + √(1 + α² tan²θ))/2 (Walter et al. 2007, eq. 34 context; Heitz 2014)."""
         c = np.asarray(cos_theta, float)
         with np.errstate(divide="ignore", invalid="ignore"):
             tan2 = (1.0 - c) * (1.0 + c) / (c * c)

@@ -6,7 +6,7 @@ Single scattering (Walter et al. 2007, eq. 20; RTR4 eq. 9.34)::
     f_ss(L, V) = F(L·H) D(H) G2(L, V) / (4 N·L N·V)
 
 with Smith's G2 either ``separable``, G2 = G1(L) G1(V), or ``height_correlated``,
-G2 = 1 / (1 + Λ(L) + Λ(V)) (Heitz 2014, eq. 99; RTR4 eq. 9.31), Λ exact for both distributions
+G2 = 1 / (1 + Λ(L) + Λ(V)) (Heitz 2014; RTR4 eq. 9.31), Λ exact for both distributions
 (:mod:`brdfs.physics.distributions`).  Written with λ(μ) = Λ(μ) μ (finite at the horizon), the
 quotient G2 / (4 N·L N·V) is 1 / (4 (μ_L μ_V + μ_V λ(μ_L) + μ_L λ(μ_V))) (height-correlated) or
 1 / (4 (μ_L + λ(μ_L)) (μ_V + λ(μ_V))) (separable): no 0/0 at grazing angles.
