@@ -22,6 +22,8 @@ from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.models import model
 
 DISTRIBUTIONS = {"ggx": GGX, "beckmann": Beckmann}
+#: The table artifact holding the Kulla–Conty E tables (read by the figures instead of recomputing).
+ENERGY_TABLE = "extra_microfacet_albedo"
 PUMPING_TABLES = {"phong": "extra_pumping_albedo_phong", "blinn": "extra_pumping_albedo_blinn"}
 COLUMNS = ["family", "model", "variant", "pumping", "level", "n", "alpha", "G2", "quantity",
            "theta_deg", "value", "value_err"]

@@ -17,10 +17,11 @@ import pandas as pd
 from brdfs.artifacts import _microfacet_energy as mf
 from brdfs.numerics.random_walk import random_walk
 from brdfs.physics.geometry import direction, light_direction
+from brdfs.physics.models.smith_microfacet import seed_energy_tables
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
-DEPS = tuple(mf.PUMPING_TABLES.values())
+DEPS = (*mf.PUMPING_TABLES.values(), mf.ENERGY_TABLE)
 #: Relative rounding of a closed-form BRDF value (powers ≤ 100 of rounded dot products, tables' polynomials).
 EVAL_RTOL = 256 * np.finfo(float).eps
 COLUMNS = ["family", "model", "variant", "pumping", "level", "n", "alpha", "theta_deg", "theta_v_deg", "phi_deg",
@@ -58,6 +59,7 @@ class _MultipleScatteringOnly:
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Rows ``family, model, variant, pumping, level, n, alpha, theta_deg, theta_v_deg, phi_deg, intensity, intensity_err``."""
     c = cfg["microfacet"]
+    seed_energy_tables(deps[mf.ENERGY_TABLE])
     theta = float(c["lobe_theta_deg"])
     step = float(c["lobe_step_deg"])
     theta_v = np.arange(0.0, 90.0, step)

@@ -26,7 +26,6 @@ f_ms is symmetric in L and V by construction.
 """
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -42,9 +41,9 @@ G2_FORMS = ("separable", "height_correlated")
 COMPENSATIONS = ("none", "kulla_conty")
 
 #: Accuracy of the E(μ) tables of the Kulla–Conty term: Chebyshev interpolation to 1e-6 relative
-#: (checked at the midpoints between nodes) on engine values at 1e-8.
+#: (checked at the midpoints between nodes) on engine values at 1e-7.
 E_TABLE_RTOL = 1.0e-6
-E_ENGINE_RTOL = 1.0e-8
+E_ENGINE_RTOL = 1.0e-7
 
 
 def energy_table_edges(alpha):
@@ -286,11 +285,16 @@ class BeckmannMicrofacet(_SmithMicrofacet):
 SMITH_MODELS = {cls.name: cls for cls in (GGXMicrofacet, BeckmannMicrofacet)}
 
 
-@functools.lru_cache(maxsize=64)
+#: E tables by (model name, α, G2): computed once per process, or read from the table artifact
+#: ``extra_microfacet_albedo`` (:func:`seed_energy_tables`) so that the figures do not recompute them.
+_ENERGY_TABLES: dict[tuple, tuple] = {}
+
+
 def energy_table(name: str, alpha: float, G2: str):
     """The single-scattering albedo E(μ) (F = 1) of model ``name`` as a Chebyshev table in μ with its
     error bound, and E_avg = 2 ∫₀¹ E(μ) μ dμ integrated from the table exactly (Gauss–Legendre of
-    degree above the interpolant's), its error 2 ∫ err μ dμ = the table's error bound.
+    degree above the interpolant's), its error 2 ∫ err μ dμ = the table's error bound.  Cached per
+    (name, α, G2).
 
     Returns
     -------
@@ -298,9 +302,36 @@ def energy_table(name: str, alpha: float, G2: str):
     """
     from brdfs.numerics.pumping import tabulate_albedo
 
-    single = SMITH_MODELS[name](alpha=alpha, G2=G2)
-    table = tabulate_albedo(single, energy_table_edges(alpha), degree=4, target_rtol=E_TABLE_RTOL, engine_rtol=E_ENGINE_RTOL)
-    return table, cosine_weighted_average(table)
+    key = (name, float(alpha), G2)
+    if key not in _ENERGY_TABLES:
+        single = SMITH_MODELS[name](alpha=alpha, G2=G2)
+        table = tabulate_albedo(single, energy_table_edges(alpha), degree=4, target_rtol=E_TABLE_RTOL,
+                                engine_rtol=E_ENGINE_RTOL)
+        _ENERGY_TABLES[key] = (table, cosine_weighted_average(table))
+    return _ENERGY_TABLES[key]
+
+
+def energy_table_frame(name: str, alpha: float, G2: str):
+    """The E table's nodes as tidy rows (``mu`` = node, ``albedo``, ``albedo_err`` = the table's bound,
+    with ``piece, x_lo, x_hi, node``), for :func:`seed_energy_tables`."""
+    table = energy_table(name, alpha, G2)[0]
+    rows = table.to_frame().rename(columns={"cos_theta": "mu"}).drop(columns=["model_rtol"])
+    return rows.assign(model=name, G2=G2, alpha=float(alpha))
+
+
+def seed_energy_tables(frame) -> int:
+    """Put the E tables stored by :func:`energy_table_frame` (rows with a ``piece``) into the cache;
+    returns how many."""
+    from brdfs.numerics.pumping import AlbedoTable
+
+    nodes = frame.dropna(subset=["piece"])
+    count = 0
+    for (name, alpha, G2), g in nodes.groupby(["model", "alpha", "G2"]):
+        table = AlbedoTable.from_frame(g.rename(columns={"mu": "cos_theta"}).assign(
+            model_rtol=0.0, piece=g["piece"].astype(int), node=g["node"].astype(int)))
+        _ENERGY_TABLES[(name, float(alpha), G2)] = (table, cosine_weighted_average(table))
+        count += 1
+    return count
 
 
 def cosine_weighted_average(table) -> Estimate:
