@@ -55,7 +55,8 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 def plot(df: pd.DataFrame, path) -> None:
     """E(μ) per α (one panel per distribution), height-correlated solid, separable dashed; E_avg in the legend."""
-    fig, axes = plotting.plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
+    fig, axes = plotting.plt.subplots(1, 2, figsize=(10, 6.0), sharey=True)
+    fig.subplots_adjust(bottom=0.38)
     averages = df[df["quantity"] == "E_avg"]
     for ax, name in zip(axes, ("ggx", "beckmann")):
         curves = df[(df["quantity"] == "E") & (df["model"] == name)]
@@ -65,6 +66,6 @@ def plot(df: pd.DataFrame, path) -> None:
             ax.plot(g["mu"], g["albedo"], "-" if G2 == "height_correlated" else "--", marker=".", label=label)
         ax.set(xlabel="μ = cos θ", ylabel="single-scattering albedo E(μ), F = 1", title=name.upper() if name == "ggx"
                else "Beckmann")
-        ax.legend(fontsize=6, loc="lower right")
+        ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
     fig.suptitle("Single-scattering albedo of microfacet conductors with Smith's G2 (engine)", fontsize=9)
     plotting.savefig(fig, path)
