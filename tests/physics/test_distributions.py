@@ -48,3 +48,13 @@ def test_the_thesis_g_star_is_a_named_variant_not_the_exact_smith_g1():
 def test_bad_roughness_is_rejected_by_name():
     with pytest.raises(ValueError, match="alpha must be positive"):
         Beckmann(-0.1)
+
+
+@pytest.mark.parametrize("mu", [0.9, 0.99, 0.999])
+def test_beckmann_lambda_keeps_relative_accuracy_where_it_underflows_the_rounding_of_one(mu):
+    """For large a = cot θ/α, Λ = e^(−a²)/(4a³√π) (1 − 3/(2a²) + 15/(4a⁴) − …) (asymptotic series of
+    erfc); the printed form (erf(a) − 1)/2 + … cancels to noise there."""
+    alpha = 0.3
+    a = mu / (alpha * np.sqrt(1 - mu * mu))
+    series = np.exp(-a * a) / (4 * a ** 3 * np.sqrt(np.pi)) * (1 - 3 / (2 * a * a) + 15 / (4 * a ** 4) - 105 / (8 * a ** 6))
+    assert float(Beckmann(alpha).smith_lambda(mu)) == pytest.approx(series, rel=1e3 / a ** 8)

@@ -74,7 +74,7 @@ def test_default_cosine_sampling_has_weight_f_cos_over_pdf(name, params):
     assert np.allclose(weight, brdf(L, V) * V[:, 2] / pdf)
 
 
-EXAMPLE_PARAMS = {"n": 10.0, "m": 0.2, "s": 2.0, "d": 0.5, "R": 1.0, "sigma0_um": 0.1, "tau_um": 1.7,
+EXAMPLE_PARAMS = {"n": 10.0, "m": 0.2, "alpha": 0.3, "s": 2.0, "d": 0.5, "R": 1.0, "sigma0_um": 0.1, "tau_um": 1.7,
                   "b": 0.5, "ratio": 0.5, "weight": lambda R: np.exp(-R)}
 
 

@@ -2,7 +2,9 @@
 
 One type per distribution, apart from the models that use it (as pbrt-v4 keeps
 ``TrowbridgeReitzDistribution`` apart from ``ConductorBxDF``): Ward, corrected Ward and Cook–Torrance
-(eqs. 2.8, 2.9, 3.35, 3.36) share :class:`Beckmann`; the lobe coordinates of the integration engine
+(eqs. 2.8, 2.9, 3.35, 3.36) share :class:`Beckmann`; the Smith microfacet models
+(:mod:`brdfs.physics.models.smith_microfacet`) use :class:`Beckmann` and :class:`GGX` (Trowbridge–Reitz)
+with the same interface, plus visible-normal sampling for both; the lobe coordinates of the integration engine
 (:mod:`brdfs.numerics.integrate.lobes`) and the grazing analysis (:mod:`brdfs.numerics.grazing`)
 use its CDF, its sampling and its Smith functions.
 
@@ -15,14 +17,15 @@ References
 ----------
 Beckmann & Spizzichino (1963); Walter et al. (2007), "Microfacet models for refraction through
 rough surfaces", eqs. 25–27 (Beckmann D, Λ, G1); Heitz (2014), "Understanding the
-masking-shadowing function", eq. 72 (Beckmann Λ).
+masking-shadowing function" (projected area, visible normals, Λ of both distributions);
+Heitz & d'Eon (2014) and Heitz (2018), "Sampling the GGX distribution of visible normals".
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import erf, erfc
+from scipy.special import erf, erfc, erfcx, ndtri
 
 from brdfs.physics.models.base import check_positive
 
@@ -36,8 +39,95 @@ def half_vector_tan2(L, V):
         return hxy2 / hz2, np.sqrt(hz2 / (hz2 + hxy2))
 
 
+# --- Smith masking on the sphere and visible normals (both distributions) ----------------------
+
+def _frame_angle(w):
+    """cos θ and the azimuth (cos φ, sin φ) of directions w (…, 3); φ = 0 where w ∥ N."""
+    w = np.asarray(w, float)
+    r = np.hypot(w[..., 0], w[..., 1])
+    safe = np.where(r > 0, r, 1.0)
+    return w[..., 2] / np.linalg.norm(w, axis=-1), np.where(r > 0, w[..., 0] / safe, 1.0), np.where(r > 0, w[..., 1] / safe, 0.0)
+
+
+class _SmithVisibleNormals:
+    """Smith's Λ on the whole sphere and the distribution of visible normals (Heitz 2014;
+    Heitz & d'Eon 2014), shared by :class:`Beckmann` and :class:`GGX`.
+
+    For a direction w below the horizon (a ray leaving the microsurface in a random walk, seen
+    from the surface), Λ(w) = −1 − Λ(−w) (Heitz et al. 2016), so that (1 + Λ(w)) cos θ_w
+    is still the projected area ∫⟨w·H⟩⁺ D(H) dω_H of the microsurface seen from w (its value for the
+    lower hemisphere of directions).
+    """
+
+    def smith_lambda_signed(self, cos_theta):
+        """Λ(w) on the whole sphere: :meth:`smith_lambda` above the horizon, −1 − Λ(−w) below."""
+        c = np.asarray(cos_theta, float)
+        up = self.smith_lambda(np.where(c > 0, c, 1.0))
+        down = -1.0 - self.smith_lambda(np.where(c < 0, -c, 1.0))
+        return np.where(c > 0, up, np.where(c < 0, down, np.inf))
+
+    def projected_area(self, cos_theta):
+        """(1 + Λ(w)) cos θ_w = ∫⟨w·H⟩⁺ D(H) dω_H (Heitz 2014), any direction."""
+        c = np.asarray(cos_theta, float)
+        with np.errstate(invalid="ignore"):
+            area = (1.0 + self.smith_lambda_signed(c)) * c
+        return np.where(c == 0, self._grazing_area(), area)
+
+    def _grazing_area(self):
+        """Projected area at θ = 90°: lim Λ(θ) cos θ."""
+        raise NotImplementedError
+
+    def visible_normal_pdf(self, w, H):
+        """D_w(H) = ⟨w·H⟩⁺ D(H) / ((1 + Λ(w)) cos θ_w) per solid angle of H (Heitz 2014, the distribution of visible normals);
+        = G1(w) max(0, w·H) D(H) / cos θ_w above the horizon."""
+        w, H = np.asarray(w, float), np.asarray(H, float)
+        wh = np.sum(w * H, axis=-1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pdf = np.maximum(wh, 0.0) * self.D(H[..., 2]) / self.projected_area(w[..., 2])
+        return np.where(wh > 0, pdf, 0.0)
+
+
+def _beckmann_visible_slope_log_cdf(x, cos_t, sin_t):
+    """log ∫_{−∞}^x (cos θ − s sin θ) e^{−s²}/√π ds (unnormalised), the marginal of the visible slopes
+    of the α = 1 Beckmann surface seen from θ in the x–z plane; scaled to avoid underflow."""
+    neg = x < 0
+    xn = np.where(neg, x, 0.0)
+    xp = np.where(neg, 0.0, x)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        low = -xn * xn + np.log(0.5 * (cos_t * erfcx(-xn) + sin_t / np.sqrt(np.pi)))
+        high = np.log(0.5 * (cos_t * erfc(-xp) + sin_t * np.exp(-xp * xp) / np.sqrt(np.pi)))
+    return np.where(neg, low, high)
+
+
+def _safeguarded_newton(x, lo, hi, target, cos_t, sin_t, iterations):
+    """Solve log F(x) = target (:func:`_beckmann_visible_slope_log_cdf`) in the bracket [lo, hi] by Newton's
+    method, a bisection step wherever Newton leaves the bracket; iterates only the unconverged entries."""
+    x, lo, hi = (np.array(np.broadcast_to(v, np.broadcast_shapes(x.shape, lo.shape, hi.shape, target.shape)),
+                          float).ravel() for v in (x, lo, hi))
+    shape = np.broadcast_shapes(target.shape, cos_t.shape)
+    target, cos_t, sin_t = (np.broadcast_to(v, shape).ravel() for v in (target, cos_t, sin_t))
+    active = np.arange(x.size)
+    for _ in range(iterations):
+        if active.size == 0:
+            break
+        xa, c, s = x[active], cos_t[active], sin_t[active]
+        log_f = _beckmann_visible_slope_log_cdf(xa, c, s)
+        g = log_f - target[active]
+        lo[active] = np.where(g < 0, xa, lo[active])
+        hi[active] = np.where(g < 0, hi[active], xa)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            log_density = np.log(np.maximum(c - xa * s, 0.0)) - xa * xa - 0.5 * np.log(np.pi)
+            step = g / np.exp(log_density - log_f)
+        newton = xa - step
+        ok = np.isfinite(newton) & (newton > lo[active]) & (newton < hi[active])
+        x[active] = np.where(ok, newton, 0.5 * (lo[active] + hi[active]))
+        moved = np.where(ok, np.abs(step), hi[active] - lo[active])
+        active = active[moved > 1e-14 * np.maximum(1.0, np.abs(x[active]))]
+    return x.reshape(shape)
+
+
 @dataclass(frozen=True)
-class Beckmann:
+class Beckmann(_SmithVisibleNormals):
     """Beckmann distribution, D = exp(−tan²δ/α²) / (π α² cos⁴δ), roughness α (the thesis's m).
 
     >>> d = Beckmann(0.3)
@@ -97,17 +187,32 @@ class Beckmann:
 
     # --- Smith masking -------------------------------------------------------------------------
     def smith_lambda(self, cos_theta):
-        """Exact Λ(θ) = (erf(a) − 1)/2 + exp(−a²)/(2a√π), a = 1/(α tan θ) (Walter et al. 2007, eq. 27 context;
-        Heitz 2014, eq. 72); 0 at normal incidence."""
+        """Exact Λ(θ) = (erf(a) − 1)/2 + exp(−a²)/(2a√π), a = 1/(α tan θ) (Heitz 2014, eq. 72);
+        0 at normal incidence.
+
+        Evaluated as e^(−a²)/2 · (1/(a√π) − erfcx(a)) with the scaled erfcx, so that Λ keeps its
+        relative accuracy where it falls below the rounding of 1 (large a): the two terms of the
+        printed form cancel there.
+        """
         c = np.asarray(cos_theta, float)
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             a = c / (self.alpha * np.sqrt(np.maximum((1.0 - c) * (1.0 + c), 0.0)))
-            lam = 0.5 * (erf(a) - 1.0) + np.exp(-a * a) / (2.0 * a * np.sqrt(np.pi))
+            lam = 0.5 * np.exp(-a * a) * (1.0 / (a * np.sqrt(np.pi)) - erfcx(a))
         return np.where(c >= 1.0, 0.0, np.where(c > 0, lam, np.inf))
 
     def smith_g1(self, cos_theta):
         """Exact Smith masking G1 = 1/(1 + Λ) of a Beckmann surface."""
         return 1.0 / (1.0 + self.smith_lambda(cos_theta))
+
+    def smith_lambda_cos(self, cos_theta):
+        """λ(μ) = Λ(θ) cos θ = α sin θ e^{−a²}/(2√π) − cos θ erfc(a)/2, a = cot θ/α: finite at the
+        horizon (α/(2√π)), 0 at normal incidence; G1 = μ/(μ + λ(μ))."""
+        c = np.clip(np.asarray(cos_theta, float), 0.0, 1.0)
+        s = np.sqrt((1.0 - c) * (1.0 + c))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            a = c / (self.alpha * s)
+            lam = self.alpha * s * np.exp(-a * a) / (2.0 * np.sqrt(np.pi)) - 0.5 * c * erfc(a)
+        return np.where(s > 0, lam, 0.0)
 
     def smith_g1_thesis(self, cos_theta):
         """G*(x) as the thesis prints it (eq. 1.38): with h = x²/(2α²(1 − x²)),
@@ -121,3 +226,144 @@ class Beckmann:
             h = x * x / (2 * self.alpha ** 2 * (1 - x * x))
             g = np.sqrt(np.pi * h) * (2 - erfc(np.sqrt(h)))
         return np.where(x >= 1.0, 1.0, g / (g + 1))
+
+    # --- visible normals (Heitz & d'Eon 2014) ------------------------------------------------
+    def _grazing_area(self):
+        return self.alpha / (2.0 * np.sqrt(np.pi))
+
+    def sample_visible_normal(self, w, u1, u2, iterations=100):
+        """Normals H with density :meth:`visible_normal_pdf` (w, H), any direction w off the horizon.
+
+        Method (Heitz & d'Eon 2014, "Importance sampling microfacet-based BSDFs using the distribution
+        of visible normals", Sec. 4 and appendix; Jakob's numerical inversion in Mitsuba): stretch w
+        to the α = 1 surface, draw the slope x̃ along w's azimuth from its visible marginal
+        ∝ (cos θ − x̃ sin θ)⁺ e^{−x̃²} by Newton's method on the log-CDF safeguarded by bisection
+        (to 1e-14; at most 100 steps, each halving the bracket of width ≤ 60 if Newton leaves it), the slope ỹ across it from e^{−ỹ²} (independent), rotate by φ,
+        unstretch by α and take H ∝ (−x, −y, 1).
+        """
+        w = np.asarray(w, float)
+        a = self.alpha
+        ws = np.stack([a * w[..., 0], a * w[..., 1], w[..., 2]], -1)
+        cos_t, cos_p, sin_p = _frame_angle(ws)
+        sin_t = np.sqrt(np.maximum((1.0 - cos_t) * (1.0 + cos_t), 0.0))
+        with np.errstate(divide="ignore"):
+            cot = np.where(sin_t > 0, cos_t / np.where(sin_t > 0, sin_t, 1.0), np.inf)
+        hi = np.minimum(cot, 30.0)
+        lo = np.minimum(hi, 0.0) - 30.0
+        u1 = np.clip(np.asarray(u1, float), 1e-300, 1.0)
+        target = np.log(u1) + _beckmann_visible_slope_log_cdf(hi, cos_t, sin_t)
+        x1 = _safeguarded_newton(np.where(np.isfinite(cot), np.minimum(0.0, hi - 1.0), 0.0), lo, hi, target,
+                                 cos_t, sin_t, iterations)
+        y1 = ndtri(np.clip(np.asarray(u2, float), 1e-300, 1.0 - 1e-16)) / np.sqrt(2.0)
+        x = a * (cos_p * x1 - sin_p * y1)
+        y = a * (sin_p * x1 + cos_p * y1)
+        H = np.stack([-x, -y, np.ones_like(x)], -1)
+        return H / np.linalg.norm(H, axis=-1, keepdims=True)
+
+
+@dataclass(frozen=True)
+class GGX(_SmithVisibleNormals):
+    """Trowbridge–Reitz (GGX) distribution, D = α² / (π cos⁴δ (α² + tan²δ)²) (Walter et al. 2007, eq. 33).
+
+    >>> d = GGX(0.3)
+    >>> round(float(d.cdf(d.tan_of_cdf(0.25))), 12)
+    0.25
+    >>> [round(float(GGX(1.0).D(c)) * np.pi, 14) for c in (0.3, 0.9)]     # α = 1: D = 1/π, uniform
+    [1.0, 1.0]
+    """
+
+    alpha: float
+    name = "ggx"
+
+    def __post_init__(self):
+        check_positive("alpha", self.alpha)
+
+    def slope_weight(self, tan2):
+        """(1 + tan²δ/α²)⁻², the GGX weight (1 at δ = 0)."""
+        return (1.0 + np.asarray(tan2, float) / self.alpha ** 2) ** -2
+
+    def D(self, cos_delta):
+        """D(δ) = α² / (π (α² cos²δ + sin²δ)²); zero below the horizon."""
+        c = np.asarray(cos_delta, float)
+        a2 = self.alpha ** 2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            d = a2 / (np.pi * (a2 * c * c + (1.0 - c) * (1.0 + c)) ** 2)
+        return np.where(c > 0, d, 0.0)
+
+    def cdf(self, tan_delta):
+        """t(δ) = 2π ∫₀^δ D cos δ' sin δ' dδ' = tan²δ / (α² + tan²δ)."""
+        t2 = np.asarray(tan_delta, float) ** 2
+        with np.errstate(invalid="ignore"):
+            return np.where(np.isinf(t2), 1.0, t2 / (self.alpha ** 2 + t2))
+
+    def tan_of_cdf(self, t):
+        """tan δ = α √(t / (1 − t)) (Walter et al. 2007, eq. 35)."""
+        t = np.asarray(t, float)
+        with np.errstate(divide="ignore"):
+            return self.alpha * np.sqrt(t / (1.0 - t))
+
+    def solid_angle_per_t(self, t, cos_delta):
+        """sin δ dδ/dt = 1/(2π D cos δ) = α² cos³δ / (2 (1 − t)²)."""
+        return self.alpha ** 2 * cos_delta ** 3 / (2.0 * (1.0 - t) ** 2)
+
+    #: Rational in cos δ: a few ulps (no exponential, no power of a rounded dot product).
+    rounding = 8.0
+
+    def sample_normal(self, u1, u2):
+        """Microfacet normals H with density D(H) (N·H) from uniform (u1, u2); shape (..., 3)."""
+        t = np.asarray(u1, float)
+        cos_d = np.sqrt((1.0 - t) / (1.0 - t + self.alpha ** 2 * t))
+        sin_d = np.sqrt(np.maximum(self.alpha ** 2 * t / (1.0 - t + self.alpha ** 2 * t), 0.0))
+        phi = 2.0 * np.pi * np.asarray(u2, float)
+        return np.stack([sin_d * np.cos(phi), sin_d * np.sin(phi), cos_d], -1)
+
+    def normal_pdf(self, cos_delta):
+        """Density of :meth:`sample_normal` per solid angle of H: D(H) (N·H)."""
+        return self.D(cos_delta) * np.asarray(cos_delta, float)
+
+    def smith_lambda(self, cos_theta):
+        """Exact Λ(θ) = (−1 + √(1 + α² tan²θ))/2 (Walter et al. 2007, eq. 34 context; Heitz 2014)."""
+        c = np.asarray(cos_theta, float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tan2 = (1.0 - c) * (1.0 + c) / (c * c)
+            x = self.alpha ** 2 * tan2
+            lam = 0.5 * x / (1.0 + np.sqrt(1.0 + x))          # (√(1+x) − 1)/2 without cancellation
+        return np.where(c >= 1.0, 0.0, np.where(c > 0, lam, np.inf))
+
+    def smith_g1(self, cos_theta):
+        """Exact Smith masking G1 = 1/(1 + Λ) = 2/(1 + √(1 + α² tan²θ)) of a GGX surface."""
+        return 1.0 / (1.0 + self.smith_lambda(cos_theta))
+
+    def smith_lambda_cos(self, cos_theta):
+        """λ(μ) = Λ(θ) cos θ = (√(μ² + α² sin²θ) − μ)/2 = α² sin²θ / (2 (√(μ² + α² sin²θ) + μ)):
+        finite at the horizon (α/2); G1 = μ/(μ + λ(μ))."""
+        c = np.clip(np.asarray(cos_theta, float), 0.0, 1.0)
+        s2 = (1.0 - c) * (1.0 + c)
+        a2 = self.alpha ** 2
+        return 0.5 * a2 * s2 / (np.sqrt(c * c + a2 * s2) + c)
+
+    def _grazing_area(self):
+        return self.alpha / 2.0
+
+    def sample_visible_normal(self, w, u1, u2):
+        """Normals H with density :meth:`visible_normal_pdf` (w, H) for any direction w (…, 3) off the
+        horizon, by Heitz (2018), "Sampling the GGX distribution of visible normals", JCGT 7(4),
+        listing 1: a uniform point of the projected, stretched hemisphere, lifted and unstretched.
+        Below the horizon the projection is the half disk minus the half ellipse (s < 1/2)."""
+        w = np.asarray(w, float)
+        a = self.alpha
+        vh = np.stack([a * w[..., 0], a * w[..., 1], w[..., 2]], -1)
+        vh = vh / np.linalg.norm(vh, axis=-1, keepdims=True)
+        lensq = vh[..., 0] ** 2 + vh[..., 1] ** 2
+        inv = np.where(lensq > 0, 1.0 / np.sqrt(np.where(lensq > 0, lensq, 1.0)), 0.0)
+        t1_vec = np.where((lensq > 0)[..., None], np.stack([-vh[..., 1] * inv, vh[..., 0] * inv, 0 * inv], -1),
+                          np.array([1.0, 0.0, 0.0]))
+        t2_vec = np.cross(vh, t1_vec)
+        r, phi = np.sqrt(np.asarray(u1, float)), 2.0 * np.pi * np.asarray(u2, float)
+        t1, t2 = r * np.cos(phi), r * np.sin(phi)
+        s = 0.5 * (1.0 + vh[..., 2])
+        t2 = (1.0 - s) * np.sqrt(np.maximum(1.0 - t1 * t1, 0.0)) + s * t2
+        nh = (t1[..., None] * t1_vec + t2[..., None] * t2_vec
+              + np.sqrt(np.maximum(1.0 - t1 * t1 - t2 * t2, 0.0))[..., None] * vh)
+        ne = np.stack([a * nh[..., 0], a * nh[..., 1], np.maximum(nh[..., 2], 0.0)], -1)
+        return ne / np.linalg.norm(ne, axis=-1, keepdims=True)

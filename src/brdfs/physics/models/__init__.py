@@ -38,3 +38,8 @@ for _patch_model in (PatchBasic, PatchMixture, PatchExponential, PatchElliptical
     register(_patch_model)
 
 __all__ = ["BRDF", "MODELS", "model", "register", "phong_constant", *[c.__name__ for c in MODELS.values()]]
+
+from brdfs.physics.models.smith_microfacet import BeckmannMicrofacet, GGXMicrofacet  # noqa: E402
+
+for _smith_model in (GGXMicrofacet, BeckmannMicrofacet):
+    register(_smith_model)
