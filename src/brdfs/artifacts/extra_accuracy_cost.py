@@ -16,7 +16,7 @@ SECTION = "accuracy_cost"
 MARKERS = dict(zip(METHODS, "os^x"))
 
 
-@figure(NAME, config=(SECTION,))
+@figure(NAME, config=(SECTION,), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """``case, model, parameter, parameter_value, theta_deg, method, setting, evaluations, albedo,
     albedo_err, exact, true_error``."""

@@ -55,7 +55,7 @@ def _evaluate(brdf, theta, method, n_theta, n_phi, n_samples, seq, tol):
     return float(est.value), float(est.error), float(stderr)
 
 
-@table("extra_divergence_readings", config=("grazing",))
+@table("extra_divergence_readings", config=("grazing",), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Every reading at every printed angle.
 

@@ -12,7 +12,7 @@ from brdfs.pipeline.registry import figure
 from brdfs.numerics.grazing import approach_angles, asymptotic_law
 
 
-@figure("extra_grazing_divergence", config=("grazing",))
+@figure("extra_grazing_divergence", config=("grazing",), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Albedo curves with the law's exponent, constant (and its error) and value at each angle.
 

@@ -23,7 +23,7 @@ def incidence_grid(step_deg: float, extra_deg) -> np.ndarray:
     return np.unique(np.concatenate([uniform, np.asarray(extra_deg, float)]))
 
 
-@figure("extra_he_torrance_albedo", config=("he_torrance",))
+@figure("extra_he_torrance_albedo", config=("he_torrance",), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Albedo of each term on the incidence grid.
 

@@ -9,7 +9,7 @@ from brdfs.pipeline.registry import figure
 from brdfs.numerics.grazing import incidence_grid
 
 
-@figure("fig_3_4_albedo_with_new_model", config=("grazing",))
+@figure("fig_3_4_albedo_with_new_model", config=("grazing",), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """The curves, columns as Figure 2.1's."""
     g = cfg["grazing"]
