@@ -93,7 +93,7 @@ MALFORMED = [
     ("grazing.fig_2_1_models.1.model", "torrance"),
     ("grazing.divergence_models.0.model", "Phong"),
     ("grazing.stability.models.0", "lambert"),
-    ("accuracy_cost.cases.0.case", "blinn_at_90"),
+    ("work_precision.cases.0.model", "blinn_at_90"),
     # empty lists
     ("blinn_cn.n", []),
     ("ward_cmax.m", []),

@@ -34,7 +34,7 @@ from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import FRAME as SCATTERING_FRAME
 from brdfs.numerics.integrate.scattering import albedo_scattering
 from brdfs.physics.geometry import light_direction
-from brdfs.physics.models.base import counting_evaluations
+from brdfs.physics.models.base import BRDF, counting_evaluations
 
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-14
@@ -60,9 +60,11 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
     e.g. He–Torrance's specular term; zero for most models)."""
     value, error = np.zeros(theta.size), np.zeros(theta.size)
     status = np.full(theta.size, CONVERGED, dtype=object)
-    kirchhoff = np.array([m.lobe.frame == SCATTERING_FRAME for m in models], bool)
-    one_d = np.array([closed_form_azimuth and azimuthal.supports(m) for m in models], bool) & ~kirchhoff
-    schemes = ((one_d, azimuthal.albedo_many), (kirchhoff, albedo_scattering), (~kirchhoff & ~one_d, albedo_many))
+    own = np.array([type(m).albedo_estimate is not BRDF.albedo_estimate for m in models], bool)
+    kirchhoff = np.array([not o and m.lobe.frame == SCATTERING_FRAME for m, o in zip(models, own)], bool)
+    one_d = np.array([closed_form_azimuth and azimuthal.supports(m) for m in models], bool) & ~kirchhoff & ~own
+    schemes = ((own, _own_routes), (one_d, azimuthal.albedo_many), (kirchhoff, albedo_scattering),
+               (~kirchhoff & ~one_d & ~own, albedo_many))
     closed_form_nodes = 0          # the 1-D route evaluates a closed form, not the BRDF: count its nodes
     for chosen, scheme in schemes:
         if chosen.any():
@@ -80,6 +82,18 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
         value[rows] += delta.value
         error[rows] += delta.error
     return Estimate(value, error, closed_form_nodes, status.astype(str))
+
+
+def _own_routes(models, theta, rtol, atol):
+    """The models' own albedo routes (``albedo_estimate``), one call per distinct model."""
+    value, error = np.zeros(theta.size), np.zeros(theta.size)
+    groups: dict[int, list[int]] = {}
+    for i, m in enumerate(models):
+        groups.setdefault(id(m), []).append(i)
+    for rows in groups.values():
+        est = models[rows[0]].albedo_estimate(theta[rows], rtol, atol)
+        value[rows], error[rows] = est.value, est.error
+    return Estimate(value, error)
 
 
 def _engine(model, theta, rtol, atol):

@@ -45,7 +45,7 @@ EXTRA_CHAPTERS = {
     "extra_grazing_divergence": 3,
     "extra_divergence_readings": 3,
     "extra_ward_in_range": 3,
-    "extra_accuracy_cost": None,
+    "extra_work_precision": None,
     "extra_stability_grazing": None,
 }
 

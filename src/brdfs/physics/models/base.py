@@ -12,6 +12,8 @@ Shape of the integrand (read by the integration engine, :mod:`brdfs.numerics.int
 * ``nv_levels(nl)``: values of N·V where the integrand has a kink (e.g. N·V = N·L for the
   max(N·L, N·V) of the new model).  The horizon N·V = 0 is always added by the engine.
 * ``lh_levels(nl, cos_delta)``: kinks given as levels of L·H (half-vector frame only).
+* ``albedo_estimate(theta_deg, rtol, atol)``: the model's own route to its albedo where it has
+  one (the patch models integrate lens areas, ch. 4), which the albedo engine takes instead.
 * ``delta_albedo(theta_deg)``: the albedo of a Dirac part of the BRDF (zero by default), which
   the albedo adds to the integral of the density (He–Torrance's specular term).
 
@@ -125,6 +127,11 @@ class BRDF:
         """Albedo of the Dirac part of the BRDF: none by default."""
         zero = np.zeros(np.shape(theta_deg))
         return Estimate(zero, zero)
+
+    def albedo_estimate(self, theta_deg, rtol, atol) -> Estimate | None:
+        """The model's own route to its albedo, where it has one cheaper than integrating the BRDF
+        over the hemisphere (the patch models: areas of lenses, ch. 4); None by default."""
+        return None
 
     # --- closed forms -------------------------------------------------------------------------
     def grazing_law(self) -> GrazingLaw | None:

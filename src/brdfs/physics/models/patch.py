@@ -2,8 +2,8 @@
 
 m(L, V) = |h − (N·h)N| with h = L + V (eq. 4.1) is symmetric in L and V, so every model here is
 reciprocal (section 4.2.1).  The geometry, profiles and constants are in :mod:`brdfs.numerics.patch_geometry`;
-the albedos of these models come from there too (closed-form circle intersections), not from
-the generic hemisphere engine.
+the albedos of these models come from there too (closed-form circle intersections, the verb
+``albedo_estimate`` that the albedo engine takes), not from the generic hemisphere integration.
 """
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from brdfs.numerics import patch_geometry as patch
-from brdfs.numerics.integrate.gauss_kronrod import integrate
+from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
 from brdfs.physics.models.base import BRDF, check_positive
 
 
@@ -51,6 +51,12 @@ class PatchBasic(BRDF):
     def _eval(self, L, V, nl, nv):
         return np.where(projected_distance(L, V) <= self.R, self.C, 0.0)
 
+    def albedo_estimate(self, theta_deg, rtol, atol):
+        """Lens area over patch area (eq. 4.8), scaled by C/c(R)."""
+        est = patch.basic_albedo(theta_deg, self.R)
+        scale = self.C / float(patch.basic_constant(self.R))
+        return Estimate(est.value * scale, est.error * scale)
+
 
 @dataclass(frozen=True)
 class PatchExponential(BRDF):
@@ -62,6 +68,10 @@ class PatchExponential(BRDF):
 
     def __post_init__(self):
         _default_constant(self, patch.ExponentialProfile(self.s).c_max)
+
+    def albedo_estimate(self, theta_deg, rtol, atol):
+        """∫ p(R) a_R(L) dR over the lens areas (eqs. 4.22, 4.24)."""
+        return patch.mixture_albedo(patch.ExponentialProfile(self.s), theta_deg, self.C, rtol, atol)
 
     def _eval(self, L, V, nl, nv):
         return self.C * np.exp(-self.s * projected_distance(L, V))
@@ -84,6 +94,10 @@ class GeneralizedLambertian(BRDF):
 
     def _eval(self, L, V, nl, nv):
         return self.C * patch.GeneralizedLambertProfile(self.d, self.m_clip).xi(projected_distance(L, V))
+
+    def albedo_estimate(self, theta_deg, rtol, atol):
+        """∫ p(R) a_R(L) dR + p_Diffuse over the lens areas (eqs. 4.22, 4.24)."""
+        return patch.mixture_albedo(patch.GeneralizedLambertProfile(self.d, self.m_clip), theta_deg, self.C, rtol, atol)
 
 
 @dataclass(frozen=True)
