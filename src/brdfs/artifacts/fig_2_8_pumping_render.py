@@ -33,7 +33,7 @@ def panels(cfg: dict) -> list:
     return out
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapters_2_3")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

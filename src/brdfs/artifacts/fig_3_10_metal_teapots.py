@@ -16,7 +16,7 @@ def panels(cfg: dict) -> list:
     return ms.row_of_objects(cfg, s['new_model_metals']['fig_3_10'], ms.describe(s['new_model_metals']['fig_3_10']), ms.three_spheres())
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapters_2_3")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

@@ -16,7 +16,7 @@ def panels(cfg: dict) -> list:
     return ms.tank_and_spheres(cfg, s['patch_exponential']['fig_4_16'][:1] + s['patch_exponential']['fig_4_16'][2:], 'patch_exponential', 'tank, plate, spheres: ' + ms.describe(s['patch_exponential']['fig_4_16'], 'patch_exponential'), base=s['patch_exponential']['fig_4_16'][1])
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapter_4")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

@@ -16,7 +16,7 @@ def panels(cfg: dict) -> list:
     return ms.row_of_objects(cfg, s['patch_exponential']['fig_4_17'], 'cube, cylinder, sphere: ' + ms.describe(s['patch_exponential']['fig_4_17'], 'patch_exponential'), [('cube', shapes.Box((-2.0, -0.3, 0.6), (0.6, 0.6, 0.6))), ('cylinder', shapes.Cylinder((0.0, 0.5, 0.0), 0.6, 1.3)), ('sphere', rf.sphere(2.0, -0.3, 0.7))], model='patch_exponential')
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapter_4")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

@@ -30,7 +30,7 @@ def panels(cfg: dict) -> list:
                      background=0.0, reference=labels, aspect=3.0)]
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 1}, batch="renders")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 1}, batch="renders_chapter_4")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg), shared_scale=False)
 
