@@ -130,15 +130,39 @@ def _psi_breakpoints(model, mu, st, full):
         if 0 < radius < st:                     # c outside the circle: tangent rays exist
             a = np.arcsin(radius / st)
             pts.append([a, top - a] if full else [a])
+    for radius in _constant_radii(model):       # the ray that ends where the circle r = R meets the rim
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = (radius * radius - mu * mu) / (2 * radius * st)
+        if -1 < x < 1:
+            a = np.arccos(x)
+            pts.append([a, top - a] if full else [a])
     out = np.unique(np.concatenate([np.atleast_1d(np.asarray(p, float)) for p in pts]))
     return out[(out >= 0) & (out <= top)]
+
+
+def _constant_radii(model):
+    """Kinks at a fixed r = |L_xy + V_xy| (patch radii, He–Torrance's radial scales)."""
+    lobe = _lobe(model)
+    radii = list(lobe.radial_levels()) if getattr(lobe, "frame", None) == "scattering" else []
+    one = np.ones(1)
+    if getattr(model, "name", "") != "patch_elliptical":
+        radii += [float(r[0]) for r in _patch_kinks(model, one, 0 * one)]
+    return radii
+
+
+def _lobe(model):
+    """The model's lobe, or None (the patch models declare none)."""
+    try:
+        return model.lobe
+    except NotImplementedError:
+        return None
 
 
 def _level_radii(model, mu):
     """Radii |p| = √(1 − c²) of the model's N·V level circles (and of N·V = N·L)."""
     levels = [float(np.broadcast_to(c, ())) for c in model.nv_levels(np.float64(mu))] + [float(mu)]
-    lobe = getattr(model, "lobe", None)
-    if lobe is not None and getattr(lobe, "frame", None) == "scattering":
+    lobe = _lobe(model)
+    if getattr(lobe, "frame", None) == "scattering":
         levels += list(lobe.nv_levels())
     return [float(np.sqrt(max(1.0 - c * c, 0.0))) for c in levels if 0.0 < c < 1.0]
 
@@ -206,7 +230,7 @@ def _radial_kinks(model, mu, st, cos_psi, sin_psi, rho):
     a = st * cos_psi                    # c·u = −a: |p|² = sin²θ − 2 a r + r²
     out = []
     levels = [np.broadcast_to(c, mu.shape) for c in model.nv_levels(mu)] + [mu]
-    lobe = getattr(model, "lobe", None)
+    lobe = _lobe(model)
     frame = getattr(lobe, "frame", None)
     if frame == "scattering":
         levels += [np.full(mu.shape, c) for c in lobe.nv_levels()]

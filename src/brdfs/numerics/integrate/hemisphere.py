@@ -85,8 +85,8 @@ def _radial_breakpoints(model, mu, st, theta_deg):
 #: δ ≈ 15°–25° for a Beckmann lobe of m = 0.1) is squeezed into 1 − t < 1e-3, where a single
 #: Gauss–Kronrod interval ending at t = 1 places none of its nodes: a kink or a dip there was
 #: accepted as flat (Cook–Torrance, m = 0.1, 22°–48°: 6e-6 missed at a reported 2e-12).
-TAIL = 10.0 ** -np.arange(2.0, 17.0, 2.0)
-_SCAN = 4096
+TAIL = 10.0 ** -np.arange(3.0, 13.0, 3.0)
+_SCAN = 1024
 
 
 def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):

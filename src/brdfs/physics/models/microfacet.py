@@ -107,6 +107,10 @@ class CookTorrance(_BeckmannFamily):
             return g_smith_beckmann(nl, nv, self.m)
         return 1.0
 
+    def nv_levels(self, nl):
+        """N·V = N·L: where eq. 2.10's minimum switches between its masking and shadowing terms."""
+        return (nl,) if self.G == "torrance_sparrow" else ()
+
     def lh_levels(self, nl, cos_delta):
         """Where the shadowing (LH = 2 NH NL) and masking (LH (4 NH² − 1) = 2 NH NL) terms of eq. 2.10 reach 1."""
         if self.G != "torrance_sparrow":
