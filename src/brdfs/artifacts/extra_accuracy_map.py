@@ -137,12 +137,13 @@ def summary(df: pd.DataFrame) -> pd.DataFrame:
 
 def plot(df: pd.DataFrame, path) -> None:
     """One heat map per family: log10(|engine − reference| / reported error) over (θ, parameter);
-    dishonest cells ringed red, failed cells black, cells where the reference is not the more
-    accurate hatched grey."""
+    dishonest cells ringed red, failed cells black, cells over the tolerance marked orange, cells
+    where the reference is not the more accurate crossed grey."""
     families = list(dict.fromkeys(df["family"]))
     cols = 3
     rows = -(-len(families) // cols)
-    fig, axes = plotting.plt.subplots(rows, cols, figsize=(5.0 * cols, 2.3 * rows + 0.6), squeeze=False)
+    fig, axes = plotting.plt.subplots(rows, cols, figsize=(5.0 * cols, 2.9 * rows + 0.8), squeeze=False)
+    fig.subplots_adjust(hspace=1.0, wspace=0.25, right=0.86)
     theta = np.unique(df["theta_deg"])
     image = None
     for ax, family in zip(axes.ravel(), families):
@@ -151,7 +152,7 @@ def plot(df: pd.DataFrame, path) -> None:
         table = sub.pivot_table(index="parameter_value", columns="theta_deg", values="ratio", aggfunc="first")
         table = table.reindex(index=values, columns=theta)
         data = np.log10(np.clip(table.to_numpy(float), 1e-6, 1e6))
-        image = ax.imshow(data, aspect="auto", origin="lower", cmap="viridis", vmin=-6, vmax=2,
+        image = ax.imshow(data, aspect="auto", origin="lower", cmap="RdYlGn_r", vmin=-3, vmax=1,
                           extent=(-0.5, theta.size - 0.5, -0.5, values.size - 0.5), interpolation="nearest")
         pos = {t: i for i, t in enumerate(theta)}
         rowpos = {v: i for i, v in enumerate(values)}
@@ -162,7 +163,9 @@ def plot(df: pd.DataFrame, path) -> None:
             elif r.dishonest:
                 ax.plot(x, y, "o", mfc="none", mec="red", ms=7, mew=1.5)
             elif not r.judged:
-                ax.plot(x, y, "x", color="0.6", ms=4)
+                ax.plot(x, y, "x", color="0.4", ms=4)
+            if not r.failed and not r.meets_tolerance:
+                ax.plot(x, y, "^", mfc="none", mec="darkorange", ms=8, mew=1.2)
         ticks = np.linspace(0, theta.size - 1, min(theta.size, 8)).round().astype(int)
         ax.set_xticks(ticks)
         ax.set_xticklabels([f"{theta[i]:.6g}" for i in ticks], fontsize=6, rotation=45)
@@ -177,8 +180,9 @@ def plot(df: pd.DataFrame, path) -> None:
     for ax in axes.ravel()[len(families):]:
         ax.set_visible(False)
     if image is not None:
-        bar = fig.colorbar(image, ax=axes.ravel().tolist(), shrink=0.6)
+        bar = fig.colorbar(image, cax=fig.add_axes([0.89, 0.3, 0.015, 0.4]))
         bar.set_label("log10 |engine − reference| / engine's reported error")
-    fig.suptitle("Accuracy map: engine against the projected-disk reference (red ring: outside the combined "
-                 "errors; black: NaN; grey x: reference not more accurate)", fontsize=9)
+    fig.suptitle("Accuracy map: engine against the projected-disk reference (red ring: outside the combined errors;\n"
+                 "black square: NaN; orange triangle: engine error above the tolerance; grey x: reference not sharper)",
+                 fontsize=9)
     plotting.savefig(fig, path)
