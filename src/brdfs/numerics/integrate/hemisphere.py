@@ -101,7 +101,7 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
 
     There the φ-integral — which the azimuthal breakpoints make smooth in φ — has a kink as a
     function of t (Torrance–Sparrow's masking and shadowing switches of eq. 2.10).  The levels
-    depend on δ, so the radii are found numerically: sign changes on a scan uniform in t and in δ,
+    depend on δ, so the radii are found numerically: sign changes on a scan uniform in t and in log(1 − t),
     then bisection to rounding."""
     lobe = model.lobe
     if lobe.frame != "half" or t_max <= 0:
@@ -109,10 +109,8 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     probe = model.lh_levels(mu, np.ones(1))
     if len(probe) == 0:
         return np.empty(0)
-    cb_max, _ = lobe.angle(np.array([min(t_max, 0.5 + 0.5 * np.nextafter(1.0, 0))]))
-    beta_max = float(np.arccos(cb_max[0]))
+    # uniform in t (the lobe's core) and geometric in 1 − t (its tail, where the switches sit)
     scan = np.unique(np.concatenate([np.linspace(0.0, t_max, _SCAN),
-                                     lobe.t_of(np.linspace(0.0, beta_max, _SCAN)),
                                      t_max * (1.0 - np.geomspace(1e-16, 1.0, _SCAN))]))
     scan = scan[(scan >= 0) & (scan <= t_max)]
 
