@@ -28,7 +28,7 @@ import numpy as np
 from scipy.integrate import IntegrationWarning, dblquad
 
 from brdfs.numerics.integrate import azimuthal
-from brdfs.numerics.integrate.disk import disk_albedo
+from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import FRAME as SCATTERING_FRAME
@@ -128,11 +128,10 @@ def _per_angle(one):
     return method
 
 
-@_per_angle
 def _disk(model, theta, rtol, atol):
-    """The projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo`)."""
-    est = disk_albedo(model, theta, rtol=max(rtol, 1e-13))
-    return float(est.value), float(est.error)
+    """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`)."""
+    est = disk_albedo_many([model] * theta.size, theta, rtol=rtol, atol=atol)
+    return Estimate(est.value, est.error, status=_status(est.value, est.error, rtol, atol))
 
 
 def _grid_sum(model, theta, n):

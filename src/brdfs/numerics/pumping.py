@@ -343,6 +343,14 @@ class Pumped(BRDF):
         return self.base.lobe
 
     @property
+    def sqrt_at_horizon(self):
+        return self.base.sqrt_at_horizon
+
+    def lh_levels(self, nl, cos_delta):
+        """The base model's L·H kinks (g depends on N·L and N·V only)."""
+        return self.base.lh_levels(nl, cos_delta)
+
+    @property
     def params(self):
         return self.base.params
 

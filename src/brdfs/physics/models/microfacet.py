@@ -132,6 +132,10 @@ class CookTorrance(_BeckmannFamily):
         """With Smith's G the BRDF is singular at N·L = 0; a(90°) integrates :class:`SmithGrazingLimit`."""
         return SmithGrazingLimit(self.m, self.C) if self.G == "smith" else self
 
+    def nv_levels(self, nl):
+        """N·V = N·L: where eq. 2.10's minimum switches between its masking and shadowing terms."""
+        return (nl,) if self.G == "torrance_sparrow" else ()
+
     def lh_levels(self, nl, cos_delta):
         """Where the shadowing (LH = 2 NH NL) and masking (LH (4 NH² − 1) = 2 NH NL) terms of eq. 2.10 reach 1."""
         if self.G != "torrance_sparrow":
