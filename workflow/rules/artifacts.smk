@@ -14,7 +14,7 @@ rule artifact:
         artifact=lambda wc: wc.name,
         config=lambda wc: registry.config_subset(config, ARTIFACTS[wc.name].config),
     wildcard_constraints:
-        kind="tables|figures",
+        kind="tables|figures|checks",
         name=wildcard_choice(ARTIFACTS),
     threads: lambda wc: ARTIFACTS[wc.name].resources["threads"]
     resources:

@@ -101,7 +101,7 @@ def _half_disk_primitive(x, r):
     return x * np.sqrt(np.maximum((r - x) * (r + x), 0.0)) + r * r * np.arcsin(np.clip(x / r, -1.0, 1.0))
 
 
-def uniform_in_lens(cx, cy, R, u1, u2, iterations=60):
+def uniform_in_lens(cx, cy, R, u1, u2, iterations=54):
     """Uniform points in C(c, R) ∩ unit disk, c = (cx, cy) = V'_P (section 4.2.4, the general case).
 
     The thesis draws them by rejection ("repeat until found"); here by inverting the area: with t

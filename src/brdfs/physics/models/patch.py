@@ -182,8 +182,14 @@ class PatchMixture(_MixtureSampling, BRDF):
         m = np.minimum(projected_distance(L, V), 2.0)
         flat = m.ravel()
         bp = np.stack([flat, np.maximum(flat, 1.0), np.full_like(flat, 2.0)], axis=1)
-        inner = integrate(lambda R, e: self.weight(R) * patch.basic_constant(R), bp, rtol=self.rtol, atol=0.0)
-        return inner.value.reshape(m.shape) + self.p_diffuse * patch.basic_constant(2.0)
+        # In blocks: one call over very many points would run into the driver's interval budget.
+        inner = np.concatenate([
+            integrate(lambda R, e: self.weight(R) * patch.basic_constant(R), bp[k:k + self.block],
+                      rtol=self.rtol, atol=0.0).value for k in range(0, max(len(bp), 1), self.block)])
+        return inner[:flat.size].reshape(m.shape) + self.p_diffuse * patch.basic_constant(2.0)
+
+    #: Points per call of the integration driver in ``_eval``.
+    block = 2048
 
     # --- F(R) and F⁻¹ (eq. 4.27) for sampling ---------------------------------------------------
     #: Intervals of the table of F (section 4.4: "stored in a sufficiently large one-dimensional array").
@@ -198,6 +204,34 @@ class PatchMixture(_MixtureSampling, BRDF):
             cached = (edges, np.concatenate([[0.0], np.cumsum(pieces)]))
             object.__setattr__(self, "_cdf_cache", cached)
         return cached
+
+    def _density_table(self):
+        """G_i = ∫_{R_i}^2 p(R) c(R) dR on the edges of the table of F (f = G(m) + p_Diffuse/π)."""
+        cached = self.__dict__.get("_density_cache")
+        if cached is None:
+            edges, _ = self._cdf_table()
+            pieces = integrate(lambda R, e: self.weight(R) * patch.basic_constant(R),
+                               np.stack([edges[:-1], edges[1:]], 1), rtol=self.rtol, atol=1e-15).value
+            cached = np.concatenate([np.cumsum(pieces[::-1])[::-1], [0.0]])
+            object.__setattr__(self, "_density_cache", cached)
+        return cached
+
+    def _pdf(self, L, V, strategy):
+        """f cos θ_V / W with f from the table: G(R_{i+1}) + ∫_m^{R_{i+1}} p c (a 21-point Kronrod rule on
+        the short piece), the same numbers as ``_eval`` to its tolerance at a fraction of the cost."""
+        edges, _ = self._cdf_table()
+        table = self._density_table()
+        m = np.minimum(projected_distance(L, V), 2.0)
+        i = np.clip(np.searchsorted(edges, m, side="right") - 1, 0, edges.size - 2)
+        hi = edges[i + 1]
+        x = nodes_on(m, hi)
+        piece = 0.5 * (hi - m) * ((self.weight(x) * patch.basic_constant(x)) @ KRONROD_WEIGHTS)
+        f = self._with_diffuse(table[i + 1] + piece)
+        return f * V[..., 2] / self.total_weight
+
+    def _with_diffuse(self, continuous):
+        """f from its continuous part: + p_Diffuse c(2) (eq. 4.21)."""
+        return continuous + self.p_diffuse * patch.basic_constant(2.0)
 
     @property
     def total_weight(self) -> float:
