@@ -8,6 +8,7 @@ runs every strategy over the parameter range at six incidence angles up to 89.99
 """
 from __future__ import annotations
 
+from concurrent.futures import ProcessPoolExecutor
 from functools import partial
 
 import numpy as np
@@ -77,7 +78,17 @@ def cases(full: bool):
     return out
 
 
-@check(NAME, config=(SECTION,), resources={"runtime": 2})
+#: Processes running the tests (the rule's threads).
+WORKERS = 2
+
+
+def _run(job):
+    name, params, strategy, theta, n, seed, n_r, n_phi = job
+    return chi2_test(build(name, params), theta, strategy, n_samples=n, seed=seed, n_radial=n_r, n_phi=n_phi,
+                     n_pilot=max(n // 4, 5000))
+
+
+@check(NAME, config=(SECTION,), resources={"runtime": 2, "threads": WORKERS})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """``model, parameters, strategy, theta_deg, n_samples, statistic, dof, p_value, sidak_level,
     pdf_mass, accepted_fraction, weight_error, passed``."""
@@ -88,11 +99,13 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     n_phi = sec["full_phi_bins"] if full else sec["phi_bins"]
     todo = cases(full)
     level = sidak_level(len(todo), sec["significance"])
+    jobs = [(name, params, strategy, theta, n, [cfg["seed"], k], n_r, n_phi) for k, (name, params, strategy, theta)
+            in enumerate(todo)]
+    # Each test has its own seed, so the pool's scheduling cannot change a number.
+    with ProcessPoolExecutor(max_workers=WORKERS) as pool:
+        results = list(pool.map(_run, jobs))
     rows = []
-    for k, (name, params, strategy, theta) in enumerate(todo):
-        m = build(name, params)
-        r = chi2_test(m, theta, strategy, n_samples=n, seed=[cfg["seed"], k], n_radial=n_r, n_phi=n_phi,
-                      n_pilot=max(n // 4, 5000))
+    for (name, params, strategy, theta, *_), r in zip(jobs, results):
         rows.append({"model": name, "parameters": " ".join(f"{a}={b:g}" for a, b in params.items()),
                      "strategy": strategy, "theta_deg": theta, "n_samples": n, "statistic": r.statistic,
                      "dof": r.dof, "p_value": r.p_value, "sidak_level": level, "pdf_mass": r.pdf_mass,

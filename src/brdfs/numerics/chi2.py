@@ -35,7 +35,7 @@ from brdfs.physics.geometry import light_direction
 #: Cells expecting fewer samples are pooled (Mitsuba's and pbrt's ``min_exp_frequency``).
 MIN_EXPECTED = 5.0
 #: Breakpoints of the azimuth integral at π 2^{−k}, k = 2 … GRADING + 1, from φ = 0 and π.
-GRADING = 24
+GRADING = 20
 SIGNIFICANCE = 0.01
 
 
