@@ -141,3 +141,22 @@ def test_sidak_level_keeps_the_family_wise_level():
 def test_unknown_strategy_is_one_clear_error():
     with pytest.raises(ValueError, match="unknown sampling strategy 'nope'"):
         model("phong", n=2).sample([0, 0, 1.0], np.zeros((1, 2)), "nope")
+
+
+def test_the_check_is_registered_under_results_checks():
+    from brdfs.pipeline.registry import get_artifact
+    artifact = get_artifact("sampling_chi2")
+    assert artifact.kind == "check" and artifact.csv == "results/checks/sampling_chi2.csv"
+
+
+@pytest.mark.parametrize("name, params", [("patch_exponential", {"s": 10.0}), ("he_torrance", {"sigma0_um": 0.1, "tau_um": 1.7, "term": "dd"}),
+                                          ("phong_cosmin", {"n": 100})])
+def test_albedo_front_door_monte_carlo_with_the_models_sampler_agrees_with_the_integral(name, params):
+    from brdfs import albedo
+    brdf = model(name, **params)
+    mc = albedo(brdf, 50.0, "monte_carlo", sampler="model", n_samples=20_000, seed=7)
+    if name == "patch_exponential":
+        reference = float(patch.mixture_albedo(patch.ExponentialProfile(10.0), 50.0).value)
+    else:
+        reference = float(albedo(brdf, 50.0).value)
+    assert abs(float(mc.value) - reference) < 5 * float(mc.error) + 1e-12
