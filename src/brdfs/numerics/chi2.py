@@ -46,7 +46,7 @@ def sidak_level(n_tests: int, significance: float = SIGNIFICANCE) -> float:
 
 @dataclass(frozen=True)
 class Chart:
-    """Polar cells: ``radial_edges`` (ascending) × ``n_phi`` equal azimuth bins about a centre.
+    """Polar cells: ``radial_edges`` × ``phi_edges`` (both ascending; φ from 0 to 2π) about a centre.
 
     ``kind`` 'sphere': radius = angle α from the unit ``axis``; the frame's first axis points
     towards N.  ``kind`` 'disk': radius = distance on the base plane from ``centre`` (2-vector);
@@ -56,7 +56,7 @@ class Chart:
     kind: str
     axis: np.ndarray
     radial_edges: np.ndarray
-    n_phi: int
+    phi_edges: np.ndarray
     breaks: tuple = ()
 
     # --- coordinates ---------------------------------------------------------------------------
@@ -138,18 +138,22 @@ def _pilot_chart(model, L, strategy, kind, rng, n_pilot, n_radial, n_phi, breaks
     else:
         axis = np.array([-L[0], -L[1], 0.0])
         top = 1.0 + np.hypot(L[0], L[1])
-    chart = Chart(kind, axis, np.array([0.0, top]), n_phi, breaks)
-    radius, _ = chart.coordinates(V)
+    chart = Chart(kind, axis, np.array([0.0, top]), np.array([0.0, 2.0 * np.pi]), breaks)
+    radius, phi = chart.coordinates(V)
     inner = np.quantile(radius, np.arange(1, n_radial) / n_radial) if radius.size else np.array([])
     edges = np.unique(np.concatenate([[0.0], inner, [top]]))
-    return Chart(kind, axis, edges, n_phi, breaks)
+    # Azimuth edges: quantiles of the pilot's φ (a lobe cut by the horizon fills half the circle, so
+    # equal bins would leave half the cells empty); 0 and 2π stay edges.
+    inner_phi = np.quantile(phi, np.arange(1, n_phi) / n_phi) if phi.size else np.array([])
+    phi_edges = np.unique(np.concatenate([[0.0], inner_phi, [2.0 * np.pi]]))
+    return Chart(kind, axis, edges, phi_edges, breaks)
 
 
 def cell_probabilities(model, L, strategy, chart, rtol=1e-7, atol=1e-11):
     """∫ pdf over every cell (radial × azimuth), nested adaptive Gauss–Kronrod; shape (n_r, n_phi)."""
     edges = chart.radial_edges
-    n_r, n_phi = edges.size - 1, chart.n_phi
-    phi_edges = np.linspace(0.0, 2.0 * np.pi, n_phi + 1)
+    phi_edges = chart.phi_edges
+    n_r, n_phi = edges.size - 1, phi_edges.size - 1
     r_lo = np.repeat(edges[:-1], n_phi)
     r_hi = np.repeat(edges[1:], n_phi)
     p_lo = np.tile(phi_edges[:-1], n_r)
@@ -246,7 +250,7 @@ def chi2_test(model, theta_deg, strategy=None, n_samples=100_000, seed=0, n_radi
     accepted = V[:, 2] > 0
     radius, phi = chart.coordinates(V[accepted])
     i = np.clip(np.searchsorted(chart.radial_edges, radius, side="right") - 1, 0, probs.shape[0] - 1)
-    j = np.clip((phi / (2.0 * np.pi) * chart.n_phi).astype(int), 0, chart.n_phi - 1)
+    j = np.clip(np.searchsorted(chart.phi_edges, phi, side="right") - 1, 0, probs.shape[1] - 1)
     observed = np.zeros(probs.shape)
     np.add.at(observed, (i, j), 1.0)
     mass = float(probs.sum())
