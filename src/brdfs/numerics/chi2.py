@@ -13,8 +13,8 @@ Differences from those harnesses, and why:
   angle α about an axis A (the mean sampled direction of an independent pilot run) and azimuth φ
   about A — or, for the patch models whose sampler draws points of the base plane (chapter 4), a
   *disk chart* — polar radius r and azimuth about the patch centre V'_P = −L_P on the unit disk.
-  The radial edges are quantiles of the pilot's radii (equal expected counts); the azimuth is
-  split evenly.  The horizon (the unit circle) is a closed-form level of φ at every radius and is
+  The radial and azimuthal edges are quantiles of the pilot's coordinates (roughly equal expected
+  counts, also when the horizon cuts the lobe in half).  The horizon (the unit circle) is a closed-form level of φ at every radius and is
   passed to the inner integral as a breakpoint, as are a model's circle radii R (disk chart).
 * Samplers may reject (a sub-probability pdf, see :mod:`brdfs.physics.sampling`): the rejected
   samples form one more cell, expecting N (1 − ∫pdf), so the test also checks the pdf's mass.

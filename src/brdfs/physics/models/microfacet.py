@@ -49,11 +49,9 @@ class _BeckmannFamily(BRDF):
         return np.where(((lh > 0) & (V[..., 2] > 0))[..., None], V, sampling.REJECTED)
 
     def _pdf(self, L, V, strategy):
-        tan2, cos_d = half_vector_tan2(L, V)
+        _, cos_d = half_vector_tan2(L, V)
         _, jacobian = sampling.half_vector_jacobian(L, V)
-        d = self.distribution
-        normal_pdf = d.slope_weight(tan2) / (np.pi * d.alpha ** 2 * cos_d ** 3)
-        return np.where(cos_d > 0, normal_pdf, 0.0) * jacobian
+        return self.distribution.normal_pdf(cos_d) * jacobian
 
 
 @dataclass(frozen=True)
