@@ -58,6 +58,22 @@ class Chart:
     radial_edges: np.ndarray
     phi_edges: np.ndarray
     breaks: tuple = ()
+    #: (b, ratio, major-axis angle [rad]) of an elliptic patch centred at the chart's centre (disk chart):
+    #: its boundary enters the integrals as breakpoints.
+    ellipse: tuple | None = None
+
+    def ellipse_phi(self, radius):
+        """Azimuths where the ellipse's boundary crosses the circle of ``radius`` (NaN where none)."""
+        if self.ellipse is None:
+            return []
+        b, ratio, phi_u = self.ellipse
+        e1, _ = self.frame()
+        shift = phi_u - np.arctan2(e1[1], e1[0])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # r² (ratio² cos²ψ + sin²ψ) = b²  ⇔  cos²ψ = (b²/r² − 1)/(ratio² − 1)
+            cos2 = (b * b / (radius * radius) - 1.0) / (ratio * ratio - 1.0)
+        psi = np.where((cos2 >= 0) & (cos2 <= 1), np.arccos(np.sqrt(np.clip(cos2, 0, 1))), np.nan)
+        return [np.mod(shift + sign * psi + k * np.pi, 2 * np.pi) for sign in (-1, 1) for k in (0, 1)]
 
     # --- coordinates ---------------------------------------------------------------------------
     def frame(self):
@@ -127,7 +143,7 @@ class Chart:
         return -d * c + np.sqrt(np.maximum(d * d * c * c - d * d + 1.0, 0.0))
 
 
-def _pilot_chart(model, L, strategy, kind, rng, n_pilot, n_radial, n_phi, breaks):
+def _pilot_chart(model, L, strategy, kind, rng, n_pilot, n_radial, n_phi, breaks, ellipse=None):
     u = rng.random((n_pilot, model.sample_dimension(strategy)))
     V, _, _ = model.sample(L, u, strategy)
     V = V[V[:, 2] > 0]
@@ -138,7 +154,7 @@ def _pilot_chart(model, L, strategy, kind, rng, n_pilot, n_radial, n_phi, breaks
     else:
         axis = np.array([-L[0], -L[1], 0.0])
         top = 1.0 + np.hypot(L[0], L[1])
-    chart = Chart(kind, axis, np.array([0.0, top]), np.array([0.0, 2.0 * np.pi]), breaks)
+    chart = Chart(kind, axis, np.array([0.0, top]), np.array([0.0, 2.0 * np.pi]), breaks, ellipse)
     radius, phi = chart.coordinates(V)
     inner = np.quantile(radius, np.arange(1, n_radial) / n_radial) if radius.size else np.array([])
     edges = np.unique(np.concatenate([[0.0], inner, [top]]))
@@ -146,7 +162,7 @@ def _pilot_chart(model, L, strategy, kind, rng, n_pilot, n_radial, n_phi, breaks
     # equal bins would leave half the cells empty); 0 and 2π stay edges.
     inner_phi = np.quantile(phi, np.arange(1, n_phi) / n_phi) if phi.size else np.array([])
     phi_edges = np.unique(np.concatenate([[0.0], inner_phi, [2.0 * np.pi]]))
-    return Chart(kind, axis, edges, phi_edges, breaks)
+    return Chart(kind, axis, edges, phi_edges, breaks, ellipse)
 
 
 def cell_probabilities(model, L, strategy, chart, rtol=1e-7, atol=1e-11):
@@ -177,7 +193,8 @@ def cell_probabilities(model, L, strategy, chart, rtol=1e-7, atol=1e-11):
         # breakpoints graded geometrically towards φ = 0, π, 2π let the Kronrod nodes find it.
         graded = [p0 + sign * np.pi * 0.5 ** k for p0 in (0.0, np.pi, 2.0 * np.pi) for sign in (-1.0, 1.0)
                   for k in range(2, 2 + GRADING)]
-        cuts = [np.where((lo < c) & (c < hi), c, np.nan) for c in (h, 2.0 * np.pi - h, *graded)]
+        cuts = [np.where((lo < c) & (c < hi), c, np.nan)
+                for c in (h, 2.0 * np.pi - h, *graded, *chart.ellipse_phi(rad))]
         bp = np.sort(np.stack([lo, *cuts, hi], 1), axis=1)
 
         def inner(phi, elem):
@@ -241,8 +258,13 @@ def chi2_test(model, theta_deg, strategy=None, n_samples=100_000, seed=0, n_radi
     L = light_direction(theta_deg)
     rng_pilot, rng = (np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(2))
     kind = kind or chart_kind(model)
-    breaks = tuple(float(model.R) for _ in [0] if kind == "disk" and hasattr(model, "R"))
-    chart = _pilot_chart(model, L, strategy, kind, rng_pilot, n_pilot, n_radial, n_phi, breaks)
+    breaks, ellipse = (), None
+    if kind == "disk" and hasattr(model, "R"):
+        breaks = (float(model.R),)
+    if kind == "disk" and hasattr(model, "ratio"):      # the elliptic patch: semi-axes b and b/ratio
+        breaks = (float(model.b), float(model.b / model.ratio))
+        ellipse = (float(model.b), float(model.ratio), float(np.radians(model.u_angle_deg)))
+    chart = _pilot_chart(model, L, strategy, kind, rng_pilot, n_pilot, n_radial, n_phi, breaks, ellipse)
     probs, _ = cell_probabilities(model, L, strategy, chart, rtol=rtol)
 
     u = rng.random((n_samples, model.sample_dimension(strategy)))
