@@ -182,10 +182,11 @@ class PatchMixture(_MixtureSampling, BRDF):
         m = np.minimum(projected_distance(L, V), 2.0)
         flat = m.ravel()
         bp = np.stack([flat, np.maximum(flat, 1.0), np.full_like(flat, 2.0)], axis=1)
-        # In blocks: one call over very many points would run into the driver's interval budget.
+        # In blocks: one call over very many points would run into the driver's interval budget;
+        # atol 1e-300: a tail that underflows (s = 512 far from the patch) must not be refined forever.
         inner = np.concatenate([
             integrate(lambda R, e: self.weight(R) * patch.basic_constant(R), bp[k:k + self.block],
-                      rtol=self.rtol, atol=0.0).value for k in range(0, max(len(bp), 1), self.block)])
+                      rtol=self.rtol, atol=1e-300).value for k in range(0, max(len(bp), 1), self.block)])
         return inner[:flat.size].reshape(m.shape) + self.p_diffuse * patch.basic_constant(2.0)
 
     #: Points per call of the integration driver in ``_eval``.
