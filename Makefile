@@ -42,6 +42,7 @@ benchmark: $(STAMP)
 	$(BIN)/python benchmarks/bench_model_cost.py
 	$(BIN)/python benchmarks/bench_albedo_curves.py
 	$(BIN)/python benchmarks/bench_work_precision.py
+	$(BIN)/python benchmarks/bench_sampling.py
 
 # Re-record the regression baseline after a deliberate, reviewed change of numbers.
 baseline: $(STAMP)

@@ -68,7 +68,7 @@ def test_default_cosine_sampling_has_weight_f_cos_over_pdf(name, params):
     brdf = model(name, **params)
     L = np.array([np.sin(0.6), 0.0, np.cos(0.6)])
     u = np.random.default_rng(5).random((1000, 2))
-    V, weight, pdf = BRDF.sample(brdf, L, u)
+    V, weight, pdf = brdf.sample(L, u, strategy="cosine")
     assert np.allclose(np.linalg.norm(V, axis=-1), 1.0) and np.all(V[:, 2] >= 0)
     assert np.allclose(pdf, V[:, 2] / np.pi)
     assert np.allclose(weight, brdf(L, V) * V[:, 2] / pdf)

@@ -185,9 +185,9 @@ def _dblquad(model, theta, rtol, atol, epsrel=None):
 
 def _draw(sampler, model, L, rng, n):
     """Weights f cos θ_V / p(V) of ``n`` directions V drawn by ``sampler``."""
-    u = np.stack([rng.random(n), rng.random(n)], -1)
     if sampler == "model":
-        return model.sample(L, u)[1]
+        return model.sample(L, rng.random((n, model.sample_dimension())))[1]
+    u = np.stack([rng.random(n), rng.random(n)], -1)
     if sampler == "beckmann_half_vector":
         distribution = model.distribution
         H = distribution.sample_normal(u[:, 0], u[:, 1])

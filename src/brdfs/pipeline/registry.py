@@ -50,10 +50,11 @@ DEFAULT_RESOURCES = {"threads": 1, "mem_mb": 2000, "runtime": 10}
 
 #: Sections every artifact receives.
 COMMON_SECTIONS = ("seed", "tolerance")
-_DIRECTORIES = {"table": "results/tables", "figure": "results/figures"}
+_DIRECTORIES = {"table": "results/tables", "figure": "results/figures", "check": "results/checks"}
 _NAME_PATTERNS = {
     "table": re.compile(r"(table_\d+_\d+|extra)_[a-z0-9_]+"),
     "figure": re.compile(r"(fig_\d+_\d+|extra)_[a-z0-9_]+"),
+    "check": re.compile(r"[a-z0-9_]+"),
     "comparison": re.compile(r"[a-z0-9_]+"),
 }
 
@@ -310,6 +311,16 @@ def figure(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), reso
     written to ``results/figures/``.
     """
     return _artifact_decorator("figure", name, deps, config, resources, batch)
+
+
+def check(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
+          batch: str | None = None):
+    """Register ``compute(cfg, deps) -> DataFrame`` (a verification's tidy results) as the check ``name``.
+
+    As :func:`table`, with any ``[a-z0-9_]+`` name, written to ``results/checks/<name>.csv`` and ``.png``;
+    a job of its own by default.
+    """
+    return _artifact_decorator("check", name, deps, config, resources, batch)
 
 
 def comparison(artifact: str, tables: Iterable[str] = (), config: Iterable[str] = ()):

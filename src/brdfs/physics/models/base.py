@@ -147,24 +147,66 @@ class BRDF:
         return np.full(np.shape(theta_deg), np.nan)
 
     # --- sampling ------------------------------------------------------------------------------
-    def pdf(self, L, V):
-        """Density (per solid angle) of :meth:`sample`'s directions: cos θ_V / π by default."""
-        nv = np.asarray(V, float)[..., 2]
-        return np.where(nv > 0, nv / np.pi, 0.0)
+    #: Sampling strategies of :meth:`sample`/:meth:`pdf`; the first is the model's default and
+    #: ``"cosine"`` (the baseline every model accepts) is always among them.
+    strategies: ClassVar[tuple[str, ...]] = ("cosine",)
+    #: Uniform numbers per sample a strategy consumes (2 unless listed).
+    sample_dimensions: ClassVar[dict[str, int]] = {}
 
-    def sample(self, L, u):
-        """Directions V from uniform numbers ``u`` (…, 2), with weight f cos θ_V / pdf and the pdf.
+    def _strategy(self, strategy):
+        strategy = self.strategies[0] if strategy is None else strategy
+        if strategy not in self.strategies:
+            raise ValueError(f"{self.name}: unknown sampling strategy {strategy!r}; choose one of {self.strategies}")
+        return strategy
 
-        The default draws the cosine distribution (Malley's method).
+    def sample_dimension(self, strategy=None) -> int:
+        """How many uniform numbers one sample of ``strategy`` consumes (the last axis of ``u``)."""
+        return self.sample_dimensions.get(self._strategy(strategy), 2)
+
+    def pdf(self, L, V, strategy=None):
+        """Density (per solid angle of V) of :meth:`sample`'s directions; cos θ_V / π for ``"cosine"``.
+
+        A sub-probability where the strategy can reject (its integral is 1 − P(rejected))."""
+        strategy = self._strategy(strategy)
+        V = np.asarray(V, float)
+        if strategy == "cosine":
+            nv = V[..., 2]
+            return np.where(nv > 0, nv / np.pi, 0.0)
+        L = np.broadcast_to(np.asarray(L, float), V.shape)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+            p = self._pdf(L, V, strategy)
+        return np.where(V[..., 2] > 0, np.nan_to_num(p, nan=0.0, posinf=0.0), 0.0)
+
+    def sample(self, L, u, strategy=None):
+        """Directions V from uniform numbers ``u`` (…, :meth:`sample_dimension`), with the weight
+        f cos θ_V / pdf and the pdf (both 0 for a rejected sample, returned as V = −N).
+
+        ``"cosine"`` draws the cosine distribution (Malley's method); the other strategies are the
+        model's (:attr:`strategies`, the first the default).
         """
+        strategy = self._strategy(strategy)
         u = np.asarray(u, float)
-        r, phi = np.sqrt(u[..., 0]), 2.0 * np.pi * u[..., 1]
-        nv = np.sqrt(np.maximum(1.0 - u[..., 0], 0.0))
-        V = np.stack([r * np.cos(phi), r * np.sin(phi), nv], -1)
-        pdf = self.pdf(L, V)
+        if u.shape[-1] < self.sample_dimension(strategy):
+            raise ValueError(f"{self.name}: strategy {strategy!r} needs u of shape (..., "
+                             f"{self.sample_dimension(strategy)}), got {u.shape}")
+        L = np.broadcast_to(np.asarray(L, float), u.shape[:-1] + (3,))
+        if strategy == "cosine":
+            r, phi = np.sqrt(u[..., 0]), 2.0 * np.pi * u[..., 1]
+            nv = np.sqrt(np.maximum(1.0 - u[..., 0], 0.0))
+            V = np.stack([r * np.cos(phi), r * np.sin(phi), nv], -1)
+        else:
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+                V = self._sample_direction(L, u, strategy)
+        pdf = self.pdf(L, V, strategy)
         with np.errstate(divide="ignore", invalid="ignore"):
-            weight = np.where(pdf > 0, self(L, V) * nv / pdf, 0.0)
+            weight = np.where(pdf > 0, self(L, V) * V[..., 2] / pdf, 0.0)
         return V, weight, pdf
+
+    def _sample_direction(self, L, u, strategy):
+        raise NotImplementedError(f"{self.name}: no sampler {strategy!r}")
+
+    def _pdf(self, L, V, strategy):
+        raise NotImplementedError(f"{self.name}: no pdf for {strategy!r}")
 
     # --- parameters ---------------------------------------------------------------------------
     @property

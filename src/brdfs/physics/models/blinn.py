@@ -8,6 +8,7 @@ import numpy as np
 from brdfs.physics.geometry import n_dot_h
 from brdfs.numerics.integrate.lobes import PowerCosine
 from brdfs.physics.models.base import BRDF, check_positive, positive_power
+from brdfs.physics import sampling
 
 
 @dataclass(frozen=True)
@@ -22,6 +23,23 @@ class _BlinnFamily(BRDF):
     @property
     def lobe(self):
         return PowerCosine(self.n, "half")
+
+    # --- sampling: half vectors from the cosine power about N -----------------------------------
+    #: ``"half_vector"``: H with density (n + 1)/(2π) (N·H)^n, V = 2 (L·H) H − L, so
+    #: pdf(V) = (n + 1)/(2π) (N·H)^n / (4 V·H) (the half-vector Jacobian).  H with L·H ≤ 0 or a V
+    #: below the horizon is rejected: the pdf's mass is P(V above the horizon) < 1.
+    strategies = ("half_vector", "cosine")
+
+    def _sample_direction(self, L, u, strategy):
+        cos_d, sin_d = sampling.power_cosine(u[..., 0], self.n)
+        phi = 2.0 * np.pi * u[..., 1]
+        H = np.stack([sin_d * np.cos(phi), sin_d * np.sin(phi), cos_d], -1)
+        V, lh = sampling.reflect_about(L, H)
+        return np.where(((lh > 0) & (V[..., 2] > 0))[..., None], V, sampling.REJECTED)
+
+    def _pdf(self, L, V, strategy):
+        nh, jacobian = sampling.half_vector_jacobian(L, V)
+        return sampling.power_cosine_pdf(nh, self.n) * jacobian
 
 
 @dataclass(frozen=True)

@@ -45,6 +45,7 @@ from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.numerics.integrate.gauss_kronrod import Estimate
 from brdfs.numerics.integrate.scattering import ScatteringLobe
 from brdfs.physics.models.base import BRDF, check_positive
+from brdfs.physics import sampling
 
 TERMS = ("dd", "specular", "total")
 #: Relative truncation error the series is summed to (far below the engine's 1e-10).
@@ -233,6 +234,39 @@ class HeTorrance(BRDF):
             return Estimate(np.zeros(theta.shape), np.zeros(theta.shape))
         rho = specular_albedo(cos_incidence(theta), sin_incidence(theta), *self._lengths, self.fresnel)
         return Estimate(rho, EVAL_RTOL * rho)
+
+    # --- sampling ---------------------------------------------------------------------------------
+    #: ``"dd_mixture"`` (u of shape (…, 3)): no exact sampler of f_dd is known, so a proposal —
+    #: with probability 1/2 (u₃ < 1/2) the cosine distribution, else a Gaussian on the base plane
+    #: centred at −L_P (the specular direction's projection; f_dd is a sum of Gaussians in
+    #: |L_P + V_P|, eq. 78) with the width of the dominant term, σ_p = λ/(πτ) √(max(g, 1)/2),
+    #: g = (4π σ0 cos θ_L/λ)²; points outside the unit disk are rejected.  The pdf is the combined
+    #: (one-sample MIS, balance) density cos θ_V (1/π + G(V_P))/2, positive wherever f_dd is, so
+    #: the weights are bounded by 2π f_dd.  The Dirac specular term (``term='specular'``/``'total'``)
+    #: is not sampled: ``sample`` draws the density part f(L, V) = f_dd only, and its estimator omits
+    #: the specular albedo ρ_s = :meth:`delta_albedo` that a caller adds as a discrete term (as
+    #: :func:`brdfs.numerics.albedo.albedo` does).
+    strategies = ("dd_mixture", "cosine")
+    sample_dimensions = {"dd_mixture": 3}
+
+    def _planar_width(self, L):
+        g = (4.0 * np.pi * self.sigma0_um * L[..., 2] / self.lambda_um) ** 2
+        return self.lambda_um / (np.pi * self.tau_um) * np.sqrt(np.maximum(g, 1.0) / 2.0)
+
+    def _sample_direction(self, L, u, strategy):
+        width = self._planar_width(L)
+        radius = width * np.sqrt(-2.0 * np.log1p(-u[..., 0]))     # Box–Muller radius
+        phi = 2.0 * np.pi * u[..., 1]
+        gx, gy = -L[..., 0] + radius * np.cos(phi), -L[..., 1] + radius * np.sin(phi)
+        cx, cy = sampling.uniform_in_circle(0.0, 0.0, 1.0, u[..., 0], u[..., 1])
+        cosine = u[..., 2] < 0.5
+        return sampling.disk_to_direction(np.where(cosine, cx, gx), np.where(cosine, cy, gy))
+
+    def _pdf(self, L, V, strategy):
+        width = self._planar_width(L)
+        r2 = (L[..., 0] + V[..., 0]) ** 2 + (L[..., 1] + V[..., 1]) ** 2
+        gauss = np.exp(-r2 / (2.0 * width * width)) / (2.0 * np.pi * width * width)
+        return 0.5 * V[..., 2] * (1.0 / np.pi + gauss)
 
     @property
     def lobe(self):

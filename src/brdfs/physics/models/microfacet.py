@@ -11,6 +11,7 @@ from brdfs.numerics.integrate.lobes import MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_tan2
 from brdfs.physics.geometry import dot, half_vector
 from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact
+from brdfs.physics import sampling
 
 
 def beckmann_exponential(L, V, m):
@@ -36,6 +37,21 @@ class _BeckmannFamily(BRDF):
     @property
     def lobe(self):
         return MicrofacetLobe(self.distribution)
+
+    # --- sampling: Beckmann normals with the half-vector Jacobian ------------------------------
+    #: ``"beckmann"``: H from :meth:`Beckmann.sample_normal` (density D(H) N·H), V = 2 (L·H) H − L,
+    #: pdf(V) = D(H) (N·H) / (4 V·H).  H with L·H ≤ 0 or V below the horizon is rejected (mass < 1).
+    strategies = ("beckmann", "cosine")
+
+    def _sample_direction(self, L, u, strategy):
+        H = self.distribution.sample_normal(u[..., 0], u[..., 1])
+        V, lh = sampling.reflect_about(L, H)
+        return np.where(((lh > 0) & (V[..., 2] > 0))[..., None], V, sampling.REJECTED)
+
+    def _pdf(self, L, V, strategy):
+        _, cos_d = half_vector_tan2(L, V)
+        _, jacobian = sampling.half_vector_jacobian(L, V)
+        return self.distribution.normal_pdf(cos_d) * jacobian
 
 
 @dataclass(frozen=True)

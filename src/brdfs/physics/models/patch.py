@@ -14,6 +14,8 @@ import numpy as np
 
 from brdfs.numerics import patch_geometry as patch
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.numerics.integrate.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
+from brdfs.physics import sampling
 from brdfs.physics.models.base import BRDF, check_positive
 
 
@@ -34,6 +36,39 @@ def _default_constant(model, value):
     if model.C is None:
         object.__setattr__(model, "C", float(value))
     check_positive("C", model.C)
+
+
+def _mirrored_projection(L):
+    """V'_P = −L_P, the centre of the patch on the base plane (eq. 4.16, with L and V exchanged)."""
+    return -L[..., 0], -L[..., 1]
+
+
+def _russian_roulette_mixture(L, u, R):
+    """Section 4.4 with the Russian roulette of section 4.2.4: R = F⁻¹(u₃) given, a uniform point in
+    C_min(V'_P, R), kept if it lies in the other circle too (eqs. 4.18, 4.19)."""
+    cx, cy = _mirrored_projection(L)
+    x, y, accepted, _ = sampling.russian_roulette_point(cx, cy, R, u[..., 0], u[..., 1])
+    return np.where(accepted[..., None], sampling.disk_to_direction(x, y), sampling.REJECTED)
+
+
+class _MixtureSampling:
+    """Sampling of a mixture of basic BRDFs, f = ∫ p(R) f*_R dR + p_Diffuse f*_2 (eq. 4.20).
+
+    ``"russian_roulette"`` (sections 4.4 and 5.2.5; u of shape (…, 3)): R = F⁻¹(u₃) (eq. 4.27, the
+    Dirac p_Diffuse at R = 2 as the step of F), then the Russian roulette of the basic BRDF at R.
+    An accepted point has density Σ_R p(R) c(R) [m ≤ R] = f per unit area of the base plane, so
+    pdf(V) = f(L, V) cos θ_V / W (W = ∫p + p_Diffuse, 1 for a normalised p) and weight = W: the
+    sampler is exact up to its rejections, whose probability is 1 − a(L)/W.
+    """
+
+    sample_dimensions = {"russian_roulette": 3}
+    strategies = ("russian_roulette", "cosine")
+
+    def _sample_direction(self, L, u, strategy):
+        return _russian_roulette_mixture(L, u, self.radius_of_cdf(u[..., 2]))
+
+    def _pdf(self, L, V, strategy):
+        return self(L, V) * V[..., 2] / self.total_weight
 
 
 @dataclass(frozen=True)
@@ -57,9 +92,33 @@ class PatchBasic(BRDF):
         scale = self.C / float(patch.basic_constant(self.R))
         return Estimate(est.value * scale, est.error * scale)
 
+    # --- sampling (section 4.2.4) ---------------------------------------------------------------
+    #: ``"exact"`` ("normal importance sampling"): uniform points in C(V'_P, R) ∩ unit disk — a
+    #: whole circle in the special cases (figure 4.7), the lens of two circles in the general case
+    #: (figure 4.8) — so pdf = cos θ_V / Area(lens) and weight = a_R(L) (the albedo of eq. 4.8);
+    #: mass 1.  ``"russian_roulette"`` (eqs. 4.18, 4.19): uniform in C_min, rejected outside the
+    #: other circle, weight 1 (for the default C), pdf = f cos θ_V, mass a_R(L).
+    strategies = ("exact", "russian_roulette", "cosine")
+
+    def _sample_direction(self, L, u, strategy):
+        cx, cy = _mirrored_projection(L)
+        if strategy == "exact":
+            x, y = sampling.uniform_in_lens(cx, cy, self.R, u[..., 0], u[..., 1])
+            return sampling.disk_to_direction(x, y)
+        x, y, accepted, _ = sampling.russian_roulette_point(cx, cy, self.R, u[..., 0], u[..., 1])
+        return np.where(accepted[..., None], sampling.disk_to_direction(x, y), sampling.REJECTED)
+
+    def _pdf(self, L, V, strategy):
+        inside = projected_distance(L, V) <= self.R
+        if strategy == "exact":
+            area = sampling.lens_area(np.hypot(L[..., 0], L[..., 1]), self.R)
+        else:
+            area = np.pi * min(self.R, 1.0) ** 2
+        return np.where(inside, V[..., 2] / area, 0.0)
+
 
 @dataclass(frozen=True)
-class PatchExponential(BRDF):
+class PatchExponential(_MixtureSampling, BRDF):
     """f = C e^{−s m(L, V)}  (eqs. 4.44/4.46), C = C_max of eq. 4.45 by default."""
 
     s: float
@@ -75,6 +134,15 @@ class PatchExponential(BRDF):
 
     def _eval(self, L, V, nl, nv):
         return self.C * np.exp(-self.s * projected_distance(L, V))
+
+    @property
+    def total_weight(self) -> float:
+        """W = ∫p + p_Diffuse = C / C_max (p of eq. 4.41 scales with C)."""
+        return self.C / patch.ExponentialProfile(self.s).c_max
+
+    def radius_of_cdf(self, r):
+        """R = F⁻¹(r) of the normalised weight (eq. 4.27, Figure 4.13: :func:`patch_geometry.inverse_cdf`)."""
+        return patch.inverse_cdf(patch.ExponentialProfile(self.s), np.clip(r, 0.0, 1.0)).value
 
 
 @dataclass(frozen=True)
@@ -99,9 +167,14 @@ class GeneralizedLambertian(BRDF):
         """∫ p(R) a_R(L) dR + p_Diffuse over the lens areas (eqs. 4.22, 4.24)."""
         return patch.mixture_albedo(patch.GeneralizedLambertProfile(self.d, self.m_clip), theta_deg, self.C, rtol, atol)
 
+    #: Its p(R) is negative (ξ increases), so it is no mixture to sample: the thesis samples it
+    #: "with a cosine distribution ... and an appropriate multiplier correction factor for each
+    #: ray" (section 4.7.4) — the cosine strategy, exact up to the weight f·π ≤ C ξ_max π.
+    strategies = ("cosine",)
+
 
 @dataclass(frozen=True)
-class PatchMixture(BRDF):
+class PatchMixture(_MixtureSampling, BRDF):
     """Mixture of basic BRDFs f = ∫_m² p(R) c(R) dR + p_Diffuse c(2)  (eqs. 4.20, 4.21, 4.40).
 
     ``weight`` is the continuous part p(R) (a vectorised callable on [0, 2]), ``p_diffuse`` the
@@ -123,8 +196,82 @@ class PatchMixture(BRDF):
         m = np.minimum(projected_distance(L, V), 2.0)
         flat = m.ravel()
         bp = np.stack([flat, np.maximum(flat, 1.0), np.full_like(flat, 2.0)], axis=1)
-        inner = integrate(lambda R, e: self.weight(R) * patch.basic_constant(R), bp, rtol=self.rtol, atol=0.0)
-        return inner.value.reshape(m.shape) + self.p_diffuse * patch.basic_constant(2.0)
+        # In blocks: one call over very many points would run into the driver's interval budget;
+        # atol 1e-300: a tail that underflows (s = 512 far from the patch) must not be refined forever.
+        inner = np.concatenate([
+            integrate(lambda R, e: self.weight(R) * patch.basic_constant(R), bp[k:k + self.block],
+                      rtol=self.rtol, atol=1e-300).value for k in range(0, max(len(bp), 1), self.block)])
+        return inner[:flat.size].reshape(m.shape) + self.p_diffuse * patch.basic_constant(2.0)
+
+    #: Points per call of the integration driver in ``_eval``.
+    block = 2048
+
+    # --- F(R) and F⁻¹ (eq. 4.27) for sampling ---------------------------------------------------
+    #: Intervals of the table of F (section 4.4: "stored in a sufficiently large one-dimensional array").
+    cdf_table_size = 1024
+
+    def _cdf_table(self):
+        cached = self.__dict__.get("_cdf_cache")
+        if cached is None:
+            edges = np.linspace(0.0, 2.0, self.cdf_table_size + 1)
+            pieces = integrate(lambda R, e: self.weight(R), np.stack([edges[:-1], edges[1:]], 1),
+                               rtol=self.rtol, atol=1e-15).value
+            cached = (edges, np.concatenate([[0.0], np.cumsum(pieces)]))
+            object.__setattr__(self, "_cdf_cache", cached)
+        return cached
+
+    def _density_table(self):
+        """G_i = ∫_{R_i}^2 p(R) c(R) dR on the edges of the table of F (f = G(m) + p_Diffuse/π)."""
+        cached = self.__dict__.get("_density_cache")
+        if cached is None:
+            edges, _ = self._cdf_table()
+            pieces = integrate(lambda R, e: self.weight(R) * patch.basic_constant(R),
+                               np.stack([edges[:-1], edges[1:]], 1), rtol=self.rtol, atol=1e-15).value
+            cached = np.concatenate([np.cumsum(pieces[::-1])[::-1], [0.0]])
+            object.__setattr__(self, "_density_cache", cached)
+        return cached
+
+    def _pdf(self, L, V, strategy):
+        """f cos θ_V / W with f from the table: G(R_{i+1}) + ∫_m^{R_{i+1}} p c (a 21-point Kronrod rule on
+        the short piece), the same numbers as ``_eval`` to its tolerance at a fraction of the cost."""
+        edges, _ = self._cdf_table()
+        table = self._density_table()
+        m = np.minimum(projected_distance(L, V), 2.0)
+        i = np.clip(np.searchsorted(edges, m, side="right") - 1, 0, edges.size - 2)
+        hi = edges[i + 1]
+        x = nodes_on(m, hi)
+        piece = 0.5 * (hi - m) * ((self.weight(x) * patch.basic_constant(x)) @ KRONROD_WEIGHTS)
+        f = self._with_diffuse(table[i + 1] + piece)
+        return f * V[..., 2] / self.total_weight
+
+    def _with_diffuse(self, continuous):
+        """f from its continuous part: + p_Diffuse c(2) (eq. 4.21)."""
+        return continuous + self.p_diffuse * patch.basic_constant(2.0)
+
+    @property
+    def total_weight(self) -> float:
+        """W = ∫₀² p(R) dR + p_Diffuse (1 for a normalised weight, eq. 4.21)."""
+        return float(self._cdf_table()[1][-1] + self.p_diffuse)
+
+    def radius_of_cdf(self, r):
+        """R = F⁻¹(r W): the table of F brackets R, three Newton steps on
+        F(R) = F(R_i) + ∫_{R_i}^R p (a 21-point Kronrod rule on the short piece) refine it; R = 2
+        (the Dirac p_Diffuse) above F(2⁻)."""
+        edges, table = self._cdf_table()
+        target = np.asarray(r, float) * self.total_weight
+        i = np.clip(np.searchsorted(table, target, side="right") - 1, 0, edges.size - 2)
+        lo, hi = edges[i], edges[i + 1]
+        span = table[i + 1] - table[i]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            R = np.where(span > 0, lo + (hi - lo) * (target - table[i]) / span, lo)
+        for _ in range(3):
+            x = nodes_on(lo, R)
+            partial = 0.5 * (R - lo) * (self.weight(x) @ KRONROD_WEIGHTS)
+            slope = self.weight(R)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = np.where(slope > 0, (table[i] + partial - target) / slope, 0.0)
+            R = np.clip(R - step, lo, hi)
+        return np.where(target >= table[-1], 2.0, R)
 
 
 @dataclass(frozen=True)
@@ -153,3 +300,31 @@ class PatchElliptical(BRDF):
         along_u = np.cos(phi) * zx + np.sin(phi) * zy
         along_v = -np.sin(phi) * zx + np.cos(phi) * zy
         return np.where(np.hypot(self.ratio * along_u, along_v) <= self.b, self.C, 0.0)
+
+    # --- sampling (section 4.5.4: "points are generated inside a circle that has radius b, then a
+    # scaling transformation is applied that transforms the circle to the ellipse") --------------
+    #: ``"russian_roulette"``: the Russian roulette of eq. 4.18 with the ellipse E(V'_P) in place of
+    #: the circle: uniform points in the smaller of E(V'_P) (area π a b, a = b/ratio) and the unit
+    #: disk, kept if inside the other; pdf = cos θ_V / min(π a b, π) on E(V'_P) ∩ disk, mass
+    #: Area(E(V'_P) ∩ disk) / min(π a b, π), weight C · min(π a b, π) (1 while the ellipse fits).
+    strategies = ("russian_roulette", "cosine")
+
+    def _domain_area(self):
+        return min(np.pi * self.b * self.b / self.ratio, np.pi)
+
+    def _sample_direction(self, L, u, strategy):
+        cx, cy = _mirrored_projection(L)
+        X, Y = sampling.uniform_in_circle(0.0, 0.0, 1.0, u[..., 0], u[..., 1])
+        if np.pi * self.b * self.b / self.ratio <= np.pi:
+            phi = np.radians(self.u_angle_deg)
+            a = self.b / self.ratio
+            x = cx + a * X * np.cos(phi) - self.b * Y * np.sin(phi)
+            y = cy + a * X * np.sin(phi) + self.b * Y * np.cos(phi)
+        else:
+            x, y = X, Y
+        V = sampling.disk_to_direction(x, y)
+        inside = self._eval(L, V, L[..., 2], V[..., 2]) > 0
+        return np.where((inside & (V[..., 2] > 0))[..., None], V, sampling.REJECTED)
+
+    def _pdf(self, L, V, strategy):
+        return np.where(self._eval(L, V, L[..., 2], V[..., 2]) > 0, V[..., 2] / self._domain_area(), 0.0)

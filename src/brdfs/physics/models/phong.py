@@ -10,6 +10,7 @@ from brdfs.numerics.integrate.lobes import PowerCosine
 from scipy.special import beta
 
 from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive_power
+from brdfs.physics import sampling
 
 
 def phong_constant(n):
@@ -34,6 +35,21 @@ class _PhongFamily(BRDF):
 
     def _lobe_value(self, L, V):
         return self.C * positive_power(r_dot_v(L, V), self.n)
+
+    # --- sampling: the cosine lobe about R (eqs. 3.19–3.22; Lafortune & Willems 1994) ---------
+    #: ``"lobe"``: V with density (n + 1)/(2π) (R·V)^n about the mirror direction R (eq. 3.20);
+    #: directions below the horizon are rejected (sec. 3.4.1), so the pdf integrates to the lobe's
+    #: mass above the horizon (1 at normal incidence, about 1/2 at grazing).  It covers the whole
+    #: support of f (R·V > 0), so Σ weight / M is unbiased for every member of the family.
+    strategies = ("lobe", "cosine")
+
+    def _sample_direction(self, L, u, strategy):
+        cos_a, sin_a = sampling.power_cosine(u[..., 0], self.n)
+        V = sampling.around_axis(sampling.mirror_direction(L), cos_a, sin_a, 2.0 * np.pi * u[..., 1])
+        return np.where((V[..., 2] > 0)[..., None], V, sampling.REJECTED)
+
+    def _pdf(self, L, V, strategy):
+        return sampling.power_cosine_pdf(r_dot_v(L, V), self.n)
 
 
 @dataclass(frozen=True)
