@@ -1,6 +1,5 @@
 """The geometric diagrams draw the numbers the package's geometry computes."""
 import numpy as np
-import pandas as pd
 import pytest
 
 from brdfs.artifacts import _diagrams as dg

@@ -5,7 +5,7 @@ import pytest
 
 from brdfs import albedo, model
 from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
-from brdfs.numerics.grazing import ward_cosmin_limit
+from brdfs.physics.models.microfacet import ward_cosmin_limit
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.quantities import grazing_albedo_new_model
 

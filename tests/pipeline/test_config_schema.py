@@ -4,7 +4,6 @@ Every malformed configuration must stop with ONE line that names the key and the
 before any rule runs and without writing anything under results/.
 """
 
-import copy
 import os
 import shutil
 import subprocess

@@ -1,7 +1,6 @@
 """Albedo curves a(θ_L) of several models (Figures 2.1 and 3.4): tidy data and their plot."""
 from __future__ import annotations
 
-import numpy as np
 import pandas as pd
 
 from brdfs.pipeline import plotting

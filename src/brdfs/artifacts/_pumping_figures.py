@@ -12,7 +12,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.numerics import pumping
-from brdfs.numerics.integrate.azimuthal import albedo_azimuthal
+from brdfs import albedo
 from brdfs.physics.geometry import cos_incidence, light_direction, mirror
 from brdfs.physics.models import model, phong_constant
 from brdfs.numerics.quantities import maximal_constant

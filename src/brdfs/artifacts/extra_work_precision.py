@@ -50,7 +50,7 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.grid(True, which="major", alpha=0.3)
     for ax in axes.ravel()[len(cases):]:
         ax.set_axis_off()
-    handles, labels = {}, {}
+    handles = {}
     for ax in axes.ravel():
         for h, l in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(l, h)

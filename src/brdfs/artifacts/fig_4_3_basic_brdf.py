@@ -6,7 +6,6 @@ mirror side. The incidence angles are an open choice (config ``patch.fig_4_3_the
 
 from __future__ import annotations
 
-import numpy as np
 import pandas as pd
 
 from brdfs.numerics import patch_geometry as patch

@@ -31,7 +31,6 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    import matplotlib.pyplot as plt
 
     v = dg.values(df)
     d, R, alpha, beta = v["d"], v["R"], v["alpha_rad"], v["beta_rad"]

@@ -53,6 +53,8 @@ PARAMETERS = {
     "patch_exponential": [{"s": 512}, {"s": 10}, {"s": 1}],
     "patch_elliptical": [{"b": 0.05, "ratio": 0.25}, {"b": 0.3, "ratio": 0.5}],
     "generalized_lambertian": [{"d": 1.0}, {"d": 0.5}],
+    "ggx": [{"alpha": 0.01}, {"alpha": 0.3}, {"alpha": 1.0}],
+    "beckmann": [{"alpha": 0.01}, {"alpha": 0.3}, {"alpha": 1.0}],
 }
 
 

@@ -20,7 +20,6 @@ import numpy as np
 
 from brdfs.numerics.albedo import albedo
 from brdfs.numerics.integrate.gauss_kronrod import Estimate
-from brdfs.physics.distributions import Beckmann
 from brdfs.physics.models.base import GrazingLaw
 
 _EPS = np.finfo(float).eps

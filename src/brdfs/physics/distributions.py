@@ -25,7 +25,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import erf, erfc, erfcx, ndtri
+from scipy.special import erfc, erfcx, ndtri
 
 from brdfs.physics.models.base import check_positive
 

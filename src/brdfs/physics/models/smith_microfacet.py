@@ -230,9 +230,13 @@ class _SmithMicrofacet(BRDF):
             return np.zeros(np.shape(nl))
         return np.clip(1.0 - self.energy_table()[0](nl), 0.0, 1.0)
 
-    def pdf(self, L, V):
-        """Density of :meth:`sample`: D_L(H) / (4 L·H) (visible normals seen from L, reflected), mixed
-        with cos θ_V / π with weight 1 − E(μ_L) when compensated."""
+    #: ``"visible_normals"``: V reflected about a visible normal (mixed with the cosine lobe with
+    #: probability 1 − E(μ_L) when compensated); ``"cosine"``: the protocol's baseline.
+    strategies = ("visible_normals", "cosine")
+
+    def _pdf(self, L, V, strategy):
+        """Density of the visible-normal sampler: D_L(H) / (4 L·H) (visible normals seen from L,
+        reflected), mixed with cos θ_V / π with weight 1 − E(μ_L) when compensated."""
         L, V = np.asarray(L, float), np.asarray(V, float)
         h = L + V
         norm = np.linalg.norm(h, axis=-1, keepdims=True)
@@ -244,7 +248,7 @@ class _SmithMicrofacet(BRDF):
         p_ms = self._ms_probability(L[..., 2])
         return (1.0 - p_ms) * p_ss + p_ms * np.where(V[..., 2] > 0, V[..., 2] / np.pi, 0.0)
 
-    def sample(self, L, u):
+    def _sample_direction(self, L, u, strategy):
         """V = reflection of L about a visible normal H (Heitz 2018 / Heitz & d'Eon 2014); with
         compensation, a cosine-distributed V with probability 1 − E(μ_L) (u₀ reused by rescaling)."""
         L = np.asarray(L, float)
@@ -261,11 +265,7 @@ class _SmithMicrofacet(BRDF):
         V_ss = 2.0 * np.sum(L * H, axis=-1, keepdims=True) * H - L
         r, phi = np.sqrt(u_ms), 2.0 * np.pi * u1
         V_ms = np.stack([r * np.cos(phi), r * np.sin(phi), np.sqrt(np.maximum(1.0 - u_ms, 0.0))], -1)
-        V = np.where(cosine[..., None], V_ms, V_ss)
-        pdf = self.pdf(L, V)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            weight = np.where((pdf > 0) & (V[..., 2] > 0), self(L, V) * V[..., 2] / pdf, 0.0)
-        return V, weight, pdf
+        return np.where(cosine[..., None], V_ms, V_ss)
 
 
 @dataclass(frozen=True)
