@@ -65,3 +65,27 @@ def test_table_png_is_deterministic(tmp_path):
     plotting.save_table_png(df, tmp_path / "a.png", "Table")
     plotting.save_table_png(df, tmp_path / "b.png", "Table")
     assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()
+
+
+def test_csv_floats_stay_exact_after_a_library_sets_legacy_print_options(tmp_path):
+    """colour-science sets numpy's legacy='1.13' print options on import, under which pandas
+    writes 12 digits; write_csv pins the options."""
+    import numpy as np
+    import pandas as pd
+
+    from brdfs.pipeline import io
+
+    df = pd.DataFrame({"value": [0.30000000000000004, 1 / 3]})
+    with np.printoptions(legacy="1.13"):
+        io.write_csv(df, tmp_path / "t.csv")
+    assert io.read_csv(tmp_path / "t.csv")["value"].tolist() == df["value"].tolist()
+
+
+def test_importing_colour_through_the_package_leaves_numpy_print_options_alone():
+    import numpy as np
+
+    from brdfs.physics.spectral_colour import colour_module
+
+    before = np.get_printoptions()
+    colour_module()
+    assert np.get_printoptions() == before

@@ -74,6 +74,14 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
                 status[chosen] = est.status
             if scheme is azimuthal.albedo_many:
                 closed_form_nodes += est.evaluations or 0
+    # Within ~1e-4 of grazing the 1-D route of max(N·L, N·V) models loses ε / cos θ to rounding and
+    # can stop short of the tolerance: those elements are integrated in two dimensions instead.
+    short = one_d & (status != CONVERGED)
+    if short.any():
+        est = albedo_many([m for m, s in zip(models, short) if s], theta[short], rtol=rtol, atol=atol)
+        better = est.error < error[short]
+        rows = np.flatnonzero(short)[better]
+        value[rows], error[rows], status[rows] = est.value[better], est.error[better], est.status[better]
     groups: dict[int, list[int]] = {}
     for i, m in enumerate(models):
         groups.setdefault(id(m), []).append(i)

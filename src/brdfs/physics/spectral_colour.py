@@ -17,9 +17,14 @@ ILLUMINANT = "D65"
 VISIBLE_NM = np.arange(380.0, 780.0 + 2.5, 5.0)
 
 
-def _colour():
-    import colour  # heavy import: only the artifacts that need colour pay for it
+def colour_module():
+    """The colour-science package, imported on first use (only the artifacts that need it pay for
+    the import) without its side effect on numpy: it sets ``legacy='1.13'`` print options, under
+    which ``str(float64)`` keeps 12 digits, and pandas writes CSV floats through ``str``."""
+    options = np.get_printoptions()
+    import colour
 
+    np.set_printoptions(**options)
     return colour
 
 
@@ -29,7 +34,7 @@ def reflectance_to_xyz(wavelength_nm, reflectance) -> np.ndarray:
     ``reflectance`` has shape (..., len(wavelength_nm)); the spectra are interpolated linearly
     onto :data:`VISIBLE_NM` (``wavelength_nm`` must cover 380–780 nm). Returns shape (..., 3).
     """
-    colour = _colour()
+    colour = colour_module()
     wl = np.asarray(wavelength_nm, float)
     refl = np.asarray(reflectance, float)
     if wl[0] > VISIBLE_NM[0] or wl[-1] < VISIBLE_NM[-1]:
@@ -47,7 +52,7 @@ def reflectance_to_xyz(wavelength_nm, reflectance) -> np.ndarray:
 
 def xyz_to_linear_srgb(xyz) -> np.ndarray:
     """Linear sRGB (no transfer function) of CIE XYZ with the D65 white point."""
-    return np.asarray(_colour().XYZ_to_RGB(np.asarray(xyz, float), "sRGB", apply_cctf_encoding=False))
+    return np.asarray(colour_module().XYZ_to_RGB(np.asarray(xyz, float), "sRGB", apply_cctf_encoding=False))
 
 
 def reflectance_to_linear_srgb(wavelength_nm, reflectance) -> np.ndarray:
@@ -57,4 +62,4 @@ def reflectance_to_linear_srgb(wavelength_nm, reflectance) -> np.ndarray:
 
 def encode_srgb(linear_rgb) -> np.ndarray:
     """Display sRGB in [0, 1]: clip to [0, 1], then the sRGB transfer function (IEC 61966-2-1)."""
-    return np.asarray(_colour().cctf_encoding(np.clip(np.asarray(linear_rgb, float), 0.0, 1.0), function="sRGB"))
+    return np.asarray(colour_module().cctf_encoding(np.clip(np.asarray(linear_rgb, float), 0.0, 1.0), function="sRGB"))

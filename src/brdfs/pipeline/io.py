@@ -18,6 +18,7 @@ import uuid
 from collections.abc import Iterator
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 #: The repository root (``src/brdfs/pipeline/io.py`` -> four levels up).
@@ -51,8 +52,12 @@ def atomic_output(path: str | os.PathLike) -> Iterator[Path]:
 
 
 def write_csv(df: pd.DataFrame, path: str | os.PathLike) -> None:
-    """Write ``df`` without its index, atomically."""
-    with atomic_output(path) as tmp:
+    """Write ``df`` without its index, atomically, every float in its shortest exact repr.
+
+    pandas formats floats through ``str``, which numpy's ``legacy='1.13'`` print options (set
+    by some libraries on import) cut to 12 digits: the options are pinned here.
+    """
+    with atomic_output(path) as tmp, np.printoptions(legacy=False):
         df.to_csv(tmp, index=False)
 
 

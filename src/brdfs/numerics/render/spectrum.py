@@ -17,6 +17,8 @@ import functools
 
 import numpy as np
 
+from brdfs.physics.spectral_colour import colour_module
+
 #: Centres of the eight 50 nm bins of 380–780 nm.
 WAVELENGTHS_NM = np.arange(405.0, 760.0, 50.0)
 BIN_WIDTH_NM = 50.0
@@ -26,7 +28,7 @@ RGB_LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
 
 @functools.lru_cache(maxsize=1)
 def _spectral_matrices():
-    import colour
+    colour = colour_module()
 
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
     fine = np.arange(380.0, 780.0, 1.0) + 0.5
@@ -68,7 +70,7 @@ def linear_rgb(radiance):
 
 def display_scale(rgb, reference_mask):
     """Scale so that the median of max(r, g, b) over the reference pixels shows as 0.5 (section 3.6)."""
-    import colour
+    colour = colour_module()
 
     target_linear = float(colour.models.eotf_sRGB(0.5))
     level = np.median(np.max(rgb[reference_mask], axis=-1))
@@ -79,7 +81,7 @@ def display_scale(rgb, reference_mask):
 
 def to_display(rgb, scale):
     """8-bit sRGB image: scaled, clipped to [0, 1], sRGB-encoded, rounded."""
-    import colour
+    colour = colour_module()
 
     encoded = colour.models.eotf_inverse_sRGB(np.clip(rgb * scale, 0.0, 1.0))
     return np.round(255.0 * encoded).astype(np.uint8)
