@@ -1,6 +1,7 @@
 """Albedo curves a(θ_L) of several models (Figures 2.1 and 3.4): tidy data and their plot."""
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 
 from brdfs.pipeline import plotting
@@ -34,16 +35,28 @@ def param_columns(brdf, names=None) -> dict:
     return {c: "" if brdf.params.get(c) is None else brdf.params[c] for c in names}
 
 
-def curves(specs, theta_deg, tol) -> pd.DataFrame:
-    """a(θ) with its error for every model of ``specs`` on ``theta_deg``, one row per value."""
+def curves(specs, theta_deg, tol, known: pd.DataFrame | None = None) -> pd.DataFrame:
+    """a(θ) with its error for every model of ``specs`` on ``theta_deg``, one row per value.
+
+    A curve already in ``known`` (another figure's table: the same model, label and angles) is
+    taken from there instead of being integrated again.
+    """
     models = [build(s) for s in specs]
-    est = albedo_table(models, theta_deg, rtol=tol["rtol"], atol=tol["atol"])
+    reused = {m_label: rows for m_label, rows in (known.groupby("label", sort=False) if known is not None else [])
+              if np.array_equal(rows["theta_deg"].to_numpy(), np.asarray(theta_deg, float))}
+    todo = [m for m in models if label(m) not in reused]
+    est = albedo_table(todo, theta_deg, rtol=tol["rtol"], atol=tol["atol"]) if todo else None
     names = param_names(models)
-    frames = [
-        pd.DataFrame({"model": m.name, **param_columns(m, names), "label": label(m), "theta_deg": theta_deg,
-                      "cos_theta": cos_incidence(theta_deg), "albedo": est.value[i], "albedo_err": est.error[i]})
-        for i, m in enumerate(models)
-    ]
+    frames = []
+    for m in models:
+        if label(m) in reused:
+            value, error = reused[label(m)]["albedo"].to_numpy(), reused[label(m)]["albedo_err"].to_numpy()
+        else:
+            k = todo.index(m)
+            value, error = est.value[k], est.error[k]
+        frames.append(pd.DataFrame({"model": m.name, **param_columns(m, names), "label": label(m),
+                                    "theta_deg": theta_deg, "cos_theta": cos_incidence(theta_deg),
+                                    "albedo": value, "albedo_err": error}))
     return pd.concat(frames, ignore_index=True)
 
 

@@ -9,12 +9,12 @@ from brdfs.pipeline.registry import figure
 from brdfs.numerics.grazing import incidence_grid
 
 
-@figure("fig_3_4_albedo_with_new_model", config=("grazing",), batch=None)
+@figure("fig_3_4_albedo_with_new_model", deps=("fig_2_1_albedo_classical",), config=("grazing",), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """The curves, columns as Figure 2.1's."""
+    """The curves, columns as Figure 2.1's; the curves Figure 2.1 already has are taken from its table."""
     g = cfg["grazing"]
     theta = incidence_grid(g["theta_step_deg"], g["approach_from"], g["approach_to"], g["per_decade"])
-    return albedo_curves.curves(g["fig_3_4_models"], theta, cfg["tolerance"])
+    return albedo_curves.curves(g["fig_3_4_models"], theta, cfg["tolerance"], known=deps["fig_2_1_albedo_classical"])
 
 
 def plot(df: pd.DataFrame, path) -> None:

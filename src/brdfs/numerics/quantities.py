@@ -22,7 +22,9 @@ def max_albedo(models, rtol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.
     normal incidence (Table 1.1: corrected Blinn with small n).  At an interior maximum a
     bracket of 1e-5° moves a by ~a''·1e-14: the default resolves the value, not just the angle.
     ``grid_values`` (models × grid points), when the caller has the grid already, saves its
-    recomputation.
+    recomputation; otherwise the grid is integrated at 1e-6, which locates the bracket (a wrong
+    bracket would need two grid values within 1e-6 of each other across the maximum, and the
+    golden section then works on values at ``rtol``).
 
     Returns
     -------
@@ -34,7 +36,7 @@ def max_albedo(models, rtol=None, grid_deg=2.0, xtol_deg=1e-5, theta_max_deg=90.
     models = list(models)
     grid = np.append(np.arange(0.0, theta_max_deg, grid_deg), theta_max_deg)
     if grid_values is None:
-        grid_values = albedo_pairs([m for m in models for _ in grid], np.tile(grid, len(models)), rtol=1e-8).value
+        grid_values = albedo_pairs([m for m in models for _ in grid], np.tile(grid, len(models)), rtol=1e-6).value
     best = np.nanargmax(np.reshape(grid_values, (len(models), grid.size)), axis=1)
     lo = grid[np.maximum(best - 1, 0)]
     hi = grid[np.minimum(best + 1, grid.size - 1)]
