@@ -38,12 +38,16 @@ def param_columns(brdf, names=None) -> dict:
 def curves(specs, theta_deg, tol, known: pd.DataFrame | None = None) -> pd.DataFrame:
     """a(θ) with its error for every model of ``specs`` on ``theta_deg``, one row per value.
 
-    A curve already in ``known`` (another figure's table: the same model, label and angles) is
-    taken from there instead of being integrated again.
+    A curve already in ``known`` (another figure's table: the same model and label, at every one
+    of these angles, to the bit) is taken from there instead of being integrated again.
     """
     models = [build(s) for s in specs]
-    reused = {m_label: rows for m_label, rows in (known.groupby("label", sort=False) if known is not None else [])
-              if np.array_equal(rows["theta_deg"].to_numpy(), np.asarray(theta_deg, float))}
+    theta_deg = np.asarray(theta_deg, float)
+    reused = {}
+    for m_label, rows in (known.groupby("label", sort=False) if known is not None else []):
+        by_angle = rows.set_index("theta_deg")
+        if by_angle.index.is_unique and np.isin(theta_deg, by_angle.index).all():
+            reused[m_label] = by_angle.loc[theta_deg]
     todo = [m for m in models if label(m) not in reused]
     est = albedo_table(todo, theta_deg, rtol=tol["rtol"], atol=tol["atol"]) if todo else None
     names = param_names(models)

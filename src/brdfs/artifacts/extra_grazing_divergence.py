@@ -12,7 +12,7 @@ from brdfs.pipeline.registry import figure
 from brdfs.numerics.grazing import approach_angles, asymptotic_law
 
 
-@figure("extra_grazing_divergence", config=("grazing",), batch=None)
+@figure("extra_grazing_divergence", deps=("fig_3_4_albedo_with_new_model",), config=("grazing",), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Albedo curves with the law's exponent, constant (and its error) and value at each angle.
 
@@ -24,7 +24,8 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """
     g = cfg["grazing"]
     theta = approach_angles(max(g["approach_from"], -1.0), g["approach_to"], g["per_decade"])
-    df = albedo_curves.curves(g["divergence_models"], theta, cfg["tolerance"])
+    # The curves Figure 3.4 has (on a grid that contains these angles) are taken from its table.
+    df = albedo_curves.curves(g["divergence_models"], theta, cfg["tolerance"], known=deps["fig_3_4_albedo_with_new_model"])
     laws = []
     for spec in g["divergence_models"]:
         law = asymptotic_law(albedo_curves.build(spec), cfg["tolerance"]["rtol"])
