@@ -38,6 +38,7 @@ rule artifact:
         kind="tables|figures|checks",
         name=wildcard_choice(SOLO),
     threads: lambda wc: ARTIFACTS[wc.name].resources["threads"]
+    priority: lambda wc: priority([ARTIFACTS[wc.name]])
     resources:
         mem_mb=lambda wc: ARTIFACTS[wc.name].resources["mem_mb"],
         runtime=lambda wc: ARTIFACTS[wc.name].resources["runtime"],
@@ -63,6 +64,7 @@ for _batch, _members in BATCHES.items():
             artifacts=[a.name for a in _members],
             config=registry.config_subset(config, sorted({s for a in _members for s in a.config})),
         threads: max(a.resources["threads"] for a in _members)
+        priority: priority(_members)
         resources:
             mem_mb=max(a.resources["mem_mb"] for a in _members),
             runtime=sum(a.resources["runtime"] for a in _members),

@@ -22,6 +22,14 @@ COMPARISONS = registry.comparisons()
 ARTIFACT_OUTPUTS = [path for a in ARTIFACTS.values() for path in (a.csv, a.png)]
 BATCHES = registry.batches()
 SOLO = [name for name, a in ARTIFACTS.items() if a.batch is None]
+# Long chains of dependent jobs and long jobs start first (Snakemake runs higher priorities first).
+CHAINS = registry.chain_lengths()
+
+
+def priority(members):
+    """The order in which ready jobs start: longer chains first, then the expensive artifacts that
+    have a job of their own, then the batches of cheap ones."""
+    return 10 * max(CHAINS[a.name] for a in members) + (1 if len(members) == 1 and members[0].batch is None else 0)
 FRAGMENTS = [c.fragment_csv for c in COMPARISONS.values()]
 
 # Captions and verdicts for the HTML report's caption templates (workflow/report/*.rst),

@@ -394,6 +394,25 @@ def batches() -> dict[str, list[Artifact]]:
     return groups
 
 
+def chain_lengths() -> dict[str, int]:
+    """For every artifact, the number of jobs that wait for it, one after another (the longest
+    chain of dependants below it, batches counted as one job): a scheduler that starts long chains
+    first keeps both cores busy to the end."""
+    registered = artifacts()
+    users: dict[str, set[str]] = {name: set() for name in registered}
+    for a in registered.values():
+        for d in a.deps:
+            users[d].add(a.name)
+    memo: dict[str, int] = {}
+
+    def length(name):
+        if name not in memo:
+            memo[name] = 1 + max((length(u) for u in users[name]), default=0)
+        return memo[name]
+
+    return {name: length(name) for name in registered}
+
+
 def _dependency_order(registered: dict[str, Artifact]) -> list[str]:
     order: list[str] = []
 
