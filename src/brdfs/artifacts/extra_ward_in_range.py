@@ -13,14 +13,14 @@ from brdfs.physics.models import model
 from brdfs.numerics.quantities import max_albedo
 
 ARTIFACT = "ward_in_range"
-GRID_STEP_DEG = 0.25
+GRID_STEP_DEG = 1.0
 
 
 @table("extra_ward_in_range", config=("grazing",), batch=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Columns ``model, m, C, theta_max_deg, max_albedo, max_albedo_err, theta_at_max_deg``.
 
-    The maximum over [0°, theta_max] by :func:`brdfs.numerics.quantities.max_albedo` on a 0.25° bracket grid."""
+    The maximum over [0°, theta_max] by :func:`brdfs.numerics.quantities.max_albedo` on a 1° bracket grid."""
     w = cfg["grazing"]["ward_in_range"]
     ms = [float(m) for m in w["m_values"]]
     amax, at = max_albedo([model("ward", m=m) for m in ms], cfg["tolerance"]["rtol"], grid_deg=GRID_STEP_DEG,
