@@ -167,11 +167,16 @@ def _midpoint_grid(model, theta, rtol, atol, n_theta=90, n_phi=360):
     d_theta, d_phi = 0.5 * np.pi / n_theta, 2 * np.pi / n_phi
     phi = (np.arange(n_phi) + 0.5) * d_phi
     total = bound = 0.0
-    for tv in (np.arange(n_theta) + 0.5) * d_theta:
-        V = np.stack([np.sin(tv) * np.cos(phi), np.sin(tv) * np.sin(phi), np.full_like(phi, np.cos(tv))], -1)
-        row = model(L, V) * np.cos(tv) * np.sin(tv) * d_theta * d_phi
-        total += row.sum()
-        bound += np.abs(row).sum()
+    rows_per_block = max(1, 2 ** 18 // n_phi)          # a block of rows at a time bounds the memory
+    theta_v = (np.arange(n_theta) + 0.5) * d_theta
+    for start in range(0, n_theta, rows_per_block):
+        tv = theta_v[start:start + rows_per_block, None]
+        V = np.stack(np.broadcast_arrays(np.sin(tv) * np.cos(phi), np.sin(tv) * np.sin(phi), np.cos(tv)), -1)
+        rows = model(L, V) * np.cos(tv) * np.sin(tv) * d_theta * d_phi
+        # rows summed one by one, in order, as the row-by-row loop summed them
+        for row_sum, row_abs in zip(rows.sum(axis=-1), np.abs(rows).sum(axis=-1)):
+            total += row_sum
+            bound += row_abs
     return total, 4 * _EPS * (np.log2(n_theta * n_phi) + 2) * bound
 
 
