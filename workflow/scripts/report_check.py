@@ -135,9 +135,10 @@ def check(report: Path, out_dir: Path) -> list[str]:
         if not (r.get("img_found") and r["natural_width"] > 0 and r["natural_height"] > 0):
             problems.append(f"{r['path']}: <img> did not load ({r.get('natural_width')}x{r.get('natural_height')})")
         caption = strip_tags(r["caption_data"])
-        if len(caption) < 40 or "no caption written yet" in caption:
+        written = caption.split("Data:")[0].strip()        # the caption proper, before the data line
+        if len(written) < 40 or "no caption written yet" in caption or "results//" in caption:
             problems.append(f"{r['path']}: no caption")
-        elif caption[:30] not in " ".join(r["info_text"].split()):
+        elif "".join(written.split())[:30] not in "".join(r["info_text"].split()):   # spacing aside
             problems.append(f"{r['path']}: caption not displayed by the report")
     if shot.returncode != 0 or not (out_dir / "report.png").is_file() or (out_dir / "report.png").stat().st_size < 10000:
         problems.append(f"screenshot failed (rc {shot.returncode}): {shot.stderr[-300:]}")
