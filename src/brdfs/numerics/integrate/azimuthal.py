@@ -30,6 +30,7 @@ import numpy as np
 
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
 from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.numerics.integrate.mean import positive_part_azimuth
 
 #: Models whose azimuthal integral is closed-form here, with their frame and max(N·L, N·V) flag.
 _EPS = np.finfo(float).eps
@@ -130,14 +131,6 @@ def _breakpoints(lobe, theta, mu, cosmin):
     return np.sort(PowerCosine(n, lobe.frame).t_of(beta), axis=1)
 
 
-def _positive_part(a, b):
-    """J(a, b) = ∫₀^{2π} [a + b cos φ]₊ dφ for b ≥ 0 (as in :mod:`.mean`)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        phi0 = np.arccos(np.clip(-a / b, -1.0, 1.0))
-    partial = 2 * (a * phi0 + b * np.sin(phi0))
-    return np.where(a >= b, 2 * np.pi * a, np.where(a <= -b, 0.0, partial))
-
-
 def _level_azimuth(a, b, c):
     """φ in [0, π] with a + b cos φ = c; the set a + b cos φ > c is [0, φ) (π: all, 0: none)."""
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -148,10 +141,10 @@ def _level_azimuth(a, b, c):
 def _mirror(cb, sb, mu, st, cosmin):
     """M(α) and its rounding bound: the φ-integral of [N·V]₊ (· 1/max(N·L, N·V))."""
     a, b = cb * mu, sb * st
-    full = _positive_part(a, b)
+    full = positive_part_azimuth(a, b)
     if not cosmin:
         return full, 4 * _EPS * np.abs(full)
-    low = _positive_part(a - mu, b)
+    low = positive_part_azimuth(a - mu, b)
     with np.errstate(divide="ignore", invalid="ignore"):
         quotient = (full - low) / mu
         rounding = 8 * _EPS * (np.abs(full) + np.abs(low)) / mu

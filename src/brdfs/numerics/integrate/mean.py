@@ -56,12 +56,12 @@ def _inner_integrals(inner, beta, cosmin, rtol, atol):
 def _mirror_inner(alpha, theta, cosmin):
     """sin θ · M(α, θ)."""
     a, b = np.cos(alpha) * np.cos(theta), np.sin(alpha) * np.sin(theta)
-    m = _positive_part_cos(a, b) - _positive_part_cos(a - np.cos(theta), b) if cosmin \
-        else np.cos(theta) * _positive_part_cos(a, b)
+    m = positive_part_azimuth(a, b) - positive_part_azimuth(a - np.cos(theta), b) if cosmin \
+        else np.cos(theta) * positive_part_azimuth(a, b)
     return np.sin(theta) * m
 
 
-def _positive_part_cos(a, b):
+def positive_part_azimuth(a, b):
     """J(a, b) = ∫₀^{2π} [a + b cos φ]₊ dφ for b ≥ 0."""
     with np.errstate(divide="ignore", invalid="ignore"):
         phi0 = np.arccos(np.clip(-a / b, -1.0, 1.0))
