@@ -1,5 +1,3 @@
-from pathlib import Path
-
 # The rules of every registered table and figure: its CSV and PNG from its module's compute()
 # and plot(). Inputs are the CSVs of its declared deps and the package files its module imports;
 # params are the config sections it reads. Each PNG goes into the HTML report under its thesis
@@ -8,29 +6,6 @@ from pathlib import Path
 # Cheap artifacts are computed together, one job per batch (registry.batches(): a chapter, or the
 # extras), so that each does not pay the ~1 s start-up of a Python process; an expensive one
 # (declared with batch=None) gets the generic `artifact` rule, one job of its own.
-
-
-def caption_of(name):
-    """The report caption template of one artifact of a batch (a batch job has no wildcards to
-    look its members up by): written under .snakemake/, from workflow/report/artifact.rst."""
-    template = Path(workflow.basedir, "workflow", "report", "artifact.rst").read_text()
-    path = Path(workflow.basedir, ".snakemake", "report_captions", f"{name}.rst")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    text = template.replace("snakemake.wildcards.name", repr(name)).replace(
-        "{{ snakemake.wildcards.kind }}", Path(ARTIFACTS[name].csv).parent.name)
-    if not path.is_file() or path.read_text() != text:
-        path.write_text(text)
-    return str(path)
-
-
-def report_png(path, name):
-    return report(
-        path,
-        caption=caption_of(name),
-        category=report_text.category(name),
-        subcategory=report_text.subcategory(name),
-        labels={"artifact": name, "thesis": report_text.thesis_number(name) or "extra"},
-    )
 
 
 rule artifact:

@@ -1,5 +1,6 @@
 # Configuration check and the registry-derived names every rule uses.
 import sys
+from pathlib import Path
 
 from brdfs.pipeline import registry
 from brdfs.pipeline import report as report_text
@@ -48,3 +49,26 @@ def batch_inputs(members):
     """The CSVs a batch reads that it does not write itself."""
     own = {a.name for a in members}
     return sorted({ARTIFACTS[d].csv for a in members for d in a.deps if d not in own})
+
+
+def caption_of(name):
+    """The report caption template of one artifact of a batch (a batch job has no wildcards to
+    look its members up by): written under .snakemake/, from workflow/report/artifact.rst."""
+    template = Path(workflow.basedir, "workflow", "report", "artifact.rst").read_text()
+    path = Path(workflow.basedir, ".snakemake", "report_captions", f"{name}.rst")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    text = template.replace("snakemake.wildcards.name", repr(name)).replace(
+        "{{ snakemake.wildcards.kind }}", Path(ARTIFACTS[name].csv).parent.name)
+    if not path.is_file() or path.read_text() != text:
+        path.write_text(text)
+    return str(path)
+
+
+def report_png(path, name):
+    return report(
+        path,
+        caption=caption_of(name),
+        category=report_text.category(name),
+        subcategory=report_text.subcategory(name),
+        labels={"artifact": name, "thesis": report_text.thesis_number(name) or "extra"},
+    )

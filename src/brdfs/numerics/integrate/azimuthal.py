@@ -29,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.numerics.integrate.hemisphere import TAIL
 from brdfs.numerics.integrate.lobes import PowerCosine
 from brdfs.numerics.integrate.mean import positive_part_azimuth
 
@@ -128,7 +129,13 @@ def _breakpoints(lobe, theta, mu, cosmin):
     beta = np.where((beta > 0) & (beta < beta_max[:, None]), beta, beta_max[:, None])
     beta[:, 0] = 0.0
     n = np.broadcast_to(np.asarray(lobe.n, float), theta.shape)[:, None]
-    return np.sort(PowerCosine(n, lobe.frame).t_of(beta), axis=1)
+    t = PowerCosine(n, lobe.frame).t_of(beta)
+    t_end = t.max(axis=1, keepdims=True)
+    # Tail points, as in the 2-D engine (hemisphere.TAIL): a kink squeezed into 1 − t < 1e-3 can
+    # hide from the first interval's Kronrod nodes (the new model, n = 128, at 67.5°: 1e-12 off
+    # while 5e-14 was reported).
+    tail = np.broadcast_to(1.0 - TAIL, (t.shape[0], TAIL.size))
+    return np.sort(np.concatenate([t, np.minimum(tail, t_end)], axis=1), axis=1)
 
 
 def _level_azimuth(a, b, c):
