@@ -16,6 +16,6 @@ temp_copy() {
 
 # The bytes of every CSV and PNG under results/ (tables, figures, checks), one "sha256  path" a line.
 fingerprint() {
-    (cd "$1" && find results/tables results/figures results/checks -type f \( -name '*.csv' -o -name '*.png' \) \
-        -not -name '.*' | LC_ALL=C sort | xargs sha256sum)
+    (cd "$1" && find results -type f \( -path 'results/tables/*' -o -path 'results/figures/*' -o -path 'results/checks/*' \) \
+        \( -name '*.csv' -o -name '*.png' \) -not -name '.*' | LC_ALL=C sort | xargs sha256sum)
 }
