@@ -36,6 +36,8 @@ GRAZING_MU = 0.02
 # the Kronrod–Gauss pair did not show (reported 1.5e-13; the disk reference and scipy's quad agree on
 # the value); 8 sub-pieces remove it.
 SUBPIECES_SQRT = 8
+#: φ/φ_h of the graded cuts for a model with a kink at V = N (``kink_at_normal``).
+KINK_GRADING = 10.0 ** -np.arange(1.0, 7.0)
 _EPS = np.finfo(float).eps
 
 
@@ -175,6 +177,10 @@ def _azimuthal(model, t, mu, st):
         phis = [_phi_level(A_lh, B_lh, c) for c in model.lh_levels(mu, cb)]
     phi_h = _phi_level(A_nv, B_nv, 0.0)
     phis = phis + [_phi_level(A_nv, B_nv, c) for c in levels]
+    if model.kink_at_normal:
+        # A cone-shaped kink at V = N (φ = 0 on the circle through it): graded cuts resolve the layer
+        # of width ~ the circle's distance from N, which a fixed rule on [0, φ₁] cannot.
+        phis = phis + [phi_h * k for k in KINK_GRADING]
     cuts = np.sort(np.stack([np.zeros_like(phi_h)] + [np.minimum(p, phi_h) for p in phis] + [phi_h], -1), -1)
     cuts = _split_pieces(cuts, SUBPIECES_SQRT if model.sqrt_at_horizon else SUBPIECES)
     lo, hi = cuts[..., :-1, None], cuts[..., 1:, None]                      # (m, 21, P, 1)

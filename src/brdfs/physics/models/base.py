@@ -94,6 +94,8 @@ class BRDF:
     limit_cos_power: ClassVar[int | None] = None
     #: lim_{n→∞} a(90°), None where not derived.
     limit_albedo_90: ClassVar[float | None] = None
+    #: Integrand with a cone-shaped kink at V = N (1 − c|V − N|), e.g. the thesis's Smith G* (eq. 1.38).
+    kink_at_normal: ClassVar[bool] = False
     #: (frame, divided by max(N·L, N·V)) of a cosine-power lobe whose azimuthal integral is known in
     #: closed form (:mod:`brdfs.numerics.integrate.azimuthal`), None otherwise.
     closed_form_azimuth: ClassVar[tuple[str, bool] | None] = None

@@ -148,6 +148,11 @@ class CookTorrance(_BeckmannFamily):
         """With Smith's G the BRDF is singular at N·L = 0; a(90°) integrates :class:`SmithGrazingLimit`."""
         return SmithGrazingLimit(self.m, self.C) if self.G == "smith" else self
 
+    @property
+    def kink_at_normal(self):
+        """G* of eq. 1.38 behaves like 1 − c √(1 − N·V): a cone-shaped kink at V = N."""
+        return self.G == "smith"
+
     def nv_levels(self, nl):
         """N·V = N·L: where eq. 2.10's minimum switches between its masking and shadowing terms."""
         return (nl,) if self.G == "torrance_sparrow" else ()
