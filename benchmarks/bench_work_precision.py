@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from brdfs import albedo
-from brdfs.artifacts._work_precision import case_angle, case_model, reference, runs
+from brdfs.artifacts._work_precision import planned_runs
 from brdfs.pipeline import plotting
 from brdfs.pipeline.config import load_config
 from brdfs.pipeline.io import REPO_ROOT
@@ -24,18 +24,12 @@ OUT = REPO_ROOT / "results" / "benchmarks"
 
 def timed_runs(sec: dict, seed: int) -> pd.DataFrame:
     rows = []
-    for k, case in enumerate(sec["cases"]):
-        brdf = case_model(case)
-        theta = case_angle(case, brdf)
-        ref, _, _ = reference(brdf, theta, sec["reference_rtol"])
-        for j, (method, sampler, setting, options) in enumerate(runs(sec, seed)):
-            if method == "monte_carlo":
-                options = {**options, "seed": [seed, k, j]}
-            start = time.perf_counter()
-            est = albedo(brdf, theta, method, **options)
-            seconds = time.perf_counter() - start
-            rows.append({"case": case["label"], "method": method if not sampler else f"mc_{sampler}",
-                         "setting": setting, "seconds": seconds, "true_error": abs(float(est.value) - ref)})
+    for label, brdf, theta, (ref, _, _), method, sampler, setting, options in planned_runs(sec, seed):
+        start = time.perf_counter()
+        est = albedo(brdf, theta, method, **options)
+        seconds = time.perf_counter() - start
+        rows.append({"case": label, "method": method if not sampler else f"mc_{sampler}",
+                     "setting": setting, "seconds": seconds, "true_error": abs(float(est.value) - ref)})
     return pd.DataFrame(rows)
 
 

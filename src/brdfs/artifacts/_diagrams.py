@@ -9,6 +9,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from brdfs.physics import geometry as geo
+
 from brdfs.numerics.patch_geometry import circle_intersection
 from brdfs.pipeline import plotting
 
@@ -33,6 +35,11 @@ def vec(prefix: str, v) -> dict:
 
 def get(d: dict, prefix: str, n: int = 3) -> np.ndarray:
     return np.array([d[f"{prefix}_{c}"] for c in "xyz"[:n]])
+
+
+def light_and_view(c: dict) -> tuple[np.ndarray, np.ndarray]:
+    """L and V of a diagram's config (``theta_l_deg``, ``phi_l_deg``, ``theta_v_deg``, ``phi_v_deg``)."""
+    return geo.direction(c["theta_l_deg"], c["phi_l_deg"]), geo.direction(c["theta_v_deg"], c["phi_v_deg"])
 
 
 def project(p) -> np.ndarray:

@@ -55,22 +55,30 @@ def runs(sec: dict, seed: int):
     return out
 
 
-def work_precision(sec: dict, seed: int) -> pd.DataFrame:
-    """One row per (case, method, sampler, setting): value, reported error, true error, evaluations."""
-    rows = []
+def planned_runs(sec: dict, seed: int):
+    """Every run of the chart in a fixed order, with its case's model, angle and reference:
+    ``(case_label, brdf, theta, (ref, ref_err, ref_kind), method, sampler, setting, options)``.
+    The artifact counts their evaluations; ``make benchmark`` times the same runs."""
     for k, case in enumerate(sec["cases"]):
         brdf = case_model(case)
         theta = case_angle(case, brdf)
-        ref, ref_err, ref_kind = reference(brdf, theta, sec["reference_rtol"])
+        ref = reference(brdf, theta, sec["reference_rtol"])
         for j, (method, sampler, setting, options) in enumerate(runs(sec, seed)):
             if method == "monte_carlo":
                 options = {**options, "seed": [seed, k, j]}
-            est = albedo(brdf, theta, method, **options)
-            value, err = float(est.value), float(est.error)
-            rows.append({"case": case["label"], "model": brdf.name, "theta_deg": theta, "method": method,
-                         "sampler": sampler, "setting": float(setting), "evaluations": int(est.evaluations),
-                         "status": str(est.status), "albedo": value, "albedo_err": err,
-                         "reference": ref, "reference_err": ref_err, "reference_kind": ref_kind,
-                         "true_error": abs(value - ref),
-                         "dishonest": bool(abs(value - ref) > err + ref_err)})
+            yield case["label"], brdf, theta, ref, method, sampler, setting, options
+
+
+def work_precision(sec: dict, seed: int) -> pd.DataFrame:
+    """One row per (case, method, sampler, setting): value, reported error, true error, evaluations."""
+    rows = []
+    for label, brdf, theta, (ref, ref_err, ref_kind), method, sampler, setting, options in planned_runs(sec, seed):
+        est = albedo(brdf, theta, method, **options)
+        value, err = float(est.value), float(est.error)
+        rows.append({"case": label, "model": brdf.name, "theta_deg": theta, "method": method,
+                     "sampler": sampler, "setting": float(setting), "evaluations": int(est.evaluations),
+                     "status": str(est.status), "albedo": value, "albedo_err": err,
+                     "reference": ref, "reference_err": ref_err, "reference_kind": ref_kind,
+                     "true_error": abs(value - ref),
+                     "dishonest": bool(abs(value - ref) > err + ref_err)})
     return pd.DataFrame(rows)

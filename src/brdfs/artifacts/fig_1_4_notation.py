@@ -19,8 +19,7 @@ NAME = "fig_1_4_notation"
 @figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     c = cfg[dg.SECTION]["fig_1_4"]
-    L = geo.direction(c["theta_l_deg"], c["phi_l_deg"])
-    V = geo.direction(c["theta_v_deg"], c["phi_v_deg"])
+    L, V = dg.light_and_view(c)
     R = geo.mirror(L)
     H = geo.half_vector(L, V)
     N = np.array([0.0, 0.0, 1.0])

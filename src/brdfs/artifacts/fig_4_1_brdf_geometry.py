@@ -21,8 +21,7 @@ NAME = "fig_4_1_brdf_geometry"
 @figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     c = cfg[dg.SECTION]["fig_4_1"]
-    L = geo.direction(c["theta_l_deg"], c["phi_l_deg"])
-    V = geo.direction(c["theta_v_deg"], c["phi_v_deg"])
+    L, V = dg.light_and_view(c)
     out = {**dg.vec("L", L), **dg.vec("V", V), **dg.vec("Lm", geo.mirror(L)), **dg.vec("Vm", geo.mirror(V)),
            "m": float(projected_distance(L, V))}
     return dg.frame(out)

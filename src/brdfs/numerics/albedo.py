@@ -196,27 +196,28 @@ def _dblquad(model, theta, rtol, atol, epsrel=None):
     return 2 * value, 2 * err
 
 
+#: Samplers of the Monte Carlo method that are a model's own strategies (``model.sample``).
+_MODEL_STRATEGIES = {"model": None, "cosine": "cosine", "beckmann_half_vector": "beckmann"}
+
+
 def _draw(sampler, model, L, rng, n):
-    """Weights f cos θ_V / p(V) of ``n`` directions V drawn by ``sampler``."""
-    if sampler == "model":
-        return model.sample(L, rng.random((n, model.sample_dimension())))[1]
+    """Weights f cos θ_V / p(V) of ``n`` directions V drawn by ``sampler``: uniform on the
+    hemisphere, or a strategy of the model's own sampler (its default for ``model``)."""
+    if sampler in _MODEL_STRATEGIES:
+        strategy = _MODEL_STRATEGIES[sampler]
+        if sampler == "model":
+            u = rng.random((n, model.sample_dimension()))
+        else:                                    # two streams, as the readings have always drawn them
+            u = np.stack([rng.random(n), rng.random(n)], -1)
+        return model.sample(L, u, strategy)[1]
+    if sampler != "uniform":
+        raise ValueError(f"unknown sampler {sampler!r}; choose uniform, {', '.join(_MODEL_STRATEGIES)}")
     u = np.stack([rng.random(n), rng.random(n)], -1)
-    if sampler == "beckmann_half_vector":
-        distribution = model.distribution
-        H = distribution.sample_normal(u[:, 0], u[:, 1])
-        lh = H @ L
-        V = 2 * lh[:, None] * H - L
-        with np.errstate(divide="ignore", invalid="ignore"):
-            w = model(L, V) * V[:, 2] * 4 * lh / distribution.normal_pdf(H[:, 2])
-        return np.where((V[:, 2] > 0) & (lh > 0), w, 0.0)
-    if sampler not in ("uniform", "cosine"):
-        raise ValueError(f"unknown sampler {sampler!r}; choose uniform, cosine, beckmann_half_vector or model")
-    cos_v = u[:, 0] if sampler == "uniform" else np.sqrt(1 - u[:, 0])
+    cos_v = u[:, 0]
     sin_v = np.sqrt((1 - cos_v) * (1 + cos_v))
     phi = 2 * np.pi * u[:, 1]
     V = np.stack([sin_v * np.cos(phi), sin_v * np.sin(phi), cos_v], -1)
-    density = 1 / (2 * np.pi) if sampler == "uniform" else cos_v / np.pi
-    return model(L, V) * cos_v / density
+    return model(L, V) * cos_v / (1 / (2 * np.pi))
 
 
 def monte_carlo_albedo(model, theta_deg, sampler, n_samples, seed_sequence):

@@ -165,18 +165,13 @@ def _azimuthal(model, t, mu, st):
         jac = lobe.solid_angle_per_t(t, cb, sb)
     if lobe.frame == "mirror":
         A_nv, B_nv = cb * mu, sb * st
-        lh = None
-        levels = [A_nv * 0 + c for c in model.nv_levels(mu)]
         phis = []
     else:
         cos2, sin2 = (cb - sb) * (cb + sb), 2 * sb * cb
         A_nv, B_nv = cos2 * mu, sin2 * st
-        A_lh, B_lh = cb * mu, sb * st
-        lh = (A_lh, B_lh)
-        levels = [A_nv * 0 + c for c in model.nv_levels(mu)]
-        phis = [_phi_level(A_lh, B_lh, c) for c in model.lh_levels(mu, cb)]
+        phis = [_phi_level(cb * mu, sb * st, c) for c in model.lh_levels(mu, cb)]    # L·H = cb μ + sb st cos φ
     phi_h = _phi_level(A_nv, B_nv, 0.0)
-    phis = phis + [_phi_level(A_nv, B_nv, c) for c in levels]
+    phis = phis + [_phi_level(A_nv, B_nv, A_nv * 0 + c) for c in model.nv_levels(mu)]
     if model.kink_at_normal:
         # A cone-shaped kink at V = N (φ = 0 on the circle through it): graded cuts resolve the layer
         # of width ~ the circle's distance from N, which a fixed rule on [0, φ₁] cannot.
