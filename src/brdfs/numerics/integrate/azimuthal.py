@@ -1,51 +1,62 @@
-"""Directional albedo of the cosine-lobe models with the azimuth integrated in closed form.
+"""Directional albedo with the azimuth integrated in closed form: one dimension instead of two.
 
-For the four cosine-power lobes — reciprocal Phong (eq. 2.6 / 3.5), the new model (eq. 3.10),
-reciprocal Blinn (eq. 1.34 / 3.33) and corrected Blinn (eq. 3.34), any exponent n ≥ 0 and any
-constant C — the albedo integral (eq. 1.18) in the lobe's own frame has an integrand that is a
-polynomial of degree ≤ 2 in cos φ on pieces bounded by levels of N·V, so the azimuth integrates
-in closed form and only a one-dimensional integral over the lobe variable t remains (as the mean
-albedo does in :mod:`.mean`):
+A model declares ``closed_form_azimuth = (frame, kernel)`` when, in its lobe's frame (the lobe
+variable t of :mod:`.lobes`, azimuth φ), the albedo integral (eq. 1.18) factors as
 
-* mirror frame (Phong, new model): V at angle α from R, N·V = A + B cos φ with A = cos α cos θ,
-  B = sin α sin θ;  a = C/(n+1) ∫₀^{t_max} M dt  with M = J(A, B) (Phong) or
-  (J(A, B) − J(A − cos θ, B)) / cos θ (new model: N·V / max(N·L, N·V) = min(N·V, N·L)/N·L),
-  J(a, b) = ∫₀^{2π} [a + b cos φ]₊ dφ.
-* half frame (Blinn, corrected Blinn): H at angle δ from N, dω_V = 4 (L·H) dω_H,
-  N·V = A + B cos φ with A = cos 2δ cos θ, B = sin 2δ sin θ, and L·H = P + Q cos φ with
-  P = cos δ cos θ, Q = sin δ sin θ;  a = C/(n+1) ∫ 8 [I₂(φ_h)] dt (Blinn) or
-  8 [I₁(φ_μ) + (I₂(φ_h) − I₂(φ_μ)) / cos θ] (corrected Blinn), I₁, I₂ the integrals of L·H and
-  L·H · N·V from 0 to the azimuths φ_h (N·V = 0) and φ_μ (N·V = N·L).
+    a(θ) = ∫₀^{t_max} w(β) K(β, θ) dt,      K = 8 ∫₀^π (J/4) g(L, V) [N·V]₊ dφ  (half frame)
+                                             K = ∫₀^{2π} g(L, V) [N·V]₊ dφ      (mirror frame)
 
-The lobe variable t = 1 − cos^(n+1) β (:class:`.lobes.PowerCosine`) makes C cos^n β sin β dβ =
-C/(n+1) dt.  The integrand in t has kinks where a level circle N·V = c (c = 0, cos θ) touches the
-circle of radius β; these are breakpoints.  For the two max(N·L, N·V) models the difference
-quotient loses ε / cos θ relative digits near grazing; that rounding is added to the error.
+with a radial weight w (``model.azimuth_weight(cos β)``) and a kernel g whose φ-integral is
+known in closed form.  In both frames N·V = A + B cos φ; in the half frame L·H = P + Q cos φ
+(A = cos 2δ cos θ, B = sin 2δ sin θ, P = cos δ cos θ, Q = sin δ sin θ, dω_V = 4 (L·H) dω_H,
+so J = 4 L·H); in the mirror frame A = cos α cos θ, B = sin α sin θ, J = 1.  The kernels:
 
-Independent of the engine's two-dimensional quadrature (:mod:`.hemisphere`); the tests compare them.
+* ``"nv"`` (g = 1): reciprocal Phong (eq. 2.6 / 3.5), reciprocal Blinn (eq. 1.34 / 3.33) —
+  J(A, B) = ∫ [A + B cos φ]₊ dφ, or I₂(φ_h) = ∫₀^{φ_h} L·H · N·V dφ (φ_h: N·V = 0).
+* ``"nv/max"`` (g = 1/max(N·L, N·V), as N·V/max = min(N·V, N·L)/N·L): the new model (eq. 3.10),
+  corrected Blinn (eq. 3.34), corrected Ward (eq. 3.36) — J(A, B) − J(A − cos θ, B) over cos θ, or
+  I₁(φ_μ) + (I₂(φ_h) − I₂(φ_μ))/cos θ (φ_μ: N·V = N·L).
+* ``"sqrt(nv/nl)"`` (g = 1/√(N·L N·V)): Ward (eq. 2.8) — ∫ L·H √(N·V) dφ is a complete elliptic
+  integral (:mod:`.ward_azimuth`).
+* ``"G/nl"``: Cook–Torrance with G of eq. 2.10 — L·H G / cos δ = min(L·H / cos δ, 2 N·V, 2 N·L)
+  is the lower envelope of three functions linear in cos φ, integrated piece by piece
+  (:func:`_lower_envelope_integral`), divided by N·L.
+* ``"1/nl"``: Cook–Torrance with G = 1 — ∫ L·H / (cos δ N·L) dφ.
+
+The radial weight turns the lobe's own density into dt: C cos^n β sin β dβ = C/(n+1) dt for the
+cosine powers (:class:`.lobes.PowerCosine`), and for the Beckmann lobe (t = 1 − exp(−tan²δ/m²),
+sin δ dδ/dt = m² cos³δ / (2 e^{−tan²δ/m²})) w = C cos³δ/(8π) (Ward, corrected Ward) or C/(8π)
+(Cook–Torrance, whose D carries 1/cos⁴δ and whose kernel carries the remaining 1/cos δ).
+
+The integrand in t has kinks where a level circle N·V = c (c = 0, cos θ) touches the circle of
+radius β, and (Cook–Torrance) where a switch of eq. 2.10's minimum starts or stops cutting it:
+the breakpoints of the 2-D engine (:func:`.hemisphere.radial_breakpoints_many`).  Where a kernel
+divides a difference by cos θ it loses ε / cos θ relative digits near grazing; that rounding is
+added to the error, and the albedo front door integrates elements that miss their tolerance in
+two dimensions instead.
+
+Independent of the engine's two-dimensional quadrature (:mod:`.hemisphere`) except for the
+breakpoints; the tests compare the two, and the accuracy map compares both with :mod:`.disk`.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
-from brdfs.numerics.integrate.hemisphere import TAIL
-from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.numerics.integrate.hemisphere import radial_breakpoints_many
 from brdfs.numerics.integrate.mean import positive_part_azimuth
+from brdfs.physics.geometry import cos_incidence, sin_incidence
 
-#: Models whose azimuthal integral is closed-form here, with their frame and max(N·L, N·V) flag.
 _EPS = np.finfo(float).eps
 
 
 def supports(model) -> bool:
-    """Whether :func:`albedo_azimuthal` applies to ``model``: its class declares
-    ``closed_form_azimuth`` (frame, divided by max(N·L, N·V)) and its lobe is a cosine power."""
-    return getattr(type(model), "closed_form_azimuth", None) is not None \
-        and isinstance(getattr(model, "lobe", None), PowerCosine)
+    """Whether :func:`albedo_azimuthal` applies to ``model``: it declares ``closed_form_azimuth``."""
+    return getattr(model, "closed_form_azimuth", None) is not None
 
 
 def albedo_azimuthal(model, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
-    """a(θ) (eq. 1.18) of a Phong / new-model / Blinn / corrected-Blinn ``model`` at ``theta_deg``.
+    """a(θ) (eq. 1.18) of a ``model`` with a closed-form azimuthal integral at ``theta_deg``.
 
     Returns an :class:`Estimate` of the shape of ``theta_deg``.
 
@@ -65,77 +76,51 @@ def albedo_azimuthal(model, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     """
     theta_deg = np.asarray(theta_deg, float)
     est = albedo_many([model] * theta_deg.size, theta_deg.ravel(), rtol=rtol, atol=atol)
-    return Estimate(est.value.reshape(theta_deg.shape), est.error.reshape(theta_deg.shape))
+    return Estimate(est.value.reshape(theta_deg.shape), est.error.reshape(theta_deg.shape),
+                    est.evaluations, est.status.reshape(theta_deg.shape))
 
 
 def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
-    """Albedo of ``models[i]`` at ``theta_deg[i]`` (as :func:`.hemisphere.albedo_many`), one adaptive
-    run per model family, the exponents and constants varying per element."""
+    """Albedo of ``models[i]`` at ``theta_deg[i]`` (as :func:`.hemisphere.albedo_many`), in one
+    adaptive run; ``evaluations`` counts the kernel's radial nodes."""
     models = list(models)
     theta_deg = np.asarray(theta_deg, float).ravel()
     if len(models) != theta_deg.size:
         raise ValueError("albedo_many needs one model per angle")
     bad = [m for m in models if not supports(m)]
     if bad:
-        raise ValueError(f"albedo_azimuthal needs a model whose class declares closed_form_azimuth, "
+        raise ValueError(f"albedo_azimuthal needs a model that declares closed_form_azimuth, "
                          f"got {getattr(bad[0], 'name', bad[0])!r}")
     outside = ~((theta_deg >= 0) & (theta_deg <= 90))
     if outside.any():
         raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
-    value, error = np.zeros(theta_deg.size), np.zeros(theta_deg.size)
-    status = np.full(theta_deg.size, "converged", dtype=object)
-    nodes = 0
-    names = np.array([m.name for m in models])
-    for name in np.unique(names):
-        chosen = names == name
-        n = np.array([float(m.n) for m, c in zip(models, chosen) if c])
-        C = np.array([float(m.C) for m, c in zip(models, chosen) if c])
-        family = type(next(m for m, c in zip(models, chosen) if c)).closed_form_azimuth
-        est = _family(family, n, C, theta_deg[chosen], rtol, atol)
-        value[chosen], error[chosen], status[chosen] = est.value, est.error, est.status
-        nodes += est.evaluations
-    return Estimate(value, error, nodes, status.astype(str))
-
-
-def _family(family, n, C, theta_deg, rtol, atol):
-    """One adaptive run for elements of one model family ``(frame, cosmin)`` with exponents n and
-    constants C."""
-    frame, cosmin = family
-    lobe = PowerCosine(n, frame)
-    mu, st = np.sin(np.radians(90.0 - theta_deg)), np.sin(np.radians(theta_deg))
-    bp = _breakpoints(lobe, np.radians(theta_deg), mu, cosmin)
-    inner = _mirror if frame == "mirror" else _half
-    scale = C / (n + 1.0)
+    first = {}
+    index = np.array([first.setdefault(id(m), i) for i, m in enumerate(models)])
+    mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
+    bp = radial_breakpoints_many(models, mu, st, theta_deg)
 
     def integrand(t, elem):
-        el_lobe = PowerCosine(n[elem, None], frame)
-        cb, sb = el_lobe.angle(np.minimum(t, 1.0 - _EPS))
-        value, rounding = inner(cb, sb, mu[elem, None], st[elem, None], cosmin)
-        value = scale[elem, None] * np.where(t < 1.0, value, 0.0)
-        rounding = scale[elem, None] * rounding + (n[elem, None] + 4) * _EPS * np.abs(value)
+        value, rounding = np.empty_like(t), np.empty_like(t)
+        for k in np.unique(index[elem]):
+            rows = index[elem] == k
+            e = elem[rows]
+            value[rows], rounding[rows] = _radial_integrand(models[k], t[rows], mu[e, None], st[e, None])
         return value, value, rounding
 
     return integrate(integrand, bp, rtol=rtol, atol=atol)
 
 
-def _breakpoints(lobe, theta, mu, cosmin):
-    """t of the radii where the level circles N·V = 0 (and N·V = cos θ) touch the lobe circle."""
-    scale = 0.5 if lobe.frame == "half" else 1.0
-    beta_max = scale * (np.pi / 2 + theta)
-    cols = [np.zeros_like(theta), beta_max]
-    for a in ([np.full_like(theta, np.pi / 2)] + ([np.arccos(np.clip(mu, -1, 1))] if cosmin else [])):
-        cols += [scale * (a - theta), scale * (theta - a), scale * (a + theta)]
-    beta = np.column_stack(cols)
-    beta = np.where((beta > 0) & (beta < beta_max[:, None]), beta, beta_max[:, None])
-    beta[:, 0] = 0.0
-    n = np.broadcast_to(np.asarray(lobe.n, float), theta.shape)[:, None]
-    t = PowerCosine(n, lobe.frame).t_of(beta)
-    t_end = t.max(axis=1, keepdims=True)
-    # Tail points, as in the 2-D engine (hemisphere.TAIL): a kink squeezed into 1 − t < 1e-3 can
-    # hide from the first interval's Kronrod nodes (the new model, n = 128, at 67.5°: 1e-12 off
-    # while 5e-14 was reported).
-    tail = np.broadcast_to(1.0 - TAIL, (t.shape[0], TAIL.size))
-    return np.sort(np.concatenate([t, np.minimum(tail, t_end)], axis=1), axis=1)
+def _radial_integrand(model, t, mu, st):
+    """w(β) K(β, θ) at the lobe variable t, with its rounding bound."""
+    frame, kernel = model.closed_form_azimuth
+    lobe = model.lobe
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cb, sb = lobe.angle(np.minimum(t, 1.0 - _EPS))
+    value, rounding = KERNELS[frame][kernel](cb, sb, mu, st)
+    weight = model.azimuth_weight(cb)
+    value = weight * np.where(t < 1.0, value, 0.0)
+    rounding = weight * rounding + (lobe.rounding + 3) * _EPS * np.abs(value)
+    return value, rounding
 
 
 def _level_azimuth(a, b, c):
@@ -145,12 +130,18 @@ def _level_azimuth(a, b, c):
     return np.arccos(np.clip(u, -1.0, 1.0))
 
 
-def _mirror(cb, sb, mu, st, cosmin):
-    """M(α) and its rounding bound: the φ-integral of [N·V]₊ (· 1/max(N·L, N·V))."""
+# --- mirror frame: V at angle α from R -------------------------------------------------------
+
+def _mirror_nv(cb, sb, mu, st):
+    """J(A, B) = ∫₀^{2π} [N·V]₊ dφ."""
+    full = positive_part_azimuth(cb * mu, sb * st)
+    return full, 4 * _EPS * np.abs(full)
+
+
+def _mirror_nv_over_max(cb, sb, mu, st):
+    """∫₀^{2π} [N·V]₊ / max(N·L, N·V) dφ = (J(A, B) − J(A − cos θ, B)) / cos θ."""
     a, b = cb * mu, sb * st
     full = positive_part_azimuth(a, b)
-    if not cosmin:
-        return full, 4 * _EPS * np.abs(full)
     low = positive_part_azimuth(a - mu, b)
     with np.errstate(divide="ignore", invalid="ignore"):
         quotient = (full - low) / mu
@@ -160,24 +151,116 @@ def _mirror(cb, sb, mu, st, cosmin):
     return value, np.where(mu > 0, rounding, 4 * _EPS * grazing)
 
 
-def _half(cb, sb, mu, st, cosmin):
-    """8 × the φ-integral over [0, π] of L·H [N·V]₊ (· 1/max(N·L, N·V)), with its rounding bound."""
-    p, q = cb * mu, sb * st                                   # L·H = p + q cos φ
-    a, b = (cb - sb) * (cb + sb) * mu, 2 * sb * cb * st       # N·V = a + b cos φ
+# --- half frame: H at angle δ from N ---------------------------------------------------------
 
-    def i1(phi):
-        return p * phi + q * np.sin(phi)
+def _half_lines(cb, sb, mu, st):
+    """(P, Q) of L·H = P + Q cos φ and (A, B) of N·V = A + B cos φ."""
+    return cb * mu, sb * st, (cb - sb) * (cb + sb) * mu, 2 * sb * cb * st
 
-    def i2(phi):
-        return p * a * phi + (p * b + q * a) * np.sin(phi) + q * b * (0.5 * phi + 0.25 * np.sin(2 * phi))
 
-    phi_h = _level_azimuth(a, b, 0.0)
-    above = i2(phi_h)
-    if not cosmin:
-        return 8 * above, 8 * 8 * _EPS * (np.abs(p * a) + np.abs(p * b + q * a) + np.abs(q * b)) * np.pi
-    phi_mu = _level_azimuth(a, b, mu)
+def _i1(p, q, phi):
+    """∫₀^φ L·H dφ."""
+    return p * phi + q * np.sin(phi)
+
+
+def _i2(p, q, a, b, phi):
+    """∫₀^φ L·H · N·V dφ."""
+    return p * a * phi + (p * b + q * a) * np.sin(phi) + q * b * (0.5 * phi + 0.25 * np.sin(2 * phi))
+
+
+def _half_nv(cb, sb, mu, st):
+    """8 I₂(φ_h)."""
+    p, q, a, b = _half_lines(cb, sb, mu, st)
+    above = _i2(p, q, a, b, _level_azimuth(a, b, 0.0))
+    return 8 * above, 64 * _EPS * (np.abs(p * a) + np.abs(p * b + q * a) + np.abs(q * b)) * np.pi
+
+
+def _half_nv_over_max(cb, sb, mu, st):
+    """8 [I₁(φ_μ) + (I₂(φ_h) − I₂(φ_μ)) / cos θ]: L·H N·V / max(N·L, N·V)."""
+    p, q, a, b = _half_lines(cb, sb, mu, st)
+    phi_h, phi_mu = _level_azimuth(a, b, 0.0), _level_azimuth(a, b, mu)
     with np.errstate(divide="ignore", invalid="ignore"):
-        band = (above - i2(phi_mu)) / mu
+        band = (_i2(p, q, a, b, phi_h) - _i2(p, q, a, b, phi_mu)) / mu
         rounding = 16 * _EPS * (np.abs(p * a) + np.abs(p * b + q * a) + np.abs(q * b)) * np.pi / mu
-    value = np.where(mu > 0, i1(phi_mu) + band, i1(phi_h))   # N·L = 0: the weight is 1 where N·V > 0
-    return 8 * value, 8 * np.where(mu > 0, rounding + 4 * _EPS * np.abs(i1(phi_mu)), 4 * _EPS * np.abs(value))
+    value = np.where(mu > 0, _i1(p, q, phi_mu) + band, _i1(p, q, phi_h))   # N·L = 0: the weight is 1 where N·V > 0
+    return 8 * value, 8 * np.where(mu > 0, rounding + 4 * _EPS * np.abs(_i1(p, q, phi_mu)), 4 * _EPS * np.abs(value))
+
+
+def _half_sqrt(cb, sb, mu, st):
+    """8 ∫₀^π L·H √([N·V]₊ / N·L) dφ (Ward, eq. 2.8): a complete elliptic integral."""
+    from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
+    p, q, a, b = _half_lines(cb, sb, mu, st)
+    w, rounding = sqrt_positive_part_moment(p, q, a, b)
+    with np.errstate(divide="ignore"):
+        root = np.sqrt(mu)
+    return 8 * w / root, 8 * (rounding + _EPS * np.abs(w)) / root
+
+
+def _half_torrance_sparrow(cb, sb, mu, st):
+    """8 ∫₀^{φ_h} min(L·H / cos δ, 2 N·V, 2 N·L) dφ / N·L (eq. 2.10: L·H G = min(L·H, 2 N·H N·V,
+    2 N·H N·L)); at N·L = 0 the minimum over N·L tends to 2 wherever N·V > 0."""
+    p, q, a, b = _half_lines(cb, sb, mu, st)
+    c_h = _level_cos(a, b, 0.0)
+    lines = [(mu, sb / cb * st), (2 * a, 2 * b), (2 * mu, 0.0)]
+    integral, rounding = _lower_envelope_integral(lines, c_h)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        value = np.where(mu > 0, integral / mu, 2 * np.arccos(c_h))
+        rounding = np.where(mu > 0, rounding / mu, 4 * _EPS * value)
+    return 8 * value, 8 * rounding
+
+
+def _half_over_nl(cb, sb, mu, st):
+    """8 ∫₀^{φ_h} L·H / (cos δ N·L) dφ (Cook–Torrance with G = 1; infinite at N·L = 0)."""
+    p, q, a, b = _half_lines(cb, sb, mu, st)
+    phi_h = _level_azimuth(a, b, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        value = 8 * (phi_h + sb / cb * st * np.sin(phi_h) / mu)
+    return value, 8 * _EPS * np.abs(value)
+
+
+def _level_cos(a, b, c):
+    """cos φ of :func:`_level_azimuth`, in [−1, 1], computed without the arccos."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.where(b > 0, (c - a) / b, np.where(a > c, -1.0, 1.0))
+    return np.clip(u, -1.0, 1.0)
+
+
+def _lower_envelope_integral(lines, c_end):
+    """∫ min_j (α_j + β_j cos φ) dφ over cos φ ∈ [c_end, 1], for lines (α_j, β_j) (arrays broadcast
+    together), with a rounding bound.
+
+    The pieces are cut where two lines cross; on each the lowest line integrates to
+    α Δφ + β Δsin φ.  Both differences are formed from the cosines c₁ > c₂ of the piece's ends
+    (Δφ = atan2(s₂c₁ − c₂s₁, c₁c₂ + s₁s₂), Δsin φ = (c₁² − c₂²)/(s₁ + s₂)), not from the angles: near
+    φ = π/2, where the envelope is of the size of N·L, an angle carries an absolute error ε that
+    would cost ε / N·L relative digits at grazing incidence."""
+    alpha = np.stack(np.broadcast_arrays(*[np.asarray(l[0], float) + 0 * c_end for l in lines]), -1)
+    beta = np.stack(np.broadcast_arrays(*[np.asarray(l[1], float) + 0 * c_end for l in lines]), -1)
+    c_end = np.broadcast_to(c_end, alpha.shape[:-1])
+    cuts = [np.ones_like(c_end), c_end]
+    k = len(lines)
+    for i in range(k):
+        for j in range(i + 1, k):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                c = (alpha[..., i] - alpha[..., j]) / (beta[..., j] - beta[..., i])
+            cuts.append(np.clip(np.nan_to_num(c, nan=1.0, posinf=1.0, neginf=1.0), c_end, 1.0))
+    cuts = -np.sort(-np.stack(cuts, -1), -1)                     # descending cos φ: ascending φ
+    c1, c2 = cuts[..., :-1], cuts[..., 1:]
+    s1, s2 = np.sqrt((1 - c1) * (1 + c1)), np.sqrt((1 - c2) * (1 + c2))
+    d_phi = np.arctan2(s2 * c1 - c2 * s1, c1 * c2 + s1 * s2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d_sin = np.where(s1 + s2 > 0, (c1 - c2) * (c1 + c2) / (s1 + s2), 0.0)
+    levels = alpha[..., None, :] + beta[..., None, :] * (0.5 * (c1 + c2))[..., None]
+    lowest = np.argmin(levels, axis=-1)[..., None]
+    a_low = np.take_along_axis(np.broadcast_to(alpha[..., None, :], levels.shape), lowest, -1)[..., 0]
+    b_low = np.take_along_axis(np.broadcast_to(beta[..., None, :], levels.shape), lowest, -1)[..., 0]
+    pieces = a_low * d_phi + b_low * d_sin
+    rounding = 8 * _EPS * (np.abs(a_low) * (d_phi + 4 * _EPS) + np.abs(b_low) * np.abs(d_sin))
+    return pieces.sum(-1), rounding.sum(-1)
+
+
+KERNELS = {
+    "mirror": {"nv": _mirror_nv, "nv/max": _mirror_nv_over_max},
+    "half": {"nv": _half_nv, "nv/max": _half_nv_over_max, "sqrt(nv/nl)": _half_sqrt,
+             "G/nl": _half_torrance_sparrow, "1/nl": _half_over_nl},
+}

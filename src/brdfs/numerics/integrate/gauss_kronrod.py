@@ -190,7 +190,8 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         vals = np.concatenate([vals[:, keep], c_vals], axis=1)
         stalls = np.concatenate([stalls[keep], c_stalls])
     high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
-    error = SAFETY * np.abs(high - low) + extra + 50 * _EPS * absval
+    spread = np.bincount(elem, np.abs(vals[0] - vals[1]), n_el)
+    error = SAFETY * spread + extra + 50 * _EPS * absval
     met = error <= np.maximum(rtol * np.abs(low), atol)
     status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
     return Estimate(low, error, evaluations, status)

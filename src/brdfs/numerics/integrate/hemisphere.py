@@ -50,9 +50,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     first = {}                       # the same model object at many angles is evaluated together
     index = np.array([first.setdefault(id(m), i) for i, m in enumerate(models)])
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    rows = [_radial_breakpoints(models[i], mu[i], st[i], theta_deg[i]) for i in range(len(models))]
-    width = max(r.size for r in rows)
-    bp = np.vstack([np.pad(r, (0, width - r.size), constant_values=np.nan) for r in rows])
+    bp = radial_breakpoints_many(models, mu, st, theta_deg)
 
     def integrand(t, elem):
         high = np.empty_like(t)
@@ -68,25 +66,47 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=192)
 
 
+def radial_breakpoints_many(models, mu, st, theta_deg):
+    """Breakpoints in t of ``models[i]`` at incidence ``theta_deg[i]`` (cos ``mu``, sin ``st``), one
+    row per element, ascending and NaN-padded (:func:`.gauss_kronrod.integrate`'s ragged form):
+    the range ends, the radii where N·V level sets touch the circles (closed form), the radii where
+    L·H levels change how they cut the circles (found numerically, :func:`_lh_radial_breakpoints`),
+    and the lobe's tail 1 − t = 10^(−k).  The elements of one model are handled together."""
+    groups: dict[int, list[int]] = {}
+    for i, m in enumerate(models):
+        groups.setdefault(id(m), []).append(i)
+    rows = [None] * len(models)
+    for members in groups.values():
+        idx = np.array(members)
+        for i, row in zip(members, _radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx])):
+            rows[i] = row
+    width = max(r.size for r in rows)
+    return np.vstack([np.pad(r, (0, width - r.size), constant_values=np.nan) for r in rows])
+
+
 def _radial_breakpoints(model, mu, st, theta_deg):
-    """Breakpoints in t for one (model, θ): range ends, the radii where N·V level sets touch the
-    circles (closed form), the radii where L·H levels change how they cut the circles (found
-    numerically, :func:`_lh_radial_breakpoints`), and the lobe's tail 1 − t = 10^(−k)."""
+    """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows."""
     lobe = model.lobe
-    theta = np.radians(theta_deg)
+    theta = np.radians(theta_deg)[:, None]
     scale = 0.5 if lobe.frame == "half" else 1.0
     beta_max = scale * (np.pi / 2 + theta)
-    levels = [0.0] + [float(np.broadcast_to(c, ())) for c in model.nv_levels(np.float64(mu))]
+    levels = [np.zeros_like(mu)] + [np.broadcast_to(np.asarray(c, float), mu.shape)
+                                     for c in model.nv_levels(np.asarray(mu, float))]
     cand = []
     for c in levels:
-        a = np.arccos(np.clip(c, -1, 1))
+        a = np.arccos(np.clip(c, -1, 1))[:, None]
         cand += [scale * (a - theta), scale * (theta - a), scale * (a + theta)]
-    cand = [b for b in cand if 0 < b < beta_max]
+    cand = np.concatenate(cand + [beta_max], axis=1)
+    cand = np.where((cand > 0) & (cand <= beta_max), cand, beta_max)
     t_max = lobe.t_of(beta_max)
-    t_pts = np.concatenate([[0.0], lobe.t_of(np.array(cand + [beta_max])), 1.0 - TAIL,
-                            _lh_radial_breakpoints(model, mu, st, levels, t_max)])
-    t_pts = np.unique(t_pts[(t_pts >= 0) & (t_pts <= t_max)])
-    return t_pts
+    t_pts = np.concatenate([np.zeros_like(t_max), lobe.t_of(cand), np.broadcast_to(1.0 - TAIL, (mu.size, TAIL.size))],
+                           axis=1)
+    lh = _lh_radial_breakpoints(model, mu, st, levels, t_max[:, 0])
+    out = []
+    for i in range(mu.size):
+        row = np.concatenate([t_pts[i], lh[i]])
+        out.append(np.unique(row[(row >= 0) & (row <= t_max[i, 0])]))
+    return out
 
 
 #: Initial breakpoints 1 − t = 10^(−k) in the lobe's tail.  The tail (the lobe's far flank, e.g.
@@ -99,24 +119,22 @@ _SCAN = 1024
 
 def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     """Radii t (half frame) where an L·H level of ``model`` starts or stops cutting the circle
-    (the level reaches φ = 0 or φ = π) or crosses an N·V level (the horizon included).
+    (the level reaches φ = 0 or φ = π) or crosses an N·V level (the horizon included), per angle:
+    a list of arrays, one per element of ``mu``.
 
     There the φ-integral — which the azimuthal breakpoints make smooth in φ — has a kink as a
     function of t (Torrance–Sparrow's masking and shadowing switches of eq. 2.10).  The levels
-    depend on δ, so the radii are found numerically: sign changes on a scan uniform in t and in log(1 − t),
-    then bisection to rounding."""
+    depend on δ, so the radii are found numerically: sign changes on a scan uniform in t and in
+    log(1 − t), then bisection to rounding, all angles at once."""
     lobe = model.lobe
-    if lobe.frame != "half" or t_max <= 0:
-        return np.empty(0)
-    probe = model.lh_levels(mu, np.ones(1))
-    if len(probe) == 0:
-        return np.empty(0)
+    none = [np.empty(0)] * mu.size
+    if lobe.frame != "half" or len(model.lh_levels(mu, np.ones_like(mu))) == 0:
+        return none
     # uniform in t (the lobe's core) and geometric in 1 − t (its tail, where the switches sit)
-    scan = np.unique(np.concatenate([np.linspace(0.0, t_max, _SCAN),
-                                     t_max * (1.0 - np.geomspace(1e-16, 1.0, _SCAN))]))
-    scan = scan[(scan >= 0) & (scan <= t_max)]
+    unit = np.concatenate([np.linspace(0.0, 1.0, _SCAN), 1.0 - np.geomspace(1e-16, 1.0, _SCAN)])
+    scan = np.sort(t_max[:, None] * unit, axis=1)
 
-    def gaps(t):
+    def gaps(t, mu, st, nv_levels):
         with np.errstate(divide="ignore", invalid="ignore"):
             cb, sb = lobe.angle(np.minimum(t, np.nextafter(1.0, 0)))
         a_lh, b_lh = cb * mu, sb * st
@@ -134,19 +152,22 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
                     out.append(np.where(inside, x_lh - x_nv, np.nan))
         return np.stack(out)
 
-    g = gaps(scan)
+    levels = [c[:, None] for c in nv_levels]
+    g = gaps(scan, mu[:, None], st[:, None], levels)
     sign = np.sign(g)
-    which, idx = np.nonzero(sign[:, :-1] * sign[:, 1:] < 0)
+    which, row, idx = np.nonzero(sign[..., :-1] * sign[..., 1:] < 0)
     if idx.size == 0:
-        return np.empty(0)
-    a, b = scan[idx], scan[idx + 1]
-    sign_a = np.sign(g[which, idx])
+        return none
+    a, b = scan[row, idx], scan[row, idx + 1]
+    sign_a = np.sign(g[which, row, idx])
+    levels = [c[row, None] for c in nv_levels]
     for _ in range(60):
         mid = 0.5 * (a + b)
-        gm = gaps(mid)[which, np.arange(mid.size)]
+        gm = gaps(mid[:, None], mu[row, None], st[row, None], levels)[which, np.arange(mid.size), 0]
         same = np.sign(gm) == sign_a
         a, b = np.where(same, mid, a), np.where(same, b, mid)
-    return 0.5 * (a + b)
+    roots = 0.5 * (a + b)
+    return [roots[row == i] for i in range(mu.size)]
 
 
 def _phi_level(A, B, c):

@@ -96,9 +96,9 @@ class BRDF:
     limit_albedo_90: ClassVar[float | None] = None
     #: Integrand with a cone-shaped kink at V = N (1 − c|V − N|), e.g. the thesis's Smith G* (eq. 1.38).
     kink_at_normal: ClassVar[bool] = False
-    #: (frame, divided by max(N·L, N·V)) of a cosine-power lobe whose azimuthal integral is known in
-    #: closed form (:mod:`brdfs.numerics.integrate.azimuthal`), None otherwise.
-    closed_form_azimuth: ClassVar[tuple[str, bool] | None] = None
+    #: (frame, kernel) of a model whose azimuthal integral is known in closed form
+    #: (:mod:`brdfs.numerics.integrate.azimuthal`, with :meth:`azimuth_weight`), None otherwise.
+    closed_form_azimuth: ClassVar[tuple[str, str] | None] = None
 
     def __call__(self, L, V):
         L = np.asarray(L, float)
@@ -124,6 +124,11 @@ class BRDF:
 
     def lh_levels(self, nl, cos_delta):
         return ()
+
+    def azimuth_weight(self, cos_beta):
+        """The radial weight w(β) per unit of the lobe variable t that multiplies the closed-form
+        azimuthal kernel named by :attr:`closed_form_azimuth` (:mod:`brdfs.numerics.integrate.azimuthal`)."""
+        raise NotImplementedError(f"{self.name} declares no closed-form azimuth")
 
     def delta_albedo(self, theta_deg) -> Estimate:
         """Albedo of the Dirac part of the BRDF: none by default."""

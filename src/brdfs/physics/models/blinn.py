@@ -24,6 +24,10 @@ class _BlinnFamily(BRDF):
     def lobe(self):
         return PowerCosine(self.n, "half")
 
+    def azimuth_weight(self, cos_beta):
+        """C cos^n δ sin δ dδ = C/(n+1) dt."""
+        return self.C / (self.n + 1.0)
+
     # --- sampling: half vectors from the cosine power about N -----------------------------------
     #: ``"half_vector"``: H with density (n + 1)/(2π) (N·H)^n, V = 2 (L·H) H − L, so
     #: pdf(V) = (n + 1)/(2π) (N·H)^n / (4 V·H) (the half-vector Jacobian).  H with L·H ≤ 0 or a V
@@ -47,7 +51,7 @@ class Blinn(_BlinnFamily):
     """Reciprocal Blinn, f = C (N·H)^n (eq. 1.34 / 2.6 / 3.33)."""
 
     name = "blinn"
-    closed_form_azimuth = ("half", False)
+    closed_form_azimuth = ("half", "nv")
     limit_cos_power = 2          # dω_V = 4 (L·H) dω_H at H = N, C_n scaling the maximum to 1: a → cos²θ
 
     def _eval(self, L, V, nl, nv):
@@ -70,7 +74,7 @@ class BlinnCosmin(_BlinnFamily):
     """Corrected Blinn, f = C (N·H)^n / max(N·L, N·V) (eq. 3.34)."""
 
     name = "blinn_cosmin"
-    closed_form_azimuth = ("half", True)
+    closed_form_azimuth = ("half", "nv/max")
     limit_cos_power = 1          # as Blinn, divided by max(N·L, N·V) = cos θ: a → cos θ
 
     def _eval(self, L, V, nl, nv):

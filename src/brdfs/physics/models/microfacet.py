@@ -60,6 +60,11 @@ class Ward(_BeckmannFamily):
 
     name = "ward"
     sqrt_at_horizon = True
+    closed_form_azimuth = ("half", "sqrt(nv/nl)")
+
+    def azimuth_weight(self, cos_beta):
+        """C e^(−tan²δ/m²)/(4π m²) · 4 · sin δ dδ/dt (:meth:`Beckmann.solid_angle_per_t`) = C cos³δ/(8π)."""
+        return self.C * cos_beta ** 3 / (8 * np.pi)
 
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
@@ -75,6 +80,11 @@ class WardCosmin(_BeckmannFamily):
     """Corrected Ward, f = C/(4π m²) · exp(−tan²δ/m²) / max(N·L, N·V) (eq. 3.36)."""
 
     name = "ward_cosmin"
+    closed_form_azimuth = ("half", "nv/max")
+
+    def azimuth_weight(self, cos_beta):
+        """As Ward's: C cos³δ/(8π)."""
+        return self.C * cos_beta ** 3 / (8 * np.pi)
 
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
@@ -147,6 +157,15 @@ class CookTorrance(_BeckmannFamily):
     def grazing_limit_model(self):
         """With Smith's G the BRDF is singular at N·L = 0; a(90°) integrates :class:`SmithGrazingLimit`."""
         return SmithGrazingLimit(self.m, self.C) if self.G == "smith" else self
+
+    @property
+    def closed_form_azimuth(self):
+        """G of eq. 2.10 and G = 1 are piecewise linear in L·H and N·V: closed forms; Smith's is not."""
+        return {"torrance_sparrow": ("half", "G/nl"), "none": ("half", "1/nl")}.get(self.G)
+
+    def azimuth_weight(self, cos_beta):
+        """C e^(−tan²δ/m²)/(4π m² cos⁴δ) · 4 · sin δ dδ/dt · cos δ = C/(8π) (the kernel keeps L·H/cos δ)."""
+        return self.C / (8 * np.pi) + 0 * cos_beta
 
     @property
     def kink_at_normal(self):

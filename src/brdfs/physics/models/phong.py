@@ -33,6 +33,10 @@ class _PhongFamily(BRDF):
     def lobe(self):
         return PowerCosine(self.n, "mirror")
 
+    def azimuth_weight(self, cos_beta):
+        """C cos^n α sin α dα = C/(n+1) dt."""
+        return self.C / (self.n + 1.0)
+
     def _lobe_value(self, L, V):
         return self.C * positive_power(r_dot_v(L, V), self.n)
 
@@ -57,7 +61,7 @@ class Phong(_PhongFamily):
     """Reciprocal Phong, f = c (R·V)^n (eq. 2.6 / 3.5), c = (n+2)/2π by default."""
 
     name = "phong"
-    closed_form_azimuth = ("mirror", False)
+    closed_form_azimuth = ("mirror", "nv")
     limit_cos_power = 1          # the lobe → a delta at R of weight 1: a → cos θ
     limit_albedo_90 = 0.0        # a(90°) ≤ c·2π/(n+1) · max N·V over the lobe → 0
 
@@ -90,7 +94,7 @@ class PhongCosmin(_PhongFamily):
     """The new model, f = c (R·V)^n / max(N·L, N·V) (eq. 3.10)."""
 
     name = "phong_cosmin"
-    closed_form_azimuth = ("mirror", True)
+    closed_form_azimuth = ("mirror", "nv/max")
     limit_cos_power = 0          # g = 1/max(cos θ_L, cos θ_V) at V = R: a → 1 for θ < 90°
     limit_albedo_90 = 0.5        # eq. 3.27: (n+2)/(2(n+1)) → 1/2
 
