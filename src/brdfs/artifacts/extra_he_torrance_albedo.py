@@ -13,6 +13,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.numerics.albedo import albedo
+from brdfs.numerics.integrate import Estimate
 from brdfs.pipeline.registry import figure
 from brdfs.physics.models.he_torrance import TERMS, HeTorrance
 
@@ -37,10 +38,17 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     params = section["albedo"]
     theta = incidence_grid(params["theta_step_deg"], params["theta_extra_deg"])
     frames = []
+    estimates = {}
     for term in TERMS:
         brdf = HeTorrance(sigma0_um=params["sigma0_um"], tau_um=params["tau_um"],
                           lambda_um=section["lambda_um"], term=term)
-        est = albedo(brdf, theta, rtol=cfg["tolerance"]["rtol"], atol=cfg["tolerance"]["atol"])
+        if term == "total":
+            # the total's density is the directional diffuse term: the engine's sum of the two, to the bit
+            est = Estimate(estimates["dd"].value + estimates["specular"].value,
+                           estimates["dd"].error + estimates["specular"].error)
+        else:
+            est = albedo(brdf, theta, rtol=cfg["tolerance"]["rtol"], atol=cfg["tolerance"]["atol"])
+        estimates[term] = est
         frames.append(pd.DataFrame({
             "model": brdf.name, "sigma0_um": brdf.sigma0_um, "tau_um": brdf.tau_um, "lambda_um": brdf.lambda_um,
             "ior_re": "", "ior_im": "", "term": term, "theta_deg": theta, "albedo": est.value,

@@ -32,11 +32,17 @@ from brdfs.physics.models.base import check_positive
 
 def half_vector_tan2(L, V):
     """(tan²δ, cos δ) of the half vector of L and V, from h = L + V without cancellation."""
+    return half_vector_parts(L, V)[:2]
+
+
+def half_vector_parts(L, V):
+    """(tan²δ, cos δ, |L + V|) of unit vectors L, V; L·H = V·H = |L + V|/2."""
     h = np.asarray(L, float) + np.asarray(V, float)
     hz2 = h[..., 2] ** 2
     hxy2 = h[..., 0] ** 2 + h[..., 1] ** 2
+    h2 = hz2 + hxy2
     with np.errstate(divide="ignore", invalid="ignore"):
-        return hxy2 / hz2, np.sqrt(hz2 / (hz2 + hxy2))
+        return hxy2 / hz2, np.sqrt(hz2 / h2), np.sqrt(h2)
 
 
 # --- Smith masking on the sphere and visible normals (both distributions) ----------------------

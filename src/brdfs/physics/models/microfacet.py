@@ -8,8 +8,7 @@ from scipy.special import gamma
 
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
 from brdfs.numerics.integrate.lobes import MicrofacetLobe
-from brdfs.physics.distributions import Beckmann, half_vector_tan2
-from brdfs.physics.geometry import dot, half_vector
+from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
 from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact
 from brdfs.physics import sampling
 
@@ -134,13 +133,13 @@ class CookTorrance(_BeckmannFamily):
             raise ValueError(f"unknown geometry factor G={self.G!r}; choose one of {GEOMETRY_FACTORS}")
 
     def _eval(self, L, V, nl, nv):
-        e, nh = beckmann_exponential(L, V, self.m)
-        d = self.C * e / (4 * np.pi * self.m ** 2 * nh ** 4)
-        return d * self._geometry(L, V, nl, nv, nh) / (nl * nv)
+        tan2, nh, h_norm = half_vector_parts(L, V)
+        d = self.C * self.distribution.slope_weight(tan2) / (4 * np.pi * self.m ** 2 * nh ** 4)
+        return d * self._geometry(nl, nv, nh, 0.5 * h_norm) / (nl * nv)
 
-    def _geometry(self, L, V, nl, nv, nh):
+    def _geometry(self, nl, nv, nh, lh):
         if self.G == "torrance_sparrow":
-            return g_torrance_sparrow(nh, nl, nv, dot(L, half_vector(L, V)))
+            return g_torrance_sparrow(nh, nl, nv, lh)
         if self.G == "smith":
             return g_smith_beckmann(nl, nv, self.m)
         return 1.0
