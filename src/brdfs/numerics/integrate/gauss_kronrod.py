@@ -14,8 +14,12 @@ resolved, so ``K − G`` is, to first order, exactly the error of ``G``.  We the
 Gauss sum* and its error ``|ΣK − ΣG|`` (times a safety factor of 2, plus a rounding floor).  The
 usual alternative — reporting ``K`` with ``|K − G|`` as its error — overstates the error by
 many orders of magnitude, which the contract forbids (reported error at most 1000 × true error).
-Nested integrals pass the inner Gauss/Kronrod pair outwards, so the final difference measures
-inner and outer discretisation together.
+The differences are summed in absolute value over an element's intervals (as QUADPACK sums its
+interval errors), not differenced after summing: on an interval that ends at an algebraic or
+logarithmic endpoint singularity ``K`` is only 5–15 times better than ``G``, and those residues
+do not cancel between intervals the way the signed differences can (Ward, m = 0.1, at
+89.98741075°: |ΣK − ΣG| reported 1.5e-12 for a true error of 1.6e-12).  Nested integrals pass the
+inner Gauss/Kronrod pair outwards, so the differences measure inner and outer discretisation together.
 """
 from __future__ import annotations
 
@@ -127,8 +131,8 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     Returns
     -------
     Estimate
-        ``value`` (Gauss sum), ``error`` and ``status`` per element; ``evaluations`` counts the
-        integrand's nodes.
+        ``value`` (Gauss sum), ``error`` (``SAFETY`` Σ|K − G| over the intervals, plus known and
+        rounding errors) and ``status`` per element; ``evaluations`` counts the integrand's nodes.
 
     Notes
     -----
