@@ -11,7 +11,6 @@ import time
 import numpy as np
 import pandas as pd
 
-from brdfs.artifacts._accuracy import scipy_dblquad
 from brdfs.numerics.albedo import albedo
 from brdfs.pipeline.io import REPO_ROOT
 from brdfs.physics.models import model
@@ -44,7 +43,7 @@ def main():
         rows.append({"curve": label, "method": "engine_2d", "points": THETA.size, "ms_per_albedo": 1e3 * t_2d / THETA.size,
                      "max_rel_diff_to_engine": float(np.max(np.abs(two_d.value - engine.value) / engine.value))})
         sub = THETA[::DBLQUAD_EVERY]
-        dq, t_dq = _timed(lambda: np.array([scipy_dblquad(brdf, t, RTOL)[0] for t in sub]))
+        dq, t_dq = _timed(lambda: np.array([float(albedo(brdf, t, "dblquad", rtol=RTOL).value) for t in sub]))
         rows.append({"curve": label, "method": "dblquad", "points": sub.size, "ms_per_albedo": 1e3 * t_dq / sub.size,
                      "max_rel_diff_to_engine": float(np.max(np.abs(dq - engine.value[::DBLQUAD_EVERY]) / engine.value[::DBLQUAD_EVERY]))})
         print(*(f"{r['curve']:28s} {r['method']:10s} {r['ms_per_albedo']:9.2f} ms  diff {r['max_rel_diff_to_engine']:.1e}"
