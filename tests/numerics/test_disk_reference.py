@@ -9,16 +9,26 @@ from brdfs.physics.models.microfacet import ward_cosmin_limit
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.quantities import grazing_albedo_new_model
 
+def phong_n1_albedo(theta_deg):
+    """Reciprocal Phong, n = 1, c = 3/(2π): a = c ∫ (R·V)⁺ (N·V)⁺ dω = ((π − θ) cos θ + sin θ)/π
+    (the clamped-cosine product ∫ (a·ω)⁺ (b·ω)⁺ dω = (2/3)((π − γ) cos γ + sin γ), γ = ∠(R, N) = θ)."""
+    theta = np.radians(theta_deg)
+    return ((np.pi - theta) * np.cos(theta) + np.sin(theta)) / np.pi
+
+
 CLOSED_FORMS = (
     [("phong_cosmin", {"n": n}, 90.0, float(grazing_albedo_new_model(n))) for n in (1, 20, 10000)]      # eq. 3.27
     + [("phong", {"n": n}, 0.0, 1.0) for n in (1, 512, 10000)]                                       # eq. 3.6
     + [("ward_cosmin", {"m": m}, 90.0, float(ward_cosmin_limit(m).value)) for m in (0.005, 0.1, 0.5)]
     + [("blinn", {"n": n}, 0.0, float(blinn_normal_incidence_albedo(n))) for n in (1, 128, 512)]     # Table 3.1
+    # Phong n = 1 at every θ; 90 − √10 = 86.8377°: the cut R·V = 0 met the rim on a ray 0.04° from a
+    # piece edge and the reference was 5.5e-11 off at a reported 1.3e-13
+    + [("phong", {"n": 1}, t, float(phong_n1_albedo(t))) for t in (30.0, 60.0, 86.837722, 89.9)]
 )
 
 
 def test_disk_reference_meets_closed_forms_within_its_error():
-    """All twelve closed forms in one vectorised run: true error within the reported error, and the
+    """All sixteen closed forms in one vectorised run: true error within the reported error, and the
     reported error small enough (≤ 1e-11 relative) to judge an engine asked for 1e-10."""
     models = [model(name, **params) for name, params, _, _ in CLOSED_FORMS]
     theta = [t for _, _, t, _ in CLOSED_FORMS]
@@ -66,3 +76,18 @@ def test_cook_torrance_with_the_thesis_smith_g_meets_1e_10_across_its_cone_kink_
     engine, ref = albedo(brdf, theta), albedo(brdf, theta, "disk", rtol=1e-13)
     assert np.all(engine.error <= 1e-10 * engine.value)
     assert np.all(np.abs(engine.value - ref.value) <= engine.error + ref.error)
+
+
+@pytest.mark.parametrize("name, params, theta, rtol", [
+    ("blinn", {"n": 8}, 64.0, 1e-10),          # the cap closing at β_max, squeezed into 1e-6 of t (END)
+    ("ward_cosmin", {"m": 0.1}, 65.5, 1e-6),   # N·V = N·L through the lobe's centre: √t at t = 0 (HEAD)
+    ("phong_cosmin", {"n": 1}, 86.837722, 1e-10),
+])
+def test_engine_error_covers_its_lobe_end_singularities(name, params, theta, rtol):
+    """Cells of the full accuracy map and of loose-tolerance sweeps where one radial interval's K − G
+    understated the error (1.3 and 2.3 times) before the graded breakpoints at the lobe's ends."""
+    brdf = model(name, **params)
+    eng = albedo(brdf, theta, rtol=rtol)
+    ref = disk_albedo_many([brdf], [theta])
+    assert abs(float(eng.value) - ref.value[0]) <= float(eng.error) + ref.error[0]
+    assert float(eng.error) <= rtol * float(eng.value)
