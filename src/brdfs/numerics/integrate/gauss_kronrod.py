@@ -161,8 +161,12 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         frozen = (stalls >= STALL_LIMIT) | tiny | ~np.isfinite(err) | (err <= vals[2])
         total = np.bincount(elem, err, n_el)
         movable = np.bincount(elem[~frozen], err[~frozen], n_el)
+        # The reported error is SAFETY · total plus what no split removes (known and rounding errors):
+        # the discretisation gets what the tolerance leaves of those, at least an eighth of it.
+        floor = np.bincount(elem, vals[2], n_el) + 50 * _EPS * np.bincount(elem, vals[3], n_el)
+        budget = np.maximum(tol_el - floor, 0.25 * tol_el) / SAFETY
         # Refine while the tolerance is missed and splitting can still make a difference.
-        open_el = (total > 0.5 * tol_el) & (movable > np.maximum(0.5 * tol_el - (total - movable), 0.05 * total))
+        open_el = (total > budget) & (movable > np.maximum(budget - (total - movable), 0.05 * total))
         cand = open_el[elem] & ~frozen
         if not cand.any():
             exhausted = False
