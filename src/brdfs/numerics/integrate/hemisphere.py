@@ -99,8 +99,10 @@ def _radial_breakpoints(model, mu, st, theta_deg):
     cand = np.concatenate(cand + [beta_max], axis=1)
     cand = np.where((cand > 0) & (cand <= beta_max), cand, beta_max)
     t_max = lobe.t_of(beta_max)
-    head = t_max * HEAD if len(levels) > 1 else np.empty((mu.size, 0))
-    end = lobe.t_of(beta_max * (1.0 - END))
+    through_centre = any(np.array_equal(c, mu) for c in levels[1:])      # N·V = N·L passes through R
+    head = t_max * HEAD if through_centre else np.empty((mu.size, 0))
+    squeezed = (t_max > 1.0 - TAIL[0]) & (t_max < 1.0)
+    end = np.where(squeezed, lobe.t_of(beta_max * (1.0 - END)), np.nan)
     t_pts = np.concatenate([np.zeros_like(t_max), lobe.t_of(cand), np.broadcast_to(1.0 - TAIL, (mu.size, TAIL.size)),
                             head, end], axis=1)
     lh = _lh_radial_breakpoints(model, mu, st, levels, t_max[:, 0])
@@ -116,17 +118,18 @@ def _radial_breakpoints(model, mu, st, theta_deg):
 #: Gauss–Kronrod interval ending at t = 1 places none of its nodes: a kink or a dip there was
 #: accepted as flat (Cook–Torrance, m = 0.1, 22°–48°: 6e-6 missed at a reported 2e-12).
 TAIL = 10.0 ** -np.arange(3.0, 13.0, 3.0)
-#: Initial breakpoints t = 10^(−k) t_max at the lobe's centre, for a model with a kink level of N·V
-#: (``nv_levels``): the level N·V = N·L passes through the mirror direction, the lobe's centre, so
+#: Initial breakpoints t = 10^(−k) t_max at the lobe's centre, for a model with the kink level
+#: N·V = N·L (``nv_levels``): it passes through the mirror direction, the lobe's centre, so
 #: the φ-integral carries odd powers of sin β ∝ √t and the radial integrand a √t endpoint
 #: singularity, on which one interval's K − G understated the error 2.3 times at loose tolerances
 #: (corrected Ward, m = 0.1, 65.5°, rtol 1e-6: 2.4e-7 off at a reported 1.0e-7).
 HEAD = 10.0 ** -np.arange(1.0, 9.0, 1.0)
 #: Initial breakpoints β = β_max (1 − 10^(−k)) before the radius where the circle leaves the upper
-#: hemisphere.  There the cap N·V > 0 closes like (β_max − β)^(3/2), and where β_max lies in the
-#: lobe's far flank (half frame, t_max < 1) t squeezes that layer into 1e-6 of t: one interval
-#: [0.999, t_max] saw a 3/2 power only in its last 1e-7 and its K − G understated the error 110
-#: times (Blinn, n = 8, 64°: 5.4e-11 off at rtol 1e-10).
+#: hemisphere, where that radius lies in the lobe's far flank (1 − 1e-3 < t_max < 1, the TAIL
+#: points beyond t_max dropped).  There the cap N·V > 0 closes like (β_max − β)^(3/2) and t
+#: squeezes that layer into 1e-6 of t: one interval [0.999, t_max] saw a 3/2 power only in its
+#: last 1e-7 and its K − G understated the error 110 times (Blinn, n = 8, 64°: 5.4e-11 off at
+#: rtol 1e-10).
 END = 10.0 ** -np.arange(1.0, 7.0, 1.0)
 _SCAN = 1024
 
