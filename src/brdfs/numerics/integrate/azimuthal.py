@@ -45,6 +45,7 @@ import numpy as np
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
 from brdfs.numerics.integrate.hemisphere import radial_breakpoints_many
 from brdfs.numerics.integrate.mean import positive_part_azimuth
+from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 
 _EPS = np.finfo(float).eps
@@ -188,7 +189,6 @@ def _half_nv_over_max(cb, sb, mu, st):
 
 def _half_sqrt(cb, sb, mu, st):
     """8 ∫₀^π L·H √([N·V]₊ / N·L) dφ (Ward, eq. 2.8): a complete elliptic integral."""
-    from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
     p, q, a, b = _half_lines(cb, sb, mu, st)
     w, rounding = sqrt_positive_part_moment(p, q, a, b)
     with np.errstate(divide="ignore"):
