@@ -38,6 +38,8 @@ GRAZING_MU = 0.02
 SUBPIECES_SQRT = 8
 #: φ/φ_h of the graded cuts for a model with a kink at V = N (``kink_at_normal``).
 KINK_GRADING = 10.0 ** -np.arange(1.0, 7.0)
+#: Multiples of the cone's φ-width at the radius of a node (half frame), cut as well.
+KINK_LAYER = 4.0 ** np.arange(-1.0, 4.0)
 _EPS = np.finfo(float).eps
 
 
@@ -214,6 +216,13 @@ def _azimuthal(model, t, mu, st):
         # A cone-shaped kink at V = N (φ = 0 on the circle through it): graded cuts resolve the layer
         # of width ~ the circle's distance from N, which a fixed rule on [0, φ₁] cannot.
         phis = phis + [phi_h * k for k in KINK_GRADING]
+        if lobe.frame == "half":
+            # and cuts at multiples of the layer's own width: the circle of radius δ passes the cone
+            # point (δ = θ/2, φ = 0) at φ-distance |δ − θ/2| / sin δ, narrower than the finest fixed
+            # cut for radial nodes next to θ/2 (m = 0.5, 38°–46°: stalled at 1.2–2.1 × 1e-10)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                width = np.abs(np.arctan2(sb, cb) - 0.5 * np.arctan2(st, mu)) / sb
+            phis = phis + [np.minimum(width * k, phi_h) for k in KINK_LAYER]
     cuts = np.sort(np.stack([np.zeros_like(phi_h)] + [np.minimum(p, phi_h) for p in phis] + [phi_h], -1), -1)
     cuts = _split_pieces(cuts, SUBPIECES_SQRT if model.sqrt_at_horizon else SUBPIECES)
     lo, hi = cuts[..., :-1, None], cuts[..., 1:, None]                      # (m, 21, P, 1)
