@@ -34,6 +34,7 @@ PARAMETERS = {
     "he_torrance": {"sigma0_um": 0.1, "tau_um": 1.7, "term": "dd"},
     "patch_basic": {"R": 0.5}, "patch_exponential": {"s": 8.0}, "patch_elliptical": {"b": 0.5, "ratio": 0.5},
     "generalized_lambertian": {"d": 0.5},
+    "ggx": {"alpha": 0.1}, "beckmann": {"alpha": 0.1},     # today's Smith microfacet models (rtr4 ch. 9)
     "patch_mixture": {"weight": lambda R: np.ones_like(R) / 2.0},
 }
 #: The thesis's claims: (model, reference model, claimed time ratio, where).
