@@ -199,7 +199,7 @@ def _half_sqrt(cb, sb, mu, st):
 def _half_torrance_sparrow(cb, sb, mu, st):
     """8 ∫₀^{φ_h} min(L·H / cos δ, 2 N·V, 2 N·L) dφ / N·L (eq. 2.10: L·H G = min(L·H, 2 N·H N·V,
     2 N·H N·L)); at N·L = 0 the minimum over N·L tends to 2 wherever N·V > 0."""
-    p, q, a, b = _half_lines(cb, sb, mu, st)
+    _, _, a, b = _half_lines(cb, sb, mu, st)
     c_h = _level_cos(a, b, 0.0)
     lines = [(mu, sb / cb * st), (2 * a, 2 * b), (2 * mu, 0.0)]
     integral, rounding = _lower_envelope_integral(lines, c_h)
@@ -211,7 +211,7 @@ def _half_torrance_sparrow(cb, sb, mu, st):
 
 def _half_over_nl(cb, sb, mu, st):
     """8 ∫₀^{φ_h} L·H / (cos δ N·L) dφ (Cook–Torrance with G = 1; infinite at N·L = 0)."""
-    p, q, a, b = _half_lines(cb, sb, mu, st)
+    _, _, a, b = _half_lines(cb, sb, mu, st)
     phi_h = _level_azimuth(a, b, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         value = 8 * (phi_h + sb / cb * st * np.sin(phi_h) / mu)
