@@ -73,7 +73,9 @@ def radial_breakpoints_many(models, mu, st, theta_deg):
     row per element, ascending and NaN-padded (:func:`.gauss_kronrod.integrate`'s ragged form):
     the range ends, the radii where N·V level sets touch the circles (closed form), the radii where
     L·H levels change how they cut the circles (found numerically, :func:`_lh_radial_breakpoints`),
-    and the lobe's tail 1 − t = 10^(−k).  The elements of one model are handled together."""
+    the lobe's tail 1 − t = 10^(−k) (:data:`TAIL`), and graded points at the two ends of the range
+    where an endpoint singularity sits (:data:`HEAD`, :data:`END`).  The elements of one model are
+    handled together, and the 1-D route (:mod:`.azimuthal`) uses the same rows."""
     groups: dict[int, list[int]] = {}
     for i, m in enumerate(models):
         groups.setdefault(id(m), []).append(i)
