@@ -11,7 +11,8 @@ and one error, so a curve spanning values 1e-3 … 1 cannot get a per-point rela
 Error estimate.  On each interval the 21-point Kronrod rule ``K`` and its embedded 10-point
 Gauss rule ``G`` are evaluated.  ``K`` is far more accurate than ``G`` once an interval is
 resolved, so ``K − G`` is, to first order, exactly the error of ``G``.  We therefore *report the
-Gauss sum* and its error ``|ΣK − ΣG|`` (times a safety factor of 2, plus a rounding floor).  The
+Gauss sum* and its error ``Σ|K − G|`` over the intervals (times a safety factor of 2, plus the
+known inner errors and a rounding floor).  The
 usual alternative — reporting ``K`` with ``|K − G|`` as its error — overstates the error by
 many orders of magnitude, which the contract forbids (reported error at most 1000 × true error).
 The differences are summed in absolute value over an element's intervals (as QUADPACK sums its
