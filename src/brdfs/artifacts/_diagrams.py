@@ -106,6 +106,22 @@ def angle_of(v) -> float:
     return float(np.arctan2(v[1], v[0]))
 
 
+def drop_to_base(ax, p, label, color, label_offset=(0.02, -0.07)):
+    """The dotted drop from the (projected) tip of ``p`` to its foot on the base plane, with the foot
+    labelled; returns the foot."""
+    foot = project(np.asarray(p, float) * [1, 1, 0])
+    ax.plot(*np.stack([project(p), foot]).T, color=color, lw=0.6, ls=":")
+    ax.text(*(foot + label_offset), label, color=color, fontsize=8)
+    return foot
+
+
+def hemisphere_canvas():
+    """A canvas with the hemisphere outline (the vector diagrams, Figs. 1.4 and 4.1)."""
+    fig, (ax,) = new_canvas(5.6, 4.4)
+    hemisphere(ax)
+    return fig, ax
+
+
 def hemisphere(ax, color="0.55"):
     """Outline of the unit hemisphere and its base circle in the oblique projection."""
     t = np.linspace(0, 2 * np.pi, 200)

@@ -133,6 +133,11 @@ def plot_panels(df: pd.DataFrame, path, title: str, columns: int | None = None) 
 
 # --- geometry shared by the scenes -----------------------------------------------------------------
 
+def row(count, half_width):
+    """x of ``count`` objects spread evenly over [−half_width, half_width] (a single one at −half_width)."""
+    return [-half_width + 2 * half_width * k / max(count - 1, 1) for k in range(count)]
+
+
 def floor(size=4.0):
     return shapes.Rectangle((0.0, 0.0, 0.0), (size, size))
 

@@ -27,8 +27,7 @@ def tank_and_spheres(cfg, entries, model, title, base=None):
     hull, turret = rf.tank(0.0, 1.2)
     objects = [("floor", rf.floor(), plate),
                ("tank hull", hull, _metal(tank, model)), ("tank turret", turret, _metal(tank, model))]
-    xs = [-2.1 + 4.2 * k / max(len(spheres) - 1, 1) for k in range(len(spheres))]
-    for k, (x, entry) in enumerate(zip(xs, spheres)):
+    for k, (x, entry) in enumerate(zip(rf.row(len(spheres), 2.1), spheres)):
         objects.append((f"sphere {k + 1} {entry['metal']}", rf.sphere(x, -1.4, 0.55), _metal(entry, model)))
     return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA, aspect=1.6,
                      reference=("floor",) if base is None else ("tank hull",))]

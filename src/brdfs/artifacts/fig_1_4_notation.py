@@ -11,6 +11,7 @@ import pandas as pd
 
 from brdfs.artifacts import _diagrams as dg
 from brdfs.physics import geometry as geo
+from brdfs.physics.models.patch import projected_distance
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_1_4_notation"
@@ -28,24 +29,21 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
                 "theta_v_deg": float(np.degrees(np.arccos(geo.dot(N, V)))),
                 "alpha_deg": float(np.degrees(np.arccos(np.clip(geo.r_dot_v(L, V), -1, 1)))),
                 "delta_deg": float(np.degrees(np.arccos(np.clip(geo.n_dot_h(L, V), -1, 1)))),
-                "projected_distance": float(np.hypot(*(R - V)[:2]))})
+                "projected_distance": float(projected_distance(L, V))})
     return dg.frame(out)
 
 
 def plot(df: pd.DataFrame, path) -> None:
     v = dg.values(df)
-    fig, (ax,) = dg.new_canvas(5.6, 4.4)
-    dg.hemisphere(ax)
+    fig, ax = dg.hemisphere_canvas()
     O = np.zeros(2)
     colours = {"N": "k", "L": "tab:orange", "V": "tab:blue", "R": "tab:red", "H": "tab:green"}
     for name, col in colours.items():
         p = dg.get(v, name)
         dg.arrow(ax, O, dg.project(p), name, color=col)
         if name in "LVR":
-            foot = dg.project(p * [1, 1, 0])
-            ax.plot(*np.stack([dg.project(p), foot]).T, color=col, lw=0.6, ls=":")
+            foot = dg.drop_to_base(ax, p, f"{name}$_p$", col)
             ax.plot(*np.stack([O, foot]).T, color=col, lw=0.9, ls="--")
-            ax.text(*(foot + [0.02, -0.07]), f"{name}$_p$", color=col, fontsize=8)
     text = (f"θ$_L$ = {v['theta_l_deg']:.1f}°,  θ$_V$ = {v['theta_v_deg']:.1f}°\n"
             f"α = ∠(R, V) = {v['alpha_deg']:.1f}°,  δ = ∠(N, H) = {v['delta_deg']:.1f}°\n"
             f"|L'$_p$ − V$_p$| = |h − (N·h)N| = {v['projected_distance']:.3f}")

@@ -25,8 +25,7 @@ def panels(cfg: dict) -> list:
             objects = [("floor", rf.floor(), {"diffuse": section["diffuse_reflectance"]}),
                        ("tank hull", hull, {**spec, "metal": p["tank"]}),
                        ("tank turret", turret, {**spec, "metal": p["tank"]})]
-            xs = [-2.1 + 4.2 * k / max(len(p["spheres"]) - 1, 1) for k in range(len(p["spheres"]))]
-            for x, metal in zip(xs, p["spheres"]):
+            for x, metal in zip(rf.row(len(p["spheres"]), 2.1), p["spheres"]):
                 objects.append((f"{metal} sphere", rf.sphere(x, -1.4, 0.55), {**spec, "metal": metal}))
             out.append(rf.Panel(f"{row}, n = {n:g}", objects, rf.TWO_LIGHTS, rf.STREET_CAMERA,
                                 aspect=1.6))

@@ -17,8 +17,7 @@ def panels(cfg: dict) -> list:
     p = cfg[rf.SECTION]["plastics"]
     objects = [("floor", rf.floor(), dict(p["plate"]))]
     spheres = p["spheres"]
-    for k, spec in enumerate(spheres):
-        x = -2.1 + 4.2 * k / max(len(spheres) - 1, 1)
+    for x, spec in zip(rf.row(len(spheres), 2.1), spheres):
         objects.append((f"sphere a_s={spec['a_s']:g} n={spec['n']:g}", rf.sphere(x, -0.6, 0.6), dict(spec)))
     title = "(a_s, n) = " + ", ".join(f"({s['a_s']:g}, {s['n']:g})" for s in spheres)
     return [rf.Panel(title, objects, rf.TWO_LIGHTS, rf.STREET_CAMERA, channels=3, aspect=1.6)]

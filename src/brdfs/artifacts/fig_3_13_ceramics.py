@@ -17,8 +17,7 @@ NAME = "fig_3_13_ceramics"
 def panels(cfg: dict) -> list:
     c = cfg[rf.SECTION]["ceramics"]
     objects = [("floor", rf.floor(), dict(c["plate"]))]
-    for k, spec in enumerate(c["objects"]):
-        x = -1.3 + 2.6 * k / max(len(c["objects"]) - 1, 1)
+    for k, (x, spec) in enumerate(zip(rf.row(len(c["objects"]), 1.3), c["objects"])):
         objects.append((f"pot {k + 1} body n={spec['n']:g}", shapes.Sphere((x, 0.0, 1.05), 0.85), dict(spec)))
         objects.append((f"pot {k + 1} foot n={spec['n']:g}", shapes.Cylinder((x, 0.0, 0.0), 0.45, 0.3), dict(spec)))
     title = "ceramics, n = " + ", ".join(f"{s['n']:g}" for s in c["objects"])

@@ -18,8 +18,7 @@ def panels(cfg: dict) -> list:
     section = cfg[rf.SECTION]
     entries = section["anisotropic"]
     objects = [("floor", rf.floor(), {"diffuse": section["diffuse_reflectance"]})]
-    for k, e in enumerate(entries):
-        x = -2.1 + 4.2 * k / max(len(entries) - 1, 1)
+    for x, e in zip(rf.row(len(entries), 2.1), entries):
         objects.append((f"{e['metal']} b={e['b']:g} B/A={e['ratio']:g}", rf.sphere(x, -0.6, 0.6),
                         {"metal": e["metal"], "model": "patch_elliptical", "b": e["b"], "ratio": e["ratio"]}))
     title = ", ".join(f"{e['metal']} (b={e['b']:g}, B/A={e['ratio']:g})" for e in entries)

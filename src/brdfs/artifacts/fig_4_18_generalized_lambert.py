@@ -19,8 +19,7 @@ CAMERA = {"eye": (0.0, -12.0, 0.8), "target": (0.0, 0.0, 0.8), "fov_deg": 14.0}
 def panels(cfg: dict) -> list:
     ds = cfg[rf.SECTION]["generalized_lambertian"]["d"]
     objects = []
-    for k, d in enumerate(ds):
-        x = -3.3 + 6.6 * k / max(len(ds) - 1, 1)
+    for x, d in zip(rf.row(len(ds), 3.3), ds):
         objects.append((f"d={d:g}", rf.sphere(x, 0.0, 1.0), {"model": "generalized_lambertian", "d": d}))
     labels = tuple(label for label, _, _ in objects)
     light_at_eye = [(CAMERA["eye"], 1.0)]

@@ -29,8 +29,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 def plot(df: pd.DataFrame, path) -> None:
     v = dg.values(df)
-    fig, (ax,) = dg.new_canvas(5.6, 4.4)
-    dg.hemisphere(ax)
+    fig, ax = dg.hemisphere_canvas()
     O = np.zeros(2)
     dg.arrow(ax, O, dg.project([0, 0, 1]), "N")
     style = {"L": ("tab:orange", "L"), "V": ("tab:blue", "V"), "Lm": ("tab:orange", "L'"), "Vm": ("tab:blue", "V'")}
@@ -40,10 +39,8 @@ def plot(df: pd.DataFrame, path) -> None:
         ls = "-" if key in ("L", "V") else (0, (4, 2))
         ax.plot(*np.stack([O, dg.project(p)]).T, color=col, lw=1.2, ls=ls)
         ax.text(*(dg.project(p) + 0.03), label, color=col)
-        feet[key] = dg.project(p * [1, 1, 0])
-        ax.plot(*np.stack([dg.project(p), feet[key]]).T, color=col, lw=0.6, ls=":")
+        feet[key] = dg.drop_to_base(ax, p, f"{label}$_P$", col, label_offset=(0.02, -0.08))
         ax.plot(*feet[key], "o", color=col, ms=3)
-        ax.text(*(feet[key] + [0.02, -0.08]), f"{label}$_P$", color=col, fontsize=8)
     ax.plot(*np.stack([feet["V"], feet["Lm"]]).T, "k", lw=1.6)
     mid = 0.5 * (feet["V"] + feet["Lm"])
     ax.text(*(mid + [0.0, -0.16]), f"m = |V$_P$ − L'$_P$| = {v['m']:.3f}", fontsize=8, ha="center")

@@ -29,6 +29,7 @@ from scipy.integrate import IntegrationWarning, dblquad
 
 from brdfs.numerics.integrate import azimuthal
 from brdfs.numerics.integrate.disk import disk_albedo_many
+from brdfs.numerics.integrate.grouping import indices_by_model
 from brdfs.numerics.integrate.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import FRAME as SCATTERING_FRAME
@@ -82,10 +83,7 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
         better = est.error < error[short]
         rows = np.flatnonzero(short)[better]
         value[rows], error[rows], status[rows] = est.value[better], est.error[better], est.status[better]
-    groups: dict[int, list[int]] = {}
-    for i, m in enumerate(models):
-        groups.setdefault(id(m), []).append(i)
-    for rows in groups.values():
+    for rows in indices_by_model(models):
         delta = models[rows[0]].delta_albedo(theta[rows])
         value[rows] += delta.value
         error[rows] += delta.error
@@ -95,10 +93,7 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
 def _own_routes(models, theta, rtol, atol):
     """The models' own albedo routes (``albedo_estimate``), one call per distinct model."""
     value, error = np.zeros(theta.size), np.zeros(theta.size)
-    groups: dict[int, list[int]] = {}
-    for i, m in enumerate(models):
-        groups.setdefault(id(m), []).append(i)
-    for rows in groups.values():
+    for rows in indices_by_model(models):
         est = models[rows[0]].albedo_estimate(theta[rows], rtol, atol)
         value[rows], error[rows] = est.value, est.error
     return Estimate(value, error)

@@ -171,10 +171,7 @@ class Artifact:
 
     def compute(self, cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
         """Compute the artifact's tidy DataFrame from ``cfg`` and its dependencies."""
-        missing = [d for d in self.deps if d not in deps]
-        if missing:
-            raise KeyError(f"{self.name}: missing dependencies {missing}")
-        df = self.fn(config_subset(cfg, self.config), {d: deps[d] for d in self.deps})
+        df = self.fn(config_subset(cfg, self.config), _select(self.name, "dependencies", self.deps, deps))
         if not isinstance(df, pd.DataFrame) or df.empty or not df.columns.is_unique:
             raise TypeError(f"{self.name}: compute must return a non-empty DataFrame with unique columns")
         return df.reset_index(drop=True)
@@ -223,11 +220,16 @@ class Comparison:
 
     def fragment(self, cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
         """The comparison fragment (see :func:`brdfs.pipeline.published.make_fragment`)."""
-        missing = [t for t in self.tables if t not in tables]
-        if missing:
-            raise KeyError(f"{self.artifact}: missing tables {missing}")
-        rows = self.fn(config_subset(cfg, self.config), {t: tables[t] for t in self.tables})
+        rows = self.fn(config_subset(cfg, self.config), _select(self.artifact, "tables", self.tables, tables))
         return published.make_fragment(self.artifact, rows)
+
+
+def _select(owner: str, what: str, names: tuple[str, ...], given: dict[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+    """The DataFrames ``names`` of ``given``, or a KeyError naming the missing ones."""
+    missing = [n for n in names if n not in given]
+    if missing:
+        raise KeyError(f"{owner}: missing {what} {missing}")
+    return {n: given[n] for n in names}
 
 
 _ARTIFACTS: dict[str, Artifact] = {}

@@ -43,7 +43,8 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
-from brdfs.numerics.integrate.hemisphere import radial_breakpoints_many
+from brdfs.numerics.integrate.grouping import first_of_model
+from brdfs.numerics.integrate.hemisphere import level_azimuth, level_cos, radial_breakpoints_many
 from brdfs.numerics.integrate.mean import positive_part_azimuth
 from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
 from brdfs.physics.geometry import cos_incidence, sin_incidence
@@ -95,8 +96,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     outside = ~((theta_deg >= 0) & (theta_deg <= 90))
     if outside.any():
         raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
-    first = {}
-    index = np.array([first.setdefault(id(m), i) for i, m in enumerate(models)])
+    index = first_of_model(models)
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     bp = radial_breakpoints_many(models, mu, st, theta_deg)
 
@@ -124,13 +124,6 @@ def _radial_integrand(model, t, mu, st):
     return value, rounding
 
 
-def _level_azimuth(a, b, c):
-    """φ in [0, π] with a + b cos φ = c; the set a + b cos φ > c is [0, φ) (π: all, 0: none)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        u = np.where(b > 0, (c - a) / b, np.where(a > c, -1.0, 1.0))
-    return np.arccos(np.clip(u, -1.0, 1.0))
-
-
 # --- mirror frame: V at angle α from R -------------------------------------------------------
 
 def _mirror_nv(cb, sb, mu, st):
@@ -147,7 +140,7 @@ def _mirror_nv_over_max(cb, sb, mu, st):
     with np.errstate(divide="ignore", invalid="ignore"):
         quotient = (full - low) / mu
         rounding = 8 * _EPS * (np.abs(full) + np.abs(low)) / mu
-    grazing = 2 * _level_azimuth(a, b, 0.0)        # N·L = 0: N·V / max(0, N·V) = 1 where N·V > 0
+    grazing = 2 * level_azimuth(a, b, 0.0)        # N·L = 0: N·V / max(0, N·V) = 1 where N·V > 0
     value = np.where(mu > 0, quotient, grazing)
     return value, np.where(mu > 0, rounding, 4 * _EPS * grazing)
 
@@ -172,14 +165,14 @@ def _i2(p, q, a, b, phi):
 def _half_nv(cb, sb, mu, st):
     """8 I₂(φ_h)."""
     p, q, a, b = _half_lines(cb, sb, mu, st)
-    above = _i2(p, q, a, b, _level_azimuth(a, b, 0.0))
+    above = _i2(p, q, a, b, level_azimuth(a, b, 0.0))
     return 8 * above, 64 * _EPS * (np.abs(p * a) + np.abs(p * b + q * a) + np.abs(q * b)) * np.pi
 
 
 def _half_nv_over_max(cb, sb, mu, st):
     """8 [I₁(φ_μ) + (I₂(φ_h) − I₂(φ_μ)) / cos θ]: L·H N·V / max(N·L, N·V)."""
     p, q, a, b = _half_lines(cb, sb, mu, st)
-    phi_h, phi_mu = _level_azimuth(a, b, 0.0), _level_azimuth(a, b, mu)
+    phi_h, phi_mu = level_azimuth(a, b, 0.0), level_azimuth(a, b, mu)
     with np.errstate(divide="ignore", invalid="ignore"):
         band = (_i2(p, q, a, b, phi_h) - _i2(p, q, a, b, phi_mu)) / mu
         rounding = 16 * _EPS * (np.abs(p * a) + np.abs(p * b + q * a) + np.abs(q * b)) * np.pi / mu
@@ -200,7 +193,7 @@ def _half_torrance_sparrow(cb, sb, mu, st):
     """8 ∫₀^{φ_h} min(L·H / cos δ, 2 N·V, 2 N·L) dφ / N·L (eq. 2.10: L·H G = min(L·H, 2 N·H N·V,
     2 N·H N·L)); at N·L = 0 the minimum over N·L tends to 2 wherever N·V > 0."""
     _, _, a, b = _half_lines(cb, sb, mu, st)
-    c_h = _level_cos(a, b, 0.0)
+    c_h = level_cos(a, b, 0.0)
     lines = [(mu, sb / cb * st), (2 * a, 2 * b), (2 * mu, 0.0)]
     integral, rounding = _lower_envelope_integral(lines, c_h)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -212,17 +205,10 @@ def _half_torrance_sparrow(cb, sb, mu, st):
 def _half_over_nl(cb, sb, mu, st):
     """8 ∫₀^{φ_h} L·H / (cos δ N·L) dφ (Cook–Torrance with G = 1; infinite at N·L = 0)."""
     _, _, a, b = _half_lines(cb, sb, mu, st)
-    phi_h = _level_azimuth(a, b, 0.0)
+    phi_h = level_azimuth(a, b, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         value = 8 * (phi_h + sb / cb * st * np.sin(phi_h) / mu)
     return value, 8 * _EPS * np.abs(value)
-
-
-def _level_cos(a, b, c):
-    """cos φ of :func:`_level_azimuth`, in [−1, 1], computed without the arccos."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        u = np.where(b > 0, (c - a) / b, np.where(a > c, -1.0, 1.0))
-    return np.clip(u, -1.0, 1.0)
 
 
 def _lower_envelope_integral(lines, c_end):

@@ -33,6 +33,7 @@ import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.numerics.integrate.grouping import first_of_model
 
 INNER_SHARE = 0.1             # the inner integrals get this share of the tolerance
 _PIECES = 8                   # equal ψ pieces on [0, π]
@@ -79,8 +80,7 @@ def _disk(models, theta_deg, rtol, atol, scale):
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     full = np.array([m.name in _TWO_PI_MODELS for m in models])
     bp = _pad([_psi_breakpoints(m, mu[i], st[i], full[i]) for i, m in enumerate(models)])
-    first = {}                          # the same model object at many angles is evaluated together
-    index = np.array([first.setdefault(id(m), i) for i, m in enumerate(models)])
+    index = first_of_model(models)      # the same model object at many angles is evaluated together
     weight_el = np.where(full, 1.0, 2.0)             # [0, π] doubled by symmetry
     span = np.where(full, 2 * np.pi, np.pi)
 

@@ -25,6 +25,7 @@ import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.numerics.integrate.gauss_kronrod import GAUSS_WEIGHTS, KRONROD_WEIGHTS, NODES, integrate
+from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
 _U = 0.5 * (NODES + 1.0)            # Kronrod nodes on [0, 1]
 _WK = 0.5 * KRONROD_WEIGHTS
@@ -49,8 +50,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     models = list(models)
     if len(models) != theta_deg.size:
         raise ValueError("albedo_many needs one model per angle")
-    first = {}                       # the same model object at many angles is evaluated together
-    index = np.array([first.setdefault(id(m), i) for i, m in enumerate(models)])
+    index = first_of_model(models)   # the same model object at many angles is evaluated together
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     bp = radial_breakpoints_many(models, mu, st, theta_deg)
 
@@ -76,11 +76,8 @@ def radial_breakpoints_many(models, mu, st, theta_deg):
     the lobe's tail 1 − t = 10^(−k) (:data:`TAIL`), and graded points at the two ends of the range
     where an endpoint singularity sits (:data:`HEAD`, :data:`END`).  The elements of one model are
     handled together, and the 1-D route (:mod:`.azimuthal`) uses the same rows."""
-    groups: dict[int, list[int]] = {}
-    for i, m in enumerate(models):
-        groups.setdefault(id(m), []).append(i)
     rows = [None] * len(models)
-    for members in groups.values():
+    for members in indices_by_model(models):
         idx = np.array(members)
         for i, row in zip(members, _radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx])):
             rows[i] = row
@@ -191,12 +188,18 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     return [roots[row == i] for i in range(mu.size)]
 
 
-def _phi_level(A, B, c):
-    """φ in [0, π] where A + B cos φ = c (π if the level is never reached from above, 0 if always below)."""
+def level_cos(A, B, c):
+    """cos φ, φ in [0, π], where A + B cos φ = c (B ≥ 0): the set A + B cos φ > c is [0, φ);
+    −1 (φ = π) if the level is never reached from above, 1 (φ = 0) if always below."""
     with np.errstate(divide="ignore", invalid="ignore"):
         x = (c - A) / B
     x = np.where(B > 0, x, np.where(A >= c, -1.0, 1.0))
-    return np.arccos(np.clip(x, -1.0, 1.0))
+    return np.clip(x, -1.0, 1.0)
+
+
+def level_azimuth(A, B, c):
+    """φ of :func:`level_cos`."""
+    return np.arccos(level_cos(A, B, c))
 
 
 def _azimuthal(model, t, mu, st):
@@ -211,9 +214,9 @@ def _azimuthal(model, t, mu, st):
     else:
         cos2, sin2 = (cb - sb) * (cb + sb), 2 * sb * cb
         A_nv, B_nv = cos2 * mu, sin2 * st
-        phis = [_phi_level(cb * mu, sb * st, c) for c in model.lh_levels(mu, cb)]    # L·H = cb μ + sb st cos φ
-    phi_h = _phi_level(A_nv, B_nv, 0.0)
-    phis = phis + [_phi_level(A_nv, B_nv, A_nv * 0 + c) for c in model.nv_levels(mu)]
+        phis = [level_azimuth(cb * mu, sb * st, c) for c in model.lh_levels(mu, cb)]    # L·H = cb μ + sb st cos φ
+    phi_h = level_azimuth(A_nv, B_nv, 0.0)
+    phis = phis + [level_azimuth(A_nv, B_nv, A_nv * 0 + c) for c in model.nv_levels(mu)]
     if model.kink_at_normal:
         # A cone-shaped kink at V = N (φ = 0 on the circle through it): graded cuts resolve the layer
         # of width ~ the circle's distance from N, which a fixed rule on [0, φ₁] cannot.

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
+from brdfs.numerics.integrate.grouping import first_of_model
 from brdfs.numerics.integrate.gauss_kronrod import integrate
 
 FRAME = "scattering"
@@ -60,7 +61,7 @@ def albedo_scattering(models, theta_deg, rtol=1e-10, atol=1e-14):
     models = list(models)
     if len(models) != len(theta_deg):
         raise ValueError("albedo_scattering needs one model per angle")
-    index = np.array([models.index(m) for m in models])
+    index = first_of_model(models)
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     bp = _breakpoints([m.lobe for m in models], st)
 

@@ -127,8 +127,12 @@ class BRDF:
 
     def azimuth_weight(self, cos_beta):
         """The radial weight w(β) per unit of the lobe variable t that multiplies the closed-form
-        azimuthal kernel named by :attr:`closed_form_azimuth` (:mod:`brdfs.numerics.integrate.azimuthal`)."""
-        raise NotImplementedError(f"{self.name} declares no closed-form azimuth")
+        azimuthal kernel named by :attr:`closed_form_azimuth` (:mod:`brdfs.numerics.integrate.azimuthal`):
+        by default C times the lobe's own weight per unit t (a cosine power: C/(n+1))."""
+        weight_per_t = getattr(self.lobe, "weight_per_t", None)
+        if self.closed_form_azimuth is None or weight_per_t is None:
+            raise NotImplementedError(f"{self.name} declares no closed-form azimuth weight")
+        return weight_per_t(cos_beta, self.C)
 
     def delta_albedo(self, theta_deg) -> Estimate:
         """Albedo of the Dirac part of the BRDF: none by default."""

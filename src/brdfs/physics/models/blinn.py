@@ -24,10 +24,6 @@ class _BlinnFamily(BRDF):
     def lobe(self):
         return PowerCosine(self.n, "half")
 
-    def azimuth_weight(self, cos_beta):
-        """C cos^n δ sin δ dδ = C/(n+1) dt."""
-        return self.C / (self.n + 1.0)
-
     # --- sampling: half vectors from the cosine power about N -----------------------------------
     #: ``"half_vector"``: H with density (n + 1)/(2π) (N·H)^n, V = 2 (L·H) H − L, so
     #: pdf(V) = (n + 1)/(2π) (N·H)^n / (4 V·H) (the half-vector Jacobian).  H with L·H ≤ 0 or a V

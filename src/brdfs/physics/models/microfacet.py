@@ -37,6 +37,11 @@ class _BeckmannFamily(BRDF):
     def lobe(self):
         return MicrofacetLobe(self.distribution)
 
+    def azimuth_weight(self, cos_beta):
+        """Ward and corrected Ward: C e^(−tan²δ/m²)/(4π m²) · 4 · sin δ dδ/dt
+        (:meth:`Beckmann.solid_angle_per_t`) = C cos³δ/(8π)."""
+        return self.C * cos_beta ** 3 / (8 * np.pi)
+
     # --- sampling: Beckmann normals with the half-vector Jacobian ------------------------------
     #: ``"beckmann"``: H from :meth:`Beckmann.sample_normal` (density D(H) N·H), V = 2 (L·H) H − L,
     #: pdf(V) = D(H) (N·H) / (4 V·H).  H with L·H ≤ 0 or V below the horizon is rejected (mass < 1).
@@ -61,10 +66,6 @@ class Ward(_BeckmannFamily):
     sqrt_at_horizon = True
     closed_form_azimuth = ("half", "sqrt(nv/nl)")
 
-    def azimuth_weight(self, cos_beta):
-        """C e^(−tan²δ/m²)/(4π m²) · 4 · sin δ dδ/dt (:meth:`Beckmann.solid_angle_per_t`) = C cos³δ/(8π)."""
-        return self.C * cos_beta ** 3 / (8 * np.pi)
-
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
         return self.C / (4 * np.pi * self.m ** 2) * e / np.sqrt(nl * nv)
@@ -80,10 +81,6 @@ class WardCosmin(_BeckmannFamily):
 
     name = "ward_cosmin"
     closed_form_azimuth = ("half", "nv/max")
-
-    def azimuth_weight(self, cos_beta):
-        """As Ward's: C cos³δ/(8π)."""
-        return self.C * cos_beta ** 3 / (8 * np.pi)
 
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)

@@ -33,10 +33,6 @@ class _PhongFamily(BRDF):
     def lobe(self):
         return PowerCosine(self.n, "mirror")
 
-    def azimuth_weight(self, cos_beta):
-        """C cos^n α sin α dα = C/(n+1) dt."""
-        return self.C / (self.n + 1.0)
-
     def _lobe_value(self, L, V):
         return self.C * positive_power(r_dot_v(L, V), self.n)
 
