@@ -1,5 +1,5 @@
 """Renderer decision (issue #17): time per image of Mitsuba 3 (scalar_rgb, the package's BRDF as a
-Python BSDF plugin) and of brdfs.numerics.render on the same scene.
+Python BSDF plugin) and of brdfs.render on the same scene.
 
 Scene: a sphere of the new model (phong_cosmin, n = 20, F = 1) on a diffuse floor (rho = 0.5),
 one point light, 160 x 120 pixels; (a) direct lighting, 1 sample per pixel; (b) daylight (constant
@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 import brdfs
-from brdfs.numerics.render import materials, shapes, tracer
+from brdfs.render import materials, shapes, tracer
 
 W, H, N = 160, 120, 20
 MODEL = brdfs.model("phong_cosmin", n=N)

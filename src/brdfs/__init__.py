@@ -1,9 +1,35 @@
 """brdfs — recomputing Neumann (2001), *Constructions of Bidirectional Reflection Distribution Functions*.
 
 Public API: :func:`albedo`, :func:`albedo_table`, :func:`model`, :data:`MODELS`, :class:`Estimate`.
+
+The names are imported on first use (a module ``__getattr__``), so that ``import brdfs.physics``
+loads the physics layer alone, not the numerics behind :func:`albedo`.
 """
-from brdfs.numerics.albedo import albedo, albedo_table
-from brdfs.numerics.integrate import Estimate
-from brdfs.physics.models import MODELS, model
+from __future__ import annotations
+
+import importlib
+
+#: Public name -> the module that defines it.
+_HOMES = {
+    "albedo": "brdfs.numerics.albedo",
+    "albedo_table": "brdfs.numerics.albedo",
+    "Estimate": "brdfs.core.estimate",
+    "model": "brdfs.physics.models",
+    "MODELS": "brdfs.physics.models",
+}
 
 __all__ = ["albedo", "albedo_table", "model", "MODELS", "Estimate"]
+
+
+def __getattr__(name):
+    try:
+        home = _HOMES[name]
+    except KeyError:
+        raise AttributeError(f"module 'brdfs' has no attribute {name!r}") from None
+    value = getattr(importlib.import_module(home), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

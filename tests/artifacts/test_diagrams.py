@@ -5,7 +5,7 @@ import pytest
 from brdfs.artifacts import _diagrams as dg
 from brdfs.artifacts.fig_1_3_integral_schemes import trace
 from brdfs.artifacts.fig_2_2_lhv_domains import rotation_to
-from brdfs.numerics.patch_geometry import basic_albedo_at, circle_intersection
+from brdfs.physics.patch_geometry import basic_albedo_at, circle_intersection
 from brdfs.physics import geometry as geo
 from brdfs.pipeline import registry
 from brdfs.pipeline.config import load_config

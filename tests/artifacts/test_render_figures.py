@@ -9,7 +9,7 @@ import yaml
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import fig_4_18_generalized_lambert as fig_4_18
-from brdfs.numerics.render import tracer
+from brdfs.render import tracer
 from brdfs.pipeline import registry
 from brdfs.pipeline.config import CONFIG_YAML
 

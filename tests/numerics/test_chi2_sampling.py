@@ -5,7 +5,7 @@ import pytest
 
 from brdfs import model
 from brdfs.artifacts.sampling_chi2 import PARAMETERS, build, cases
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.numerics.chi2 import chi2_test, pooled_statistic, sidak_level
 from brdfs.physics import sampling
 from brdfs.physics.geometry import light_direction

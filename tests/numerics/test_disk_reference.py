@@ -59,7 +59,7 @@ def test_cook_torrance_eq_2_10_agrees_with_the_disk_reference_where_the_engine_m
 def test_disk_reference_integrates_patch_models_to_their_closed_form_albedo(name, params):
     """Chapter 4's albedos (closed form for the basic BRDF, eq. 4.8; the mixture integral for the
     exponential one) from the reference's jumps and kinks at r = |L_xy + V_xy|."""
-    from brdfs.numerics import patch_geometry as patch
+    from brdfs.physics import patch_geometry as patch
     theta = np.array([0.0, 40.0, 80.0, 90.0])
     f = model(name, **params)
     ref = disk_albedo_many([f] * theta.size, theta)

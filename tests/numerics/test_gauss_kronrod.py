@@ -1,7 +1,7 @@
 """The vectorised Gauss–Kronrod driver (integrate.gauss_kronrod): its error estimate against exact integrals."""
 import numpy as np
 
-from brdfs.numerics.integrate.gauss_kronrod import KRONROD_WEIGHTS, GAUSS_WEIGHTS, NODES, integrate
+from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, GAUSS_WEIGHTS, NODES, integrate
 
 
 def _rule_error(f, exact):

@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import gammainc
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.physics.geometry import direction, light_direction
 from brdfs.physics.models import model
 

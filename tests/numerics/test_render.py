@@ -1,4 +1,4 @@
-"""Physical tests of the renderer (brdfs.numerics.render) on tiny images."""
+"""Physical tests of the renderer (brdfs.render) on tiny images."""
 from __future__ import annotations
 
 import numpy as np
@@ -6,9 +6,9 @@ import pytest
 from scipy import stats
 
 import brdfs
-from brdfs.numerics import patch_geometry
-from brdfs.numerics.render import materials, sampling, shapes, spectrum, tracer
-from brdfs.numerics.render.shapes import normalize
+from brdfs.physics import patch_geometry
+from brdfs.render import materials, sampling, shapes, spectrum, tracer
+from brdfs.render.shapes import normalize
 
 
 def _pixel_hits(camera, scene):

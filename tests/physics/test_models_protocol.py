@@ -7,7 +7,7 @@ import yaml
 
 from brdfs import albedo, model
 from brdfs.numerics.grazing import asymptotic_law
-from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.physics.lobes import PowerCosine
 from brdfs.physics.models import MODELS, BRDF, register
 from brdfs.pipeline.config import CONFIG_YAML, ConfigError, check_config
 

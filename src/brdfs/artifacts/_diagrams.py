@@ -11,7 +11,7 @@ import pandas as pd
 
 from brdfs.physics import geometry as geo
 
-from brdfs.numerics.patch_geometry import circle_intersection
+from brdfs.physics.patch_geometry import circle_intersection
 from brdfs.pipeline import plotting
 
 SECTION = "diagrams"

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from brdfs.numerics.render import scenes, shapes, spectrum, tracer
+from brdfs.render import scenes, shapes, spectrum, tracer
 from brdfs.pipeline import plotting
 
 SECTION = "renders"

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from brdfs.artifacts import _render_figures as rf
-from brdfs.numerics.render import shapes
+from brdfs.render import shapes
 
 
 def _key(model):

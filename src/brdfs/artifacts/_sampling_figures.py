@@ -1,12 +1,12 @@
 """Helpers of Figures 4.7 and 4.8: sample points of the basic BRDF's samplers on the base plane,
-with the circles and the lens from :func:`brdfs.numerics.patch_geometry.circle_intersection`."""
+with the circles and the lens from :func:`brdfs.physics.patch_geometry.circle_intersection`."""
 
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.models import model
 from brdfs.physics.sampling import russian_roulette_point

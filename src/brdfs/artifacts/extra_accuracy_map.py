@@ -9,7 +9,7 @@ errors, ``failed`` when either method returns a non-finite value, and ``meets_to
 engine's error meets the contract's target (rtol, or atol below 1e-4).
 
 Engines: the hemisphere/scattering front door :func:`brdfs.numerics.albedo.albedo` for every model
-with a lobe; the mixture integral over R (:func:`brdfs.numerics.patch_geometry.mixture_albedo`,
+with a lobe; the mixture integral over R (:func:`brdfs.physics.patch_geometry.mixture_albedo`,
 eqs. 4.22/4.24) for the patch models whose albedo is integrated (exponential, generalized Lambertian).
 Pumped models (:mod:`brdfs.numerics.pumping`): level 1 of the reciprocal Phong, plain (g1) and
 controlled (g2), each from its albedo table; engine and reference integrate the same tabulated model.
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.numerics import pumping
 from brdfs.numerics.albedo import albedo_table
 from brdfs.numerics.grazing import approach_angles

@@ -13,7 +13,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.numerics.albedo import albedo
-from brdfs.numerics.integrate import Estimate
+from brdfs.core.estimate import Estimate
 from brdfs.pipeline.registry import figure
 from brdfs.physics.models.he_torrance import TERMS, HeTorrance
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
-from brdfs.numerics.render import shapes
+from brdfs.render import shapes
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_3_13_ceramics"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 from brdfs.artifacts._patch_common import SECTION, grid, tolerances

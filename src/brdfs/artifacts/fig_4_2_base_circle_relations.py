@@ -2,7 +2,7 @@
 
 Four cases on the base plane (config ``diagrams.fig_4_2``, choices): R < 1 inside, R < 1 cut by
 the base circle, R > 1 cut, R > 1 covering the base circle. The shaded common part is the lens
-of :func:`brdfs.numerics.patch_geometry.circle_intersection` (its α, β give the boundary arcs);
+of :func:`brdfs.physics.patch_geometry.circle_intersection` (its α, β give the boundary arcs);
 its area over Area(C(O, R)) is the basic BRDF's albedo (eq. 4.8, ``basic_albedo_at``).
 """
 from __future__ import annotations
@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from brdfs.artifacts import _diagrams as dg
-from brdfs.numerics.patch_geometry import basic_albedo_at, circle_intersection
+from brdfs.physics.patch_geometry import basic_albedo_at, circle_intersection
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_2_base_circle_relations"

@@ -1,6 +1,6 @@
 """Figure 4.4: the intersection of two circles, Area(C(L'_P, R)) = t1 + t2 (eqs. 4.9/4.10).
 
-Drawn from :func:`brdfs.numerics.patch_geometry.circle_intersection`: the base circle (radius 1,
+Drawn from :func:`brdfs.physics.patch_geometry.circle_intersection`: the base circle (radius 1,
 centre O), the circle of radius R around Q = L'_P at distance d, the common chord, the angles α
 (at O) and β (at Q) and the two circular segments t1 = α − cos α sin α and
 t2 = R²(β − cos β sin β). d and R are choices (config ``diagrams.fig_4_4``).
@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from brdfs.artifacts import _diagrams as dg
-from brdfs.numerics.patch_geometry import circle_intersection
+from brdfs.physics.patch_geometry import circle_intersection
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_4_circle_intersection"

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import comparison, figure, get_artifact
 from brdfs.artifacts._patch_common import SECTION, grid

@@ -1,12 +1,12 @@
 """Figure 4.6: mean albedo of the basic BRDF against R (closed form, see
-:func:`brdfs.numerics.patch_geometry.basic_mean_albedo`); the thesis: minimal at R = 1. The R grid is an open
+:func:`brdfs.physics.patch_geometry.basic_mean_albedo`); the thesis: minimal at R = 1. The R grid is an open
 choice (``patch.R_step``)."""
 
 from __future__ import annotations
 
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 from brdfs.artifacts._patch_common import SECTION, grid

@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.models import model
 from brdfs.physics.sampling import disk_to_direction, russian_roulette_point, uniform_in_circle

@@ -2,7 +2,7 @@
 
 Left, on the base plane: the base circle, the projection R_P = L'_P of the mirror direction, the
 patch {V : d(R, V) = |V_P − R_P| ≤ p} ∩ base circle (the lens of
-:func:`brdfs.numerics.patch_geometry.circle_intersection`, d = sin θ_L, R = p), a V inside it
+:func:`brdfs.physics.patch_geometry.circle_intersection`, d = sin θ_L, R = p), a V inside it
 with its distance and the half vector's projection H_P. Right: f in the plane of incidence for
 χ(H) = (N·H)^a (a = −1: the "patch-based metallic" character of Sec. 5.2.3) and F the patch's
 indicator, unnormalised (c_p omitted). θ_L, p, a and V are choices (config ``diagrams.fig_5_1``).
@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from brdfs.artifacts import _diagrams as dg
-from brdfs.numerics.patch_geometry import circle_intersection
+from brdfs.physics.patch_geometry import circle_intersection
 from brdfs.physics import geometry as geo
 from brdfs.physics.models.patch import projected_distance
 from brdfs.pipeline.registry import figure

@@ -14,7 +14,7 @@ from functools import partial
 import numpy as np
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.numerics.chi2 import chi2_test, sidak_level
 from brdfs.physics.models import MODELS, model
 from brdfs.pipeline import plotting

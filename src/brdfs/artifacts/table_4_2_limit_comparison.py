@@ -1,7 +1,7 @@
 """Table 4.2: the mirror limits (n → ∞, s → ∞) of Phong, of the new patch BRDF and of a metal mirror.
 
 Rows of kind ``limit`` hold the derived limits (Phong and Blinn from :mod:`brdfs.numerics.quantities`,
-the patch BRDF from :func:`brdfs.numerics.patch_geometry.limit_small_patch_albedo`, the metal mirror from the
+the patch BRDF from :func:`brdfs.physics.patch_geometry.limit_small_patch_albedo`, the metal mirror from the
 ideal mirror with Fresnel = 1: f = δ/cos θ, a ≡ 1). Rows of kind ``numerical`` confirm them
 at growing n or s (config ``patch.limit_n``, ``patch.limit_s``, ``patch.limit_theta_near_deg``).
 
@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
 from brdfs.numerics import quantities

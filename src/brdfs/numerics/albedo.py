@@ -30,7 +30,7 @@ from scipy.integrate import IntegrationWarning, dblquad
 from brdfs.numerics.integrate import azimuthal
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
-from brdfs.numerics.integrate.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
+from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import FRAME as SCATTERING_FRAME
 from brdfs.numerics.integrate.scattering import albedo_scattering

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import chi2 as chi2_distribution
 
-from brdfs.numerics.integrate.gauss_kronrod import integrate
+from brdfs.core.gauss_kronrod import integrate
 from brdfs.physics.geometry import light_direction
 
 #: Cells expecting fewer samples are pooled (Mitsuba's and pbrt's ``min_exp_frequency``).

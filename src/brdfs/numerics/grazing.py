@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.numerics.albedo import albedo
-from brdfs.numerics.integrate.gauss_kronrod import Estimate
+from brdfs.core.gauss_kronrod import Estimate
 from brdfs.physics.models.base import GrazingLaw
 
 _EPS = np.finfo(float).eps

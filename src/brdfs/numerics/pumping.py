@@ -35,8 +35,8 @@ import pandas as pd
 from numpy.polynomial import chebyshev as cheb
 
 from brdfs.numerics.albedo import albedo
-from brdfs.numerics.integrate.gauss_kronrod import integrate
-from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.core.gauss_kronrod import integrate
+from brdfs.physics.lobes import PowerCosine
 from brdfs.physics.models.base import BRDF
 
 CORRECTIONS = ("g1", "g2")

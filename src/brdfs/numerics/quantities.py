@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.numerics.albedo import DEFAULT_ATOL, DEFAULT_RTOL, albedo_pairs
-from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.numerics.integrate.mean import mean_albedo_lobe
 from brdfs.physics.models import MODELS
 from brdfs.physics.models.blinn import Blinn, BlinnCosmin

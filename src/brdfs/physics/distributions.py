@@ -5,7 +5,7 @@ One type per distribution, apart from the models that use it (as pbrt-v4 keeps
 (eqs. 2.8, 2.9, 3.35, 3.36) share :class:`Beckmann`; the Smith microfacet models
 (:mod:`brdfs.physics.models.smith_microfacet`) use :class:`Beckmann` and :class:`GGX` (Trowbridge–Reitz)
 with the same interface, plus visible-normal sampling for both; the lobe coordinates of the integration engine
-(:mod:`brdfs.numerics.integrate.lobes`) and the grazing analysis (:mod:`brdfs.numerics.grazing`)
+(:mod:`brdfs.physics.lobes`) and the grazing analysis (:mod:`brdfs.numerics.grazing`)
 use its CDF, its sampling and its Smith functions.
 
 Conventions.  δ is the angle between the microfacet normal H and N, ``tan2`` = tan²δ.  ``D`` is

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.numerics import patch_geometry as patch
+from brdfs.physics import patch_geometry as patch
 
 #: The direction a rejected sample is reported as.
 REJECTED = np.array([0.0, 0.0, -1.0])
@@ -147,7 +147,7 @@ def uniform_in_lens(cx, cy, R, u1, u2, iterations=54):
 
 
 def lens_area(d, R):
-    """Area of C(V'_P, R) ∩ unit disk (eq. 4.9, :func:`brdfs.numerics.patch_geometry.circle_intersection`)."""
+    """Area of C(V'_P, R) ∩ unit disk (eq. 4.9, :func:`brdfs.physics.patch_geometry.circle_intersection`)."""
     return patch.circle_intersection(d, R).area
 
 

@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.numerics.integrate.grouping import first_of_model
 from brdfs.numerics.integrate.hemisphere import level_azimuth, level_cos, radial_breakpoints_many
 from brdfs.numerics.integrate.mean import positive_part_azimuth

@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.numerics.integrate.grouping import first_of_model
 
 INNER_SHARE = 0.1             # the inner integrals get this share of the tolerance

@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.numerics.integrate.gauss_kronrod import GAUSS_WEIGHTS, KRONROD_WEIGHTS, NODES, integrate
+from brdfs.core.gauss_kronrod import GAUSS_WEIGHTS, KRONROD_WEIGHTS, NODES, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
 _U = 0.5 * (NODES + 1.0)            # Kronrod nodes on [0, 1]

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.numerics.integrate.gauss_kronrod import integrate
+from brdfs.core.gauss_kronrod import integrate
 
 
 def mean_albedo_lobe(n, C, frame, cosmin, rtol=1e-10, atol=1e-14):

@@ -18,35 +18,15 @@ these are the breakpoints of the adaptive outer integration.  The integrand is s
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
+from brdfs.physics.lobes import SCATTERING_FRAME as FRAME
+
 from brdfs.numerics.integrate.grouping import first_of_model
-from brdfs.numerics.integrate.gauss_kronrod import integrate
+from brdfs.core.gauss_kronrod import integrate
 
-FRAME = "scattering"
 INNER_RTOL = 0.25          # inner integrals to a quarter of the target, so that the outer can meet it
-
-
-@dataclass(frozen=True)
-class ScatteringLobe:
-    """A lobe in r = |L_xy + V_xy| of radial scale ``width``, with a boundary layer of thickness
-    ``horizon_scale`` in N·V at the horizon."""
-
-    width: float
-    horizon_scale: float
-    frame: str = FRAME
-
-    def radial_levels(self):
-        """width × 2^k below 2 (the largest r), ascending: the scales of a Gaussian mixture in r."""
-        levels = self.width * 2.0 ** np.arange(-1, 64)
-        return levels[levels < 2.0]
-
-    def nv_levels(self):
-        """horizon_scale × 4^k (k = 1 … −5), ascending: the boundary layer and its logarithmic end."""
-        return self.horizon_scale * 4.0 ** np.arange(-5, 2)
 
 
 def albedo_scattering(models, theta_deg, rtol=1e-10, atol=1e-14):

@@ -6,7 +6,7 @@ implements ``_eval`` and ``lobe`` and overrides whichever other verbs it knows m
 
 Shape of the integrand (read by the integration engine, :mod:`brdfs.numerics.integrate`):
 
-* ``lobe``: the change of variables that follows the lobe (:mod:`brdfs.numerics.integrate.lobes`):
+* ``lobe``: the change of variables that follows the lobe (:mod:`brdfs.physics.lobes`):
   which frame (around the mirror direction R, around N for the half vector H, or the scattering
   vector) and which radial distribution (cosine power, a microfacet distribution).
 * ``nv_levels(nl)``: values of N·V where the integrand has a kink (e.g. N·V = N·L for the
@@ -39,7 +39,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from brdfs.numerics.integrate.gauss_kronrod import Estimate
+from brdfs.core.estimate import Estimate
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from brdfs.physics.geometry import n_dot_h
-from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.physics.lobes import PowerCosine
 from brdfs.physics.models.base import BRDF, check_positive, positive_power
 from brdfs.physics import sampling
 

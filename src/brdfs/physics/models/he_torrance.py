@@ -42,8 +42,8 @@ from scipy.special import erfc, gammaln, lambertw
 
 from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.numerics.integrate.gauss_kronrod import Estimate
-from brdfs.numerics.integrate.scattering import ScatteringLobe
+from brdfs.core.estimate import Estimate
+from brdfs.physics.lobes import ScatteringLobe
 from brdfs.physics.models.base import BRDF, check_positive
 from brdfs.physics import sampling
 

@@ -6,8 +6,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import gamma
 
-from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
-from brdfs.numerics.integrate.lobes import MicrofacetLobe
+from brdfs.core.gauss_kronrod import Estimate, integrate
+from brdfs.physics.lobes import MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
 from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact
 from brdfs.physics import sampling

@@ -1,7 +1,7 @@
 """Patch-based BRDFs of chapter 4: functions of the distance m of L'_P and V_P on the base plane.
 
 m(L, V) = |h − (N·h)N| with h = L + V (eq. 4.1) is symmetric in L and V, so every model here is
-reciprocal (section 4.2.1).  The geometry, profiles and constants are in :mod:`brdfs.numerics.patch_geometry`;
+reciprocal (section 4.2.1).  The geometry, profiles and constants are in :mod:`brdfs.physics.patch_geometry`;
 the albedos of these models come from there too (closed-form circle intersections, the verb
 ``albedo_estimate`` that the albedo engine takes), not from the generic hemisphere integration.
 """
@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from brdfs.numerics import patch_geometry as patch
-from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
-from brdfs.numerics.integrate.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
+from brdfs.physics import patch_geometry as patch
+from brdfs.core.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
 from brdfs.physics import sampling
 from brdfs.physics.models.base import BRDF, check_positive
 

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from brdfs.physics.geometry import r_dot_v
-from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.physics.lobes import PowerCosine
 from scipy.special import beta
 
 from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive_power

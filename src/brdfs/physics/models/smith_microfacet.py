@@ -31,8 +31,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from brdfs.numerics.integrate.gauss_kronrod import Estimate
-from brdfs.numerics.integrate.lobes import MicrofacetLobe
+from brdfs.core.estimate import Estimate
+from brdfs.physics.lobes import MicrofacetLobe
 from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.models.base import BRDF, check_positive, exact

@@ -24,9 +24,9 @@ inner Gauss/Kronrod pair outwards, so the differences measure inner and outer di
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+
+from brdfs.core.estimate import BUDGET_EXHAUSTED, CONVERGED, STALLED, Estimate
 
 # Gauss–Kronrod 10/21 nodes on [-1, 1] (QUADPACK qk21), full symmetric set.
 _XK_HALF = np.array([
@@ -64,36 +64,6 @@ STALL_LIMIT = 5
 # narrower than the interval (blinn_cosmin, n = 1, near 90°: a layer 1e-6 wide in t) or a jump —
 # and does not count as a stall: bisection resolves the layer or narrows the jump to rounding width.
 LOCALISED = 0.9
-
-
-#: ``status`` of an element that met its tolerance.
-CONVERGED = "converged"
-#: ``status`` of an element left short of its tolerance when ``max_rounds`` or ``max_intervals`` ran out.
-BUDGET_EXHAUSTED = "budget_exhausted"
-#: ``status`` of an element short of its tolerance whose remaining error no split could reduce.
-STALLED = "stalled"
-
-
-@dataclass(frozen=True)
-class Estimate:
-    """A computed value with its absolute error estimate (arrays of equal shape).
-
-    ``evaluations`` (how many integrand or BRDF values it cost) and ``status`` (per value:
-    :data:`CONVERGED`, :data:`BUDGET_EXHAUSTED`, :data:`STALLED`) are filled where the method
-    producing it knows them.  Unpacking gives ``(value, error)``.
-    """
-
-    value: np.ndarray
-    error: np.ndarray
-    evaluations: int | None = None
-    status: np.ndarray | None = None
-
-    def __iter__(self):
-        return iter((self.value, self.error))
-
-    def __getitem__(self, idx):
-        status = None if self.status is None else np.asarray(self.status)[idx]
-        return Estimate(np.asarray(self.value)[idx], np.asarray(self.error)[idx], self.evaluations, status)
 
 
 def gk_pair(values_high, values_low, half_width):

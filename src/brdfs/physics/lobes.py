@@ -7,7 +7,8 @@ no ratio of two underflowing numbers is ever formed.
 
 Frames: ``"mirror"`` — β = α, the angle between V and R (Phong family, eq. 3.5);
 ``"half"`` — β = δ, the angle between H and N (Blinn, Ward, Cook–Torrance), where
-dω_V = 4 (V·H) dω_H.
+dω_V = 4 (V·H) dω_H; ``"scattering"`` — the horizontal scattering vector r = |L_xy + V_xy|
+(Kirchhoff lobes, He–Torrance), integrated by :mod:`brdfs.numerics.integrate.scattering`.
 """
 from __future__ import annotations
 
@@ -71,3 +72,25 @@ class MicrofacetLobe:
 
     def t_of(self, beta):
         return self.distribution.cdf(np.tan(np.clip(beta, 0.0, np.pi / 2)))
+
+
+SCATTERING_FRAME = "scattering"
+
+
+@dataclass(frozen=True)
+class ScatteringLobe:
+    """A lobe in r = |L_xy + V_xy| of radial scale ``width``, with a boundary layer of thickness
+    ``horizon_scale`` in N·V at the horizon."""
+
+    width: float
+    horizon_scale: float
+    frame: str = SCATTERING_FRAME
+
+    def radial_levels(self):
+        """width × 2^k below 2 (the largest r), ascending: the scales of a Gaussian mixture in r."""
+        levels = self.width * 2.0 ** np.arange(-1, 64)
+        return levels[levels < 2.0]
+
+    def nv_levels(self):
+        """horizon_scale × 4^k (k = 1 … −5), ascending: the boundary layer and its logarithmic end."""
+        return self.horizon_scale * 4.0 ** np.arange(-5, 2)

@@ -20,7 +20,7 @@ import numpy as np
 from scipy.special import gammainc
 
 from brdfs.physics.geometry import sin_incidence
-from brdfs.numerics.integrate.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import Estimate, integrate
 
 _EPS = np.finfo(float).eps
 #: Relative rounding bound of the closed forms of this module (sums of non-negative terms,

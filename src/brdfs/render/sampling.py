@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import lambertw
 
-from brdfs.numerics.integrate.lobes import PowerCosine
+from brdfs.physics.lobes import PowerCosine
 from brdfs.physics.models.base import BRDF
 
 

@@ -1,9 +1,9 @@
 """Rendering the thesis's images (Figures 2.8, 3.8–3.13, 4.11, 4.16–4.18) with the package's BRDFs.
 
-:mod:`~brdfs.numerics.render.shapes` (analytic shapes), :mod:`~brdfs.numerics.render.materials`
-(BRDF × spectrum), :mod:`~brdfs.numerics.render.sampling` (Monte Carlo proposals),
-:mod:`~brdfs.numerics.render.tracer` (direct lighting and paths), :mod:`~brdfs.numerics.render.spectrum`
-(eight wavelengths -> XYZ -> sRGB) and :mod:`~brdfs.numerics.render.scenes` (materials from config).
+:mod:`~brdfs.render.shapes` (analytic shapes), :mod:`~brdfs.render.materials`
+(BRDF × spectrum), :mod:`~brdfs.render.sampling` (Monte Carlo proposals),
+:mod:`~brdfs.render.tracer` (direct lighting and paths), :mod:`~brdfs.render.spectrum`
+(eight wavelengths -> XYZ -> sRGB) and :mod:`~brdfs.render.scenes` (materials from config).
 
 Renderer decision (issue #17), by measurement (``benchmarks/render_mitsuba_vs_numpy.py``): one
 scene — a new-model sphere (phong_cosmin, n = 20) on a diffuse floor, one point light, 160 × 120 —

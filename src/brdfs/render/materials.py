@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from brdfs.numerics.render.sampling import CosineSampler, proposal_for
+from brdfs.render.sampling import CosineSampler, proposal_for
 from brdfs.physics.fresnel import unpolarised_reflectance
 
 

@@ -18,7 +18,7 @@ import numpy as np
 
 import brdfs
 from brdfs.numerics import pumping
-from brdfs.numerics.render import materials, spectrum
+from brdfs.render import materials, spectrum
 from brdfs.physics import optical_constants
 
 SPECTRAL = len(spectrum.WAVELENGTHS_NM)
@@ -48,7 +48,7 @@ def _model(spec: dict):
 
 
 def make_material(spec: dict, channels: int = SPECTRAL):
-    """A :class:`~brdfs.numerics.render.materials.Material` from a config entry (module docstring)."""
+    """A :class:`~brdfs.render.materials.Material` from a config entry (module docstring)."""
     spec = dict(spec)
     label = spec.pop("label", "")
     if "diffuse" in spec:

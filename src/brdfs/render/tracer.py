@@ -7,7 +7,7 @@ The renderer models no more than a scene needs:
   BRDF evaluation at the pixel centre (``spp = 1``) or at jittered positions;
 * **Monte Carlo** (``sky`` given or ``depth > 1``): paths from the eye; at every vertex the point
   lights are added by explicit connection (next-event estimation, exact for point lights), the
-  path continues by importance sampling the material (:mod:`brdfs.numerics.render.sampling`),
+  path continues by importance sampling the material (:mod:`brdfs.render.sampling`),
   and a path leaving the scene collects the homogeneous daylight S (section 3.6, eq. 3.32).
   Because the sky is only reached by sampling and the point lights only by connection, no
   contribution is counted twice and the estimator is unbiased up to the path-depth truncation.
@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from brdfs.numerics.render.shapes import normalize
+from brdfs.render.shapes import normalize
 
 #: Rays traced at once (bounds memory: ~ CHUNK × C × 8 bytes per array).
 CHUNK = 1 << 15
