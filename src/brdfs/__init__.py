@@ -14,7 +14,7 @@ _HOMES = {
     "albedo": "brdfs.numerics.albedo",
     "albedo_table": "brdfs.numerics.albedo",
     "Estimate": "brdfs.core.estimate",
-    "model": "brdfs.physics.models",
+    "model": "brdfs.numerics.tables",     # builds the tables a model needs (brdfs.physics.models.model: none)
     "MODELS": "brdfs.physics.models",
 }
 

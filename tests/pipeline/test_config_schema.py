@@ -10,10 +10,14 @@ import subprocess
 import sys
 from pathlib import Path
 
+from dataclasses import dataclass
+
+import numpy as np
 import pytest
 import yaml
 
-from brdfs.physics.models import MODELS
+from brdfs.physics.models import BRDF, MODELS, register
+from brdfs.physics.models.base import Interval
 from brdfs.pipeline.config import CONFIG_SCHEMA, CONFIG_YAML, ConfigError, load_config, load_schema, validate_config
 from brdfs.pipeline.io import REPO_ROOT
 
@@ -168,6 +172,73 @@ def test_every_key_of_the_schema_has_a_description_and_every_number_a_range():
 
 def test_the_schemas_model_names_are_the_registered_models():
     assert load_schema()["$defs"]["model_name"]["enum"] == sorted(MODELS)
+
+
+@dataclass(frozen=True)
+class TintedLambert(BRDF):
+    """f = ρ/π, ρ ∈ [0, 1], and a categorical tint: defined here only, the schema knows nothing of it."""
+
+    rho: float = 1.0
+    tint: str = "grey"
+    name = "tinted_lambert_in_a_test"
+    param_ranges = {"rho": Interval(0.0, 1.0)}
+    param_choices = {"tint": ("grey", "warm")}
+    examples = {"typical": {"rho": 0.5}, "narrowest": {"rho": 1.0}}
+    accuracy_families = {"tinted_lambert_rho": ("rho", {})}
+
+    def _eval(self, L, V, nl, nv):
+        return np.full(np.broadcast_shapes(nl.shape, nv.shape), self.rho / np.pi)
+
+
+@pytest.fixture
+def tinted_lambert():
+    register(TintedLambert)
+    yield TintedLambert
+    del MODELS[TintedLambert.name]
+
+
+def test_a_model_registered_in_a_test_is_accepted_wherever_models_are_named(tinted_lambert):
+    """Its name, its parameters (with their declared range and choices) beside every ``model`` key,
+    and its accuracy-map family, all taken from the class."""
+    config = raw_config()
+    entry = {"model": TintedLambert.name, "rho": 0.25, "tint": "warm"}
+    config["grazing"]["fig_2_1_models"].append(dict(entry))
+    config["grazing"]["stability"]["models"].append(TintedLambert.name)
+    config["work_precision"]["cases"].append({"label": "tinted", "theta_deg": 30.0, **entry})
+    config["accuracy_map"]["reduced"]["families"]["tinted_lambert_rho"] = [0.5, 1.0]
+    validate_config(config)
+
+
+@pytest.mark.parametrize(("key", "value"), [
+    ("grazing.fig_2_1_models.3.rho", 1.5),
+    ("grazing.fig_2_1_models.3.tint", "blue"),
+    ("work_precision.cases.0.rho", -0.1),
+    ("accuracy_map.reduced.families.tinted_lambert_rho.0", 2.0),
+])
+def test_a_registered_models_parameters_are_bounded_by_its_declared_ranges(tinted_lambert, key, value):
+    config = raw_config()
+    config["grazing"]["fig_2_1_models"].append({"model": TintedLambert.name, "rho": 0.5})
+    config["accuracy_map"]["reduced"]["families"]["tinted_lambert_rho"] = [0.5]
+    with pytest.raises(ConfigError) as error:
+        validate_config(set_key(config, key, value))
+    assert repr(value) in str(error.value)
+
+
+def test_an_unregistered_models_family_and_parameters_are_unknown_keys():
+    config = raw_config()
+    config["accuracy_map"]["reduced"]["families"]["tinted_lambert_rho"] = [0.5]
+    with pytest.raises(ConfigError, match="tinted_lambert_rho"):
+        validate_config(config)
+    config = raw_config()
+    config["grazing"]["fig_2_1_models"].append({"model": "phong", "rho": 0.5})
+    with pytest.raises(ConfigError, match="rho"):
+        validate_config(config)
+
+
+def test_the_accuracy_map_families_are_the_models_declared_families():
+    families = load_schema()["properties"]["accuracy_map"]["properties"]["reduced"]["properties"]["families"]
+    declared = {f for cls in MODELS.values() for f in cls.accuracy_families}
+    assert set(families["properties"]) == declared
 
 
 def dry_run(tmp_path: Path, *config_args: str) -> subprocess.CompletedProcess:

@@ -15,14 +15,12 @@ import pandas as pd
 
 from brdfs.artifacts import _pumping_figures as pumping_figures
 from brdfs.physics.optical_constants import complex_index
-from brdfs.numerics import pumping
+from brdfs.numerics import pumping, tables
 from brdfs.numerics.quantities import maximal_constant
 from brdfs.numerics.random_walk import random_walk
-from brdfs.physics.distributions import GGX, Beckmann
 from brdfs.physics.fresnel import unpolarised_reflectance
-from brdfs.physics.models import model
+from brdfs.physics.models import MODELS, model
 
-DISTRIBUTIONS = {"ggx": GGX, "beckmann": Beckmann}
 #: The table artifact holding the Kulla–Conty E tables (read by the figures instead of recomputing).
 ENERGY_TABLE = "extra_microfacet_albedo"
 PUMPING_TABLES = {"phong": "extra_pumping_albedo_phong", "blinn": "extra_pumping_albedo_blinn"}
@@ -60,7 +58,37 @@ def new_model(family: str, n: float):
 
 
 def microfacet(name: str, alpha: float, compensation: str = "none", G2: str = "height_correlated", **fresnel):
-    return model(name, alpha=float(alpha), G2=G2, compensation=compensation, **fresnel)
+    """A Smith microfacet model with the tables it needs (:func:`brdfs.numerics.tables.build`: the E
+    table of Kulla–Conty's compensation, seeded from :data:`ENERGY_TABLE` by :func:`seed_energy_tables`)."""
+    return tables.build(name, alpha=float(alpha), G2=G2, compensation=compensation, **fresnel)
+
+
+def energy_table(name: str, alpha: float, G2: str):
+    """(E table, E_avg) of Smith microfacet model ``name`` at ``alpha`` and ``G2`` (F = 1), the table
+    its compensated version is built with, and E_avg = 2 ∫₀¹ E(μ) μ dμ integrated from it exactly."""
+    return microfacet(name, alpha, "kulla_conty", G2).energy_table()
+
+
+def energy_table_frame(name: str, alpha: float, G2: str):
+    """The E table's nodes as tidy rows (``mu`` = node, ``albedo``, ``albedo_err`` = the table's bound,
+    with ``piece, x_lo, x_hi, node``), for :func:`seed_energy_tables`."""
+    table = energy_table(name, alpha, G2)[0]
+    rows = table.to_frame().rename(columns={"cos_theta": "mu"}).drop(columns=["model_rtol"])
+    return rows.assign(model=name, G2=G2, alpha=float(alpha))
+
+
+def seed_energy_tables(frame) -> int:
+    """Put the E tables stored by :func:`energy_table_frame` (rows with a ``piece``) into the factory's
+    cache (:func:`brdfs.numerics.tables.seed`), so that the compensated models of the figures are built
+    with the tables of :data:`ENERGY_TABLE` instead of recomputing them; returns how many."""
+    nodes = frame.dropna(subset=["piece"])
+    count = 0
+    for (name, alpha, G2), g in nodes.groupby(["model", "alpha", "G2"]):
+        table = pumping.AlbedoTable.from_frame(g.rename(columns={"mu": "cos_theta"}).assign(
+            model_rtol=0.0, piece=g["piece"].astype(int), node=g["node"].astype(int)))
+        tables.seed(MODELS[name].energy_request(float(alpha), G2), table)
+        count += 1
+    return count
 
 
 def gold_index(cfg_gold: dict) -> complex:
@@ -74,6 +102,11 @@ def gold_fresnel(cfg_gold: dict):
     return lambda c: unpolarised_reflectance(c, eta.real, eta.imag)
 
 
+def distribution(name: str, alpha: float):
+    """The microfacet distribution of Smith model ``name`` at roughness ``alpha`` (the model's own)."""
+    return microfacet(name, alpha).distribution
+
+
 def walk_paths(cfg: dict) -> int:
     """Paths per walk: the small default, or the full run behind the config switch ``walk_full``."""
     return int(cfg["walk_paths_full"] if cfg["walk_full"] else cfg["walk_paths"])
@@ -82,7 +115,7 @@ def walk_paths(cfg: dict) -> int:
 def walk(name: str, alpha: float, theta_deg: float, cfg: dict, seed: int, key: tuple, fresnel=None):
     """One seeded random walk; the stream is seeded by ``[seed, *key]`` (independent per curve/angle)."""
     rng = np.random.default_rng([int(seed), *[int(k) for k in key]])
-    return random_walk(DISTRIBUTIONS[name](alpha), theta_deg, walk_paths(cfg), rng, fresnel=fresnel,
+    return random_walk(distribution(name, alpha), theta_deg, walk_paths(cfg), rng, fresnel=fresnel,
                        max_order=int(cfg["walk_max_order"]))
 
 

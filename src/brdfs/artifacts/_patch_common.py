@@ -9,7 +9,7 @@ import pandas as pd
 
 from brdfs.pipeline import published
 from brdfs.physics.geometry import direction, light_direction
-from brdfs.core.gauss_kronrod import Estimate, integrate
+from brdfs.numerics.integrate import Estimate, integrate
 
 SECTION = "patch"
 

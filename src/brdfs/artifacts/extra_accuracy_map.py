@@ -8,23 +8,28 @@ accurate, ``judged``).  A cell is ``dishonest`` when the two disagree beyond the
 errors, ``failed`` when either method returns a non-finite value, and ``meets_tolerance`` when the
 engine's error meets the contract's target (rtol, or atol below 1e-4).
 
-Engines: the hemisphere/scattering front door :func:`brdfs.numerics.albedo.albedo` for every model
-with a lobe; the mixture integral over R (:func:`brdfs.physics.patch_geometry.mixture_albedo`,
-eqs. 4.22/4.24) for the patch models whose albedo is integrated (exponential, generalized Lambertian).
-Pumped models (:mod:`brdfs.numerics.pumping`): level 1 of the reciprocal Phong, plain (g1) and
-controlled (g2), each from its albedo table; engine and reference integrate the same tabulated model.
+Engines: the model's own route to its albedo where it has one (the patch models whose albedo is
+integrated, exponential and generalized Lambertian: the mixture integral over R of
+:func:`brdfs.physics.patch_geometry.mixture_albedo`, eqs. 4.22/4.24, through
+:meth:`~brdfs.physics.models.base.BRDF.albedo_estimate`), else the hemisphere/scattering front door
+:func:`brdfs.numerics.albedo.albedo_table`.  Pumped models (:mod:`brdfs.numerics.pumping`): level 1 of
+the reciprocal Phong, plain (g1) and controlled (g2), each from its albedo table
+(:func:`brdfs.numerics.tables.pump`); engine and reference integrate the same tabulated model.
+
+The families are the models' own (:attr:`~brdfs.physics.models.base.BRDF.accuracy_families`: which
+parameter a family sweeps and which it fixes); ``config.yaml`` gives each family's values, so a model
+that declares a family is mapped with no edit here.
 """
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
 
-from brdfs.physics import patch_geometry as patch
-from brdfs.numerics import pumping
+from brdfs.numerics import tables
 from brdfs.numerics.albedo import albedo_table
 from brdfs.numerics.grazing import approach_angles
 from brdfs.numerics.integrate.disk import disk_albedo_many
-from brdfs.physics.models import model
+from brdfs.physics.models import MODELS, model
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
@@ -32,24 +37,13 @@ NAME = "extra_accuracy_map"
 SECTION = "accuracy_map"
 #: The contract's switch from relative to absolute error targets.
 ABSOLUTE_BELOW = 1e-4
-#: Parameter of each family (the one swept), its model name and fixed parameters.
-FAMILIES = {
-    "cook_torrance_ts": ("cook_torrance", "m", {"G": "torrance_sparrow"}),
-    "cook_torrance_smith": ("cook_torrance", "m", {"G": "smith"}),
-    "cook_torrance_none": ("cook_torrance", "m", {"G": "none"}),
-    "ward": ("ward", "m", {}),
-    "ward_cosmin": ("ward_cosmin", "m", {}),
-    "phong": ("phong", "n", {}),
-    "phong_cosmin": ("phong_cosmin", "n", {}),
-    "blinn": ("blinn", "n", {}),
-    "blinn_cosmin": ("blinn_cosmin", "n", {}),
-    "he_torrance_dd": ("he_torrance", "tau_um", {"sigma0_um": 0.1, "term": "dd", "lambda_um": 0.55}),
-    "pumped_phong_g1": ("phong", "n", {"pumping": "g1"}),
-    "pumped_phong_g2": ("phong", "n", {"pumping": "g2"}),
-    "patch_exponential": ("patch_exponential", "s", {}),
-    "generalized_lambertian": ("generalized_lambertian", "d", {}),
-}
-PATCH_PROFILES = {"patch_exponential": patch.ExponentialProfile, "generalized_lambertian": patch.GeneralizedLambertProfile}
+
+
+def families() -> dict[str, tuple[str, str, dict]]:
+    """Every family the registered models declare (:attr:`BRDF.accuracy_families`): family name ->
+    (model name, the swept parameter, fixed parameters)."""
+    return {family: (name, key, fixed) for name, cls in MODELS.items()
+            for family, (key, fixed) in cls.accuracy_families.items()}
 
 
 def grid(sec: dict) -> tuple[dict, np.ndarray]:
@@ -63,36 +57,38 @@ def grid(sec: dict) -> tuple[dict, np.ndarray]:
     return g["families"], theta
 
 
-def _build(family: str, value: float):
-    name, key, fixed = FAMILIES[family]
+def build(family: str, value: float, sec: dict):
+    """The model of ``family`` at the swept parameter ``value``; pumped once (:func:`tables.pump`, its
+    table to ``pumping_table_rtol`` on engine values at ``pumping_engine_rtol``) if the family fixes a
+    ``pumping`` correction."""
+    name, key, fixed = families()[family]
     params = {k: v for k, v in fixed.items() if k != "pumping"}
-    return model(name, **{key: value}, **params)
+    brdf = model(name, **{key: value}, **params)
+    if "pumping" not in fixed:
+        return brdf
+    return tables.pump(brdf, fixed["pumping"], target_rtol=sec["pumping_table_rtol"],
+                       engine_rtol=sec["pumping_engine_rtol"])
 
 
-def _pumped(family: str, value: float, sec: dict):
-    base = _build(family, value)
-    table = pumping.tabulate_albedo(base, target_rtol=sec["pumping_table_rtol"], engine_rtol=sec["pumping_engine_rtol"])
-    return pumping.Pumped(base, table, FAMILIES[family][2]["pumping"])
-
-
-def _engine(family: str, brdf, value: float, theta: np.ndarray, tol: dict):
-    if family in PATCH_PROFILES:
-        profile = PATCH_PROFILES[family](value) if family == "patch_exponential" else PATCH_PROFILES[family](value, brdf.m_clip)
-        return patch.mixture_albedo(profile, theta, C=brdf.C, rtol=tol["rtol"], atol=tol["atol"])
-    est = albedo_table([brdf], theta, rtol=tol["rtol"], atol=tol["atol"])
-    return est[0]
+def _engine(brdf, theta: np.ndarray, tol: dict):
+    """The model's own albedo route where it has one (the patch models' lens areas), else the engine."""
+    own = brdf.albedo_estimate(theta, tol["rtol"], tol["atol"])
+    if own is not None:
+        return own
+    return albedo_table([brdf], theta, rtol=tol["rtol"], atol=tol["atol"])[0]
 
 
 def accuracy_map(sec: dict, tol: dict) -> pd.DataFrame:
     """One row per (family, parameter value, θ): engine, reference, difference, flags."""
-    families, theta = grid(sec)
+    swept, theta = grid(sec)
+    declared = families()
     frames, models, angles = [], [], []
-    for family, values in families.items():
-        key = FAMILIES[family][1]
+    for family, values in swept.items():
+        key = declared[family][1]
         for value in values:
-            brdf = _pumped(family, value, sec) if family.startswith("pumped") else _build(family, value)
+            brdf = build(family, value, sec)
             with np.errstate(all="ignore"):
-                eng = _engine(family, brdf, value, theta, tol)
+                eng = _engine(brdf, theta, tol)
             frames.append(pd.DataFrame({"family": family, "model": brdf.name, "parameter": key,
                                         "parameter_value": float(value), "theta_deg": theta,
                                         "albedo": np.asarray(eng.value, float), "albedo_err": np.asarray(eng.error, float)}))

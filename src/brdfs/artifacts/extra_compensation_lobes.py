@@ -17,7 +17,6 @@ import pandas as pd
 from brdfs.artifacts import _microfacet_energy as mf
 from brdfs.numerics.random_walk import random_walk
 from brdfs.physics.geometry import direction, light_direction
-from brdfs.physics.models.smith_microfacet import seed_energy_tables
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
@@ -59,7 +58,7 @@ class _MultipleScatteringOnly:
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Rows ``family, model, variant, pumping, level, n, alpha, theta_deg, theta_v_deg, phi_deg, intensity, intensity_err``."""
     c = cfg["microfacet"]
-    seed_energy_tables(deps[mf.ENERGY_TABLE])
+    mf.seed_energy_tables(deps[mf.ENERGY_TABLE])
     theta = float(c["lobe_theta_deg"])
     step = float(c["lobe_step_deg"])
     theta_v = np.arange(0.0, 90.0, step)
@@ -82,7 +81,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
                              ms_error=compensated, alpha=alpha)
             paths = int(c["lobe_walk_paths"]) * (10 if c["walk_full"] else 1)
             rng = np.random.default_rng([int(cfg["seed"]), 3, f_index, k])
-            walk = random_walk(mf.DISTRIBUTIONS[name](alpha), theta, paths, rng, max_order=int(c["walk_max_order"]))
+            walk = random_walk(mf.distribution(name, alpha), theta, paths, rng, max_order=int(c["walk_max_order"]))
             edges = np.arange(0.0, 90.0 + 1e-9, float(c["lobe_walk_bin_deg"]))
             for variant, orders in (("walk", None), ("walk_multiple", tuple(range(2, int(c["walk_max_order"]) + 1)))):
                 centre, phi, value, err = walk.plane_lobe(edges, float(c["lobe_walk_phi_halfwidth_deg"]), orders)

@@ -28,9 +28,12 @@ AS_PRINTED = {"method": "exact", "G": "torrance_sparrow", "normalisation": "eq_2
 
 
 def _models(r: dict) -> list[tuple]:
-    """(model, G, normalisation label, theta list) of every base model the readings integrate."""
-    ward = (model("ward", m=r["ward_m"]), "", "eq_3_35", r["ward_theta_deg"])
-    cts = [(model("cook_torrance", m=r["cook_torrance_m"], G=g), g, "eq_2_9", r["cook_torrance_theta_deg"])
+    """(model, G, normalisations, theta list) of every base model the readings integrate, with the
+    (label, factor) of every constant the readings multiply it by: Ward's own (eq. 3.35, factor 1),
+    Cook–Torrance's D G/(N·L N·V) constants (:data:`brdfs.numerics.grazing.NORMALISATION_FACTORS`)."""
+    ward = (model("ward", m=r["ward_m"]), "", [("eq_3_35", 1.0)], r["ward_theta_deg"])
+    ct_norms = [(n, NORMALISATION_FACTORS[n]) for n in r["normalisations"]]
+    cts = [(model("cook_torrance", m=r["cook_torrance_m"], G=g), g, ct_norms, r["cook_torrance_theta_deg"])
            for g in r["geometry_factors"]]
     return [ward, *cts]
 
@@ -51,8 +54,8 @@ def _evaluate(brdf, theta, method, n_theta, n_phi, n_samples, seq, tol):
     if method == "grid":
         est = albedo(brdf, theta, "midpoint_grid", n_theta=n_theta, n_phi=n_phi)
         return float(est.value), float(est.error), np.nan
-    est, stderr = monte_carlo_albedo(brdf, theta, method.removeprefix("mc_"), n_samples, seq)
-    return float(est.value), float(est.error), float(stderr)
+    est = monte_carlo_albedo(brdf, theta, method.removeprefix("mc_"), n_samples, seq)
+    return float(est.value), float(est.rounding), float(est.error)
 
 
 @table("extra_divergence_readings", config=("grazing",), batch=None)
@@ -71,13 +74,12 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """
     r = cfg["grazing"]["readings"]
     records = []
-    for k, (brdf, g, norm, thetas) in enumerate(_models(r)):
+    for k, (brdf, g, norms, thetas) in enumerate(_models(r)):
         for j, theta in enumerate(thetas):
             for method, n_theta, n_phi, n_samples, seq in _methods(r, cfg["seed"], (k, j)):
                 value, err, stderr = _evaluate(brdf, theta, method, n_theta, n_phi, n_samples, seq, cfg["tolerance"])
                 base = {"model": brdf.name, "G": g, "m": brdf.m, "C": brdf.C, "method": method, "n_theta": n_theta,
                         "n_phi": n_phi, "n_samples": n_samples, "seed": cfg["seed"] if seq else 0, "theta_deg": theta}
-                norms = [(norm, 1.0)] if brdf.name == "ward" else [(n, NORMALISATION_FACTORS[n]) for n in r["normalisations"]]
                 for name, factor in norms:
                     records.append(base | {"normalisation": name, "albedo": factor * value,
                                            "albedo_err": factor * err + 2 * np.finfo(float).eps * abs(factor * value),

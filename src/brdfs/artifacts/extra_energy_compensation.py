@@ -28,7 +28,6 @@ from brdfs.artifacts import _microfacet_energy as mf
 from brdfs.numerics.albedo import albedo
 from brdfs.physics.geometry import cos_incidence
 from brdfs.physics.models import model
-from brdfs.physics.models.smith_microfacet import seed_energy_tables
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
@@ -183,7 +182,7 @@ def _gold_rows(alpha_by_family, c, seed):
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Tidy rows ``family, model, variant, pumping, level, n, alpha, G2, quantity, theta_deg, value, value_err``."""
     c = cfg["microfacet"]
-    seed_energy_tables(deps[mf.ENERGY_TABLE])
+    mf.seed_energy_tables(deps[mf.ENERGY_TABLE])
     theta = _theta_grid(c)
     walk_theta = np.asarray(c["walk_theta_deg"], float)
     frames, alphas = [], {}

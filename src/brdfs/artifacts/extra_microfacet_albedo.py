@@ -3,7 +3,7 @@ height-correlated G2, exact Λ) over roughness α and μ = cos θ, and its cosin
 E_avg(α) = 2 ∫₀¹ E(μ) μ dμ, the two ingredients of Kulla–Conty's compensation.
 
 E(μ) comes from the engine (:func:`brdfs.albedo`) at ``microfacet.table_rtol``; E_avg from the Chebyshev
-E table the compensated models use (:func:`brdfs.physics.models.smith_microfacet.energy_table`), its error
+E table the compensated models are built with (:func:`brdfs.artifacts._microfacet_energy.energy_table`), its error
 the table's error bound.  Rows: ``quantity = E`` (one per μ), ``quantity = E_avg`` (``mu`` empty), and
 ``quantity = E_table_node``: the nodes of every Kulla–Conty E table (``piece, x_lo, x_hi, node``; ``mu`` the
 node, ``albedo_err`` the table's bound) — those of ``average_alpha`` and those at the roughness matched to
@@ -17,7 +17,6 @@ import pandas as pd
 from brdfs.numerics.albedo import albedo
 from brdfs.physics.models import model
 from brdfs.artifacts import _microfacet_energy as mf
-from brdfs.physics.models.smith_microfacet import energy_table, energy_table_frame
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import table
 
@@ -46,10 +45,10 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
         averaged = [(G2, float(a)) for G2 in c["average_G2"] for a in c["average_alpha"]]
         averaged += [("height_correlated", a) for a in figure_alphas(deps)]
         for G2, alpha in averaged:
-            e_avg = energy_table(name, alpha, G2)[1]
+            e_avg = mf.energy_table(name, alpha, G2)[1]
             frames.append(pd.DataFrame({"model": [name], "G2": [G2], "alpha": [alpha], "quantity": ["E_avg"],
                                         "mu": [np.nan], "albedo": [e_avg.value], "albedo_err": [e_avg.error]}))
-            frames.append(energy_table_frame(name, alpha, G2).assign(quantity="E_table_node"))
+            frames.append(mf.energy_table_frame(name, alpha, G2).assign(quantity="E_table_node"))
     return pd.concat(frames, ignore_index=True).reindex(columns=COLUMNS)
 
 

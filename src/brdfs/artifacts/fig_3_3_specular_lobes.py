@@ -16,42 +16,31 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
-from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.geometry import direction, light_direction
 from brdfs.physics.models import model
-from brdfs.physics.models.he_torrance import EVAL_RTOL, HeTorrance
+from brdfs.physics.models.he_torrance import EVAL_RTOL
+from brdfs.physics.models.microfacet import CookTorranceFresnel
 
 PARAM_COLUMNS = ("n", "m", "G", "sigma0_um", "tau_um", "lambda_um", "ior_re", "ior_im", "term")
 NORMAL = np.array([0.0, 0.0, 1.0])
 
 
-class _WithFresnel:
-    """Cook–Torrance of eq. 2.9 times the Fresnel factor F(L·H) of a real or complex index."""
-
-    def __init__(self, brdf, ior_re, ior_im):
-        self.brdf, self.ior_re, self.ior_im = brdf, ior_re, ior_im
-
-    def __call__(self, L, V):
-        cos_lh = np.linalg.norm(L + V, axis=-1) / 2.0
-        return self.brdf(L, V) * unpolarised_reflectance(cos_lh, self.ior_re, self.ior_im)
-
-
 def lobe_models(fig_cfg: dict, lambda_um: float) -> list[tuple[str, dict, object]]:
     """(name, parameter columns, BRDF callable) of the four models of the caption."""
     ct, ht = fig_cfg["cook_torrance"], fig_cfg["he_torrance"]
-    he = HeTorrance(**ht, lambda_um=lambda_um, term="dd")
+    he = model("he_torrance", **ht, lambda_um=lambda_um, term="dd")
     return [
         ("phong", {"n": fig_cfg["phong"]["n"]}, model("phong", n=fig_cfg["phong"]["n"])),
         ("phong_cosmin", {"n": fig_cfg["phong_cosmin"]["n"]}, model("phong_cosmin", n=fig_cfg["phong_cosmin"]["n"])),
-        ("cook_torrance", dict(ct), _WithFresnel(model("cook_torrance", m=ct["m"], G=ct["G"]), ct["ior_re"], ct["ior_im"])),
+        ("cook_torrance", dict(ct), CookTorranceFresnel(m=ct["m"], G=ct["G"], ior_re=ct["ior_re"], ior_im=ct["ior_im"])),
         ("he_torrance", dict(ht, lambda_um=lambda_um, term="dd"), he),
     ]
 
 
 def evaluation_error(brdf, L, V, value):
-    """Absolute error of a closed-form BRDF value: :data:`EVAL_RTOL` of it, plus He–Torrance's series tail."""
-    tail = brdf.truncation_error(L, V) if isinstance(brdf, HeTorrance) else 0.0
-    return EVAL_RTOL * np.abs(value) + tail
+    """Absolute error of a closed-form BRDF value: :data:`EVAL_RTOL` of it, plus the model's own
+    truncation error (He–Torrance's series tail; zero for a closed form)."""
+    return EVAL_RTOL * np.abs(value) + brdf.truncation_error(L, V)
 
 
 @figure("fig_3_3_specular_lobes", config=("he_torrance",))
@@ -84,8 +73,8 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
             value_err = scale * weight * f_err + scale_err * np.abs(f * weight) + EVAL_RTOL * np.abs(value)
             frames.append(_rows(name, params, fig_cfg, scale, scale_err, theta, theta_v, phi, f, f_err,
                                 value, value_err))
-        if isinstance(brdf, HeTorrance):
-            rho = HeTorrance(**{**params, "term": "specular"}).delta_albedo(theta)
+        rho = brdf.mirror_albedo(theta)        # He–Torrance's specular delta: an albedo, no lobe
+        if rho is not None:
             frames.append(_rows(name, {**params, "term": "specular"}, fig_cfg, scale, scale_err, theta,
                                 np.array([theta]), 180.0, np.nan, np.nan, scale * rho.value,
                                 scale * rho.error + scale_err * rho.value, quantity="specular_albedo"))

@@ -13,11 +13,14 @@ and measure the variance σ² of one sample's estimate and its cost c, counted d
 random numbers drawn + BRDF (or albedo) evaluations + radiance look-ups (a ray cast in a renderer;
 a Russian-roulette miss casts none).  Efficiency = 1/(σ² c).  The strategies:
 
-* ``cosine``: V from the cosine distribution (2 numbers), weight π f (1 BRDF evaluation), 1 look-up.
-* ``russian_roulette`` (eqs. 4.18/4.19; section 4.4 with R = F⁻¹(r) for the mixture, 1 more number):
-  a uniform point in C_min, weight W (1 here) if it lies in the other circle, else 0 and no look-up.
-* ``normal``: the thesis's rejection loop ("repeat until found", 2 numbers per try) in C_min, then
-  weight a_R(θ) (1 albedo evaluation, the lens area of eq. 4.9) and 1 look-up.
+* ``cosine``: the model's cosine strategy, V from the cosine distribution (2 numbers), weight π f
+  (1 BRDF evaluation), 1 look-up.
+* ``russian_roulette``: the model's strategy of that name (eqs. 4.18/4.19; section 4.4 with
+  R = F⁻¹(r) for the mixture, 1 more number): a uniform point in C_min, weight W (1 here) if it lies
+  in the other circle, else 0 and no look-up.
+* ``normal``: R of the basic BRDF from the model (its own R, or F⁻¹(r) of the mixture), then the
+  thesis's rejection loop ("repeat until found", 2 numbers per try) in C_min, then weight a_R(θ)
+  (1 albedo evaluation, the lens area of eq. 4.9) and 1 look-up.
 
 The exact albedo of the basic BRDF under ``normal`` has zero variance (its weight is a_R itself):
 its efficiency is infinite and not drawn.
@@ -31,7 +34,7 @@ import pandas as pd
 from brdfs.physics import patch_geometry as patch
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.models import model
-from brdfs.physics.sampling import disk_to_direction, russian_roulette_point, uniform_in_circle
+from brdfs.physics.sampling import disk_to_direction, lens_point_by_rejection
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
@@ -51,43 +54,28 @@ def overcast_sky(V):
     return np.where(V[..., 2] > 0, (1.0 + 2.0 * V[..., 2]) / 3.0, 0.0)
 
 
-def _radius(brdf, rng, n):
-    """R per sample: the model's R, or F⁻¹(r) of the mixture (one random number each)."""
-    if brdf.name == "patch_basic":
-        return np.full(n, brdf.R), 0
-    return brdf.radius_of_cdf(rng.random(n)), 1
-
-
 def draw(brdf, strategy, theta_deg, n, rng):
-    """(albedo weights, radiance weights, cost counters) of ``n`` one-sample estimates."""
+    """(albedo weights, radiance weights, cost counters) of ``n`` one-sample estimates.
+
+    ``cosine`` and ``russian_roulette`` are the model's own strategies (``brdf.sample``); ``normal``
+    draws R of the basic BRDF from the model (``brdf.basic_radius``), a point of the lens by the
+    thesis's rejection loop (:func:`~brdfs.physics.sampling.lens_point_by_rejection`) and weighs it
+    a_R(θ) (eq. 4.8)."""
     L = light_direction(theta_deg)
-    cx, cy = -L[0], -L[1]
-    if strategy == "cosine":
-        u = rng.random((n, 2))
-        x, y = uniform_in_circle(0.0, 0.0, 1.0, u[:, 0], u[:, 1])
-        V = disk_to_direction(x, y)
-        w = np.pi * brdf(L, V)
-        return w, w * overcast_sky(V), {"random_numbers": 2 * n, "brdf_evaluations": n, "radiance_lookups": n}
-    R, per_sample = _radius(brdf, rng, n)
-    numbers = per_sample * n
-    if strategy == "russian_roulette":
-        u = rng.random((n, 2))
-        x, y, accepted, _ = russian_roulette_point(cx, cy, R, u[:, 0], u[:, 1])
-        V = disk_to_direction(x, y)
-        w = accepted.astype(float)
-        return w, w * overcast_sky(V), {"random_numbers": numbers + 2 * n, "brdf_evaluations": 0,
-                                        "radiance_lookups": int(accepted.sum())}
-    x, y = np.zeros(n), np.zeros(n)
-    pending = np.arange(n)
-    while pending.size:                                   # repeat ... until found (section 4.2.4)
-        u = rng.random((pending.size, 2))
-        numbers += 2 * pending.size
-        px, py, accepted, _ = russian_roulette_point(cx, cy, R[pending], u[:, 0], u[:, 1])
-        x[pending[accepted]], y[pending[accepted]] = px[accepted], py[accepted]
-        pending = pending[~accepted]
+    if strategy in ("cosine", "russian_roulette"):
+        k = brdf.sample_dimension(strategy)
+        V, w, _ = brdf.sample(L, rng.random((n, k)), strategy)
+        if strategy == "cosine":
+            counts = {"random_numbers": k * n, "brdf_evaluations": n, "radiance_lookups": n}
+        else:                                             # weight W without evaluating f; a miss casts no ray
+            counts = {"random_numbers": k * n, "brdf_evaluations": 0, "radiance_lookups": int((w > 0).sum())}
+        return w, w * overcast_sky(V), counts
+    R = brdf.basic_radius(rng.random((n, brdf.basic_radius_dimension)))
+    x, y, drawn = lens_point_by_rejection(-L[0], -L[1], R, rng)
     V = disk_to_direction(x, y)
     w = patch.basic_albedo(theta_deg, R).value
-    return w, w * overcast_sky(V), {"random_numbers": numbers, "brdf_evaluations": n, "radiance_lookups": n}
+    return w, w * overcast_sky(V), {"random_numbers": brdf.basic_radius_dimension * n + drawn,
+                                    "brdf_evaluations": n, "radiance_lookups": n}
 
 
 @figure(NAME, config=(SECTION,), resources={"runtime": 3})

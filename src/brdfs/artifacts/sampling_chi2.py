@@ -4,19 +4,19 @@ Each row is one test (:func:`brdfs.numerics.chi2.chi2_test`) of ``model.sample``
 at one incidence angle; ``passed`` is p ≥ the Šidák level of the family of tests in the file.  The
 reduced set (default) tests every model in ``MODELS`` at the narrowest parameter of the thesis's range
 (n = 512, m = 0.005, s = 512, …) at 45° and 89.99°, plus the cosine baseline; ``sampling.full``
-runs every strategy over the parameter range at six incidence angles up to 89.99°.
+runs every strategy over the parameter range at six incidence angles up to 89.99°.  Each model
+declares its parameter sets (``chi2_cases``, narrowest first, else its ``examples``) and how it is
+built from them (``chi2_example``): a model added to ``MODELS`` is tested without an edit here.
 """
 from __future__ import annotations
 
 from concurrent.futures import ProcessPoolExecutor
-from functools import partial
 
 import numpy as np
 import pandas as pd
 
-from brdfs.physics import patch_geometry as patch
 from brdfs.numerics.chi2 import chi2_test, sidak_level
-from brdfs.physics.models import MODELS, model
+from brdfs.physics.models import MODELS
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import check
 
@@ -27,48 +27,25 @@ REDUCED_THETAS = (45.0, 89.99)
 FULL_THETAS = (0.0, 30.0, 60.0, 80.0, 89.0, 89.99)
 
 
-def mixture_of_exponential(s):
-    """The p(R) mixture with the exponential profile's weight (eqs. 4.41, 4.47): the same BRDF as
-    ``patch_exponential`` built generically, so that its sampler runs the tabulated F⁻¹."""
-    profile = patch.ExponentialProfile(s)
-    return model("patch_mixture", weight=partial(patch.weight, profile, C=profile.c_max),
-                 p_diffuse=patch.diffuse_weight(profile, profile.c_max), rtol=1e-7)
-
-
-#: (model name, parameters) over the thesis's range; the first of each model is its narrowest.
-PARAMETERS = {
-    "phong": [{"n": 512}, {"n": 20}, {"n": 1}],
-    "phong_original": [{"n": 512}, {"n": 20}, {"n": 1}],
-    "phong_cosmin": [{"n": 512}, {"n": 20}, {"n": 1}],
-    "p_model": [{"n": 512, "p": 0.5}, {"n": 20, "p": 0.5}],
-    "blinn": [{"n": 512}, {"n": 20}, {"n": 1}],
-    "blinn_original": [{"n": 512}, {"n": 20}, {"n": 1}],
-    "blinn_cosmin": [{"n": 512}, {"n": 20}, {"n": 1}],
-    "ward": [{"m": 0.005}, {"m": 0.1}, {"m": 0.5}],
-    "ward_cosmin": [{"m": 0.005}, {"m": 0.1}, {"m": 0.5}],
-    "cook_torrance": [{"m": 0.005}, {"m": 0.1}, {"m": 0.5}],
-    "he_torrance": [{"sigma0_um": 0.1, "tau_um": 1.7}, {"sigma0_um": 0.18, "tau_um": 3.0}],
-    "patch_basic": [{"R": 0.05}, {"R": 0.5}, {"R": 1.5}],
-    "patch_mixture": [{"s": 512}, {"s": 10}],
-    "patch_exponential": [{"s": 512}, {"s": 10}, {"s": 1}],
-    "patch_elliptical": [{"b": 0.05, "ratio": 0.25}, {"b": 0.3, "ratio": 0.5}],
-    "generalized_lambertian": [{"d": 1.0}, {"d": 0.5}],
-    "ggx": [{"alpha": 0.01}, {"alpha": 0.3}, {"alpha": 1.0}],
-    "beckmann": [{"alpha": 0.01}, {"alpha": 0.3}, {"alpha": 1.0}],
-}
+def parameters(name: str) -> tuple[dict, ...]:
+    """The parameter sets the model ``name`` is tested at, narrowest first: its declared
+    :meth:`~brdfs.physics.models.base.BRDF.chi2_parameters` (``chi2_cases``, else its examples)."""
+    plist = MODELS[name].chi2_parameters()
+    if not plist:
+        raise ValueError(f"sampling_chi2: the model {name!r} declares neither chi2_cases nor examples")
+    return plist
 
 
 def build(name, params):
-    return mixture_of_exponential(params["s"]) if name == "patch_mixture" else model(name, **params)
+    """The model ``name`` at ``params``, as the model builds its test cases (``chi2_example``)."""
+    return MODELS[name].chi2_example(params)
 
 
 def cases(full: bool):
-    """(name, params, strategy, theta_deg) of the tests."""
+    """(name, params, strategy, theta_deg) of the tests: every model of ``MODELS``, its cases from itself."""
     out = []
     for name in MODELS:
-        if name not in PARAMETERS:
-            raise KeyError(f"sampling_chi2: no parameters listed for the model {name!r}")
-        plist = PARAMETERS[name] if full else PARAMETERS[name][:1]
+        plist = parameters(name) if full else parameters(name)[:1]
         for params in plist:
             strategies = build(name, params).strategies
             chosen = strategies if full else strategies[:1]

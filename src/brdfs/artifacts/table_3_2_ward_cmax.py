@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
-from scipy.integrate import quad
 
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
@@ -14,21 +13,12 @@ from brdfs.numerics.quantities import maximal_constant
 NAME = "table_3_2_ward_cmax"
 
 
-def ward_cosmin_normal_incidence_albedo(m):
-    """a(0) of eq. 3.36 with C = 1 as a 1-D integral: with L = N, t = tan(θ_V/2) and x = t²/m²,
-    a(0) = ∫₀^(1/m²) e^(−x) (1 − m²x) / (1 + m²x)³ dx = 1 − 4m² + O(m⁴), so C_max → 1 as m → 0.
-    The range is cut at x = 60 (e^(−60) ≈ 1e-26) where 1/m² is larger."""
-    upper = min(1 / m ** 2, 60.0)
-    val, err = quad(lambda x: np.exp(-x) * (1 - m * m * x) / (1 + m * m * x) ** 3, 0, upper,
-                    epsabs=0, epsrel=1e-13, limit=200)
-    return val, err
-
-
 @table(NAME, config=("ward_cmax",))
 def compute(cfg: dict, deps: dict) -> pd.DataFrame:
     ms = [float(m) for m in cfg["ward_cmax"]["m"]]
-    C, theta = maximal_constant([model("ward_cosmin", m=m) for m in ms], cfg["tolerance"]["rtol"])
-    a0 = np.array([ward_cosmin_normal_incidence_albedo(m)[0] for m in ms])
+    models = [model("ward_cosmin", m=m) for m in ms]
+    C, theta = maximal_constant(models, cfg["tolerance"]["rtol"])
+    a0 = np.array([float(brdf.exact_albedo(0.0)) for brdf in models])    # the model's a(0), C = 1
     return pd.DataFrame({"model": "ward_cosmin", "m": ms, "C": C.value, "C_err": C.error,
                          "theta_max_deg": theta, "C_normal_incidence_closed_form": 1 / a0,
                          "C_series_1_plus_4m2": 1 + 4 * np.asarray(ms) ** 2})

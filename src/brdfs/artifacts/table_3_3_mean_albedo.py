@@ -10,7 +10,7 @@ from brdfs.pipeline import plotting
 from brdfs.pipeline import published
 from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.physics.models import model
-from brdfs.numerics.quantities import limit_mean_albedo, mean_albedo, phong_mean_albedo
+from brdfs.numerics.quantities import limit_mean_albedo, mean_albedo
 from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
 
 NAME = "table_3_3_mean_albedo"
@@ -45,8 +45,9 @@ def compute(cfg: dict, deps: dict) -> pd.DataFrame:
         scale = 1.0 if name.startswith("phong") else c
         value, err = scale * est.value[i], scale * est.error[i] + (0.0 if name.startswith("phong") else c_err * est.value[i])
         engine = value
-        if name == "phong":   # exact where the engine's ±4e-11 would straddle a rounding tie (A(4) = 11/16)
-            value, err = phong_mean_albedo(n)
+        exact = models[i].exact_mean_albedo()
+        if exact is not None:   # exact where the engine's ±4e-11 would straddle a rounding tie (A(4) = 11/16)
+            value, err = exact.value, exact.error
         rows.append({"model": name, "n": n, "C": c, "C_err": c_err, "mean_albedo": value, "mean_albedo_err": err,
                      "mean_albedo_engine": engine, "role": "table" if n in sec["n"] else "limit_check"})
     for name in MODELS:

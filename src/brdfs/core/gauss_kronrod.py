@@ -24,6 +24,8 @@ inner Gauss/Kronrod pair outwards, so the differences measure inner and outer di
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from brdfs.core.estimate import BUDGET_EXHAUSTED, CONVERGED, STALLED, Estimate
@@ -66,6 +68,27 @@ STALL_LIMIT = 5
 LOCALISED = 0.9
 
 
+class NodeValues(NamedTuple):
+    """What an integrand that is itself an estimate (an inner integral) returns at the nodes.
+
+    ``high`` its accurate value, ``low`` its Gauss value (the outer rule compares the two), and
+    ``extra_err`` an absolute error already known (or ``None``).  The other kind of integrand, a
+    plain function, returns its values at the nodes as one array.  A bare 3-tuple is read as
+    ``NodeValues(*tuple)``.
+    """
+
+    high: np.ndarray
+    low: np.ndarray
+    extra_err: np.ndarray | None = None
+
+
+def node_values(out) -> NodeValues:
+    """An integrand's return, either kind, as :class:`NodeValues` (a plain array: high = low, no known error)."""
+    if isinstance(out, tuple):
+        return NodeValues(*out)
+    return NodeValues(out, out, None)
+
+
 def gk_pair(values_high, values_low, half_width):
     """Kronrod and Gauss sums over the last axis (21 nodes) of sampled integrand values."""
     high = half_width * (values_high @ KRONROD_WEIGHTS)
@@ -86,12 +109,12 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
 
     Parameters
     ----------
-    integrand : callable ``(x, element) -> values`` or ``-> (high, low, extra_err)``
+    integrand : callable ``(x, element) -> values`` or ``-> NodeValues(high, low, extra_err)``
         ``x`` has shape ``(m, 21)`` (Kronrod nodes of ``m`` intervals), ``element`` shape ``(m,)``
         gives the element index of each interval.  A plain function returns its values at the
-        nodes.  An integrand that is itself an estimate (an inner integral) returns a tuple:
-        ``high`` its accurate value, ``low`` its Gauss value, and ``extra_err`` an absolute error
-        already known (or ``None``).
+        nodes (an array).  An integrand that is itself an estimate (an inner integral) returns
+        :class:`NodeValues`: ``high`` its accurate value, ``low`` its Gauss value, and
+        ``extra_err`` an absolute error already known (or ``None``).
     breakpoints : array ``(n_elements, k)``
         Ascending points per element; the first and last are the integration limits.  NaN
         entries are ignored (ragged breakpoint lists).
@@ -196,12 +219,7 @@ def _evaluate(integrand, elem, lo, hi, chunk):
     for s in range(0, m, chunk):
         sl = slice(s, min(s + chunk, m))
         x = nodes_on(lo[sl], hi[sl])
-        out = integrand(x, elem[sl])
-        if isinstance(out, tuple):
-            v_high, v_low, v_extra = out
-        else:
-            v_high = v_low = out
-            v_extra = None
+        v_high, v_low, v_extra = node_values(integrand(x, elem[sl]))
         half = 0.5 * (hi[sl] - lo[sl])
         high[sl], low[sl] = gk_pair(v_high, v_low, half)
         extra[sl] = 0.0 if v_extra is None else half * (np.abs(v_extra) @ KRONROD_WEIGHTS)

@@ -16,13 +16,20 @@ colour-science manner (one function per method and a table of them, :data:`ALBED
   ``model`` for the model's own :meth:`~brdfs.physics.models.base.BRDF.sample`); error = standard error.
 
 Every method returns an :class:`Estimate` with ``value`` and ``error`` shaped like ``theta_deg``,
-its cost in BRDF evaluations (nodes of a closed-form inner integral count as such) and a ``status`` per value (``converged`` when the error
-meets the tolerance asked for).
+its cost in BRDF evaluations (an integer: nodes of a closed-form inner integral count as such) and a
+``status`` per value (``converged`` when the error meets the tolerance asked for).  A method's own
+``evaluations`` counts what the front door cannot see (the closed-form kernel's nodes; 0 for a method
+that only evaluates the BRDF), to which :func:`albedo` adds the BRDF values it counts.
+
+The route of the engine is read from what the model declares, never from its name or type: its
+own ``albedo_estimate`` (None: it has none), its ``closed_form_azimuth``, and its lobe's
+:class:`~brdfs.physics.lobes.Frame`.
 """
 from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import IntegrationWarning, dblquad
@@ -32,10 +39,10 @@ from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
 from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
-from brdfs.numerics.integrate.scattering import FRAME as SCATTERING_FRAME
 from brdfs.numerics.integrate.scattering import albedo_scattering
 from brdfs.physics.geometry import light_direction
-from brdfs.physics.models.base import BRDF, counting_evaluations
+from brdfs.physics.lobes import SCATTERING
+from brdfs.physics.models.base import counting_evaluations
 
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-14
@@ -53,28 +60,32 @@ def _check_angles(theta_deg):
 # --- the engine ------------------------------------------------------------------------------
 
 def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
-    """Albedo of ``models[i]`` at ``theta[i]``: the density integrated in the coordinates its lobe
-    asks for — a cosine-power lobe with a closed-form azimuthal integral in one dimension
+    """Albedo of ``models[i]`` at ``theta[i]``: the model's own route where it has one
+    (``albedo_estimate`` returns an :class:`Estimate`, not None), else the density integrated in the
+    coordinates its lobe asks for — a cosine-power lobe with a closed-form azimuthal integral in one dimension
     (:mod:`.integrate.azimuthal`, unless ``closed_form_azimuth`` is False), Kirchhoff lobes in the
     scattering-vector frame (:mod:`.integrate.scattering`), the others in two dimensions around R
     or N (:mod:`.integrate.hemisphere`) — plus the albedo of its Dirac part (``model.delta_albedo``,
     e.g. He–Torrance's specular term; zero for most models)."""
     value, error = np.zeros(theta.size), np.zeros(theta.size)
     status = np.full(theta.size, CONVERGED, dtype=object)
-    own = np.array([type(m).albedo_estimate is not BRDF.albedo_estimate for m in models], bool)
-    kirchhoff = np.array([not o and m.lobe.frame == SCATTERING_FRAME for m, o in zip(models, own)], bool)
+    own = _own_routes(models, theta, rtol, atol, value, error, status)
+    lobeless = [m for m, o in zip(models, own) if not o and m.lobe is None]
+    if lobeless:
+        raise ValueError(f"{lobeless[0].name!r} declares neither a lobe nor its own albedo route; "
+                         "use method='disk'")
+    kirchhoff = np.array([not o and m.lobe.frame is SCATTERING for m, o in zip(models, own)], bool)
     one_d = np.array([closed_form_azimuth and azimuthal.supports(m) for m in models], bool) & ~kirchhoff & ~own
-    schemes = ((own, _own_routes), (one_d, azimuthal.albedo_many), (kirchhoff, albedo_scattering),
+    schemes = ((one_d, azimuthal.albedo_many), (kirchhoff, albedo_scattering),
                (~kirchhoff & ~one_d & ~own, albedo_many))
     closed_form_nodes = 0          # the 1-D route evaluates a closed form, not the BRDF: count its nodes
     for chosen, scheme in schemes:
         if chosen.any():
             est = scheme([m for m, c in zip(models, chosen) if c], theta[chosen], rtol=rtol, atol=atol)
             value[chosen], error[chosen] = est.value, est.error
-            if est.status is not None:
-                status[chosen] = est.status
+            status[chosen] = est.status
             if scheme is azimuthal.albedo_many:
-                closed_form_nodes += est.evaluations or 0
+                closed_form_nodes += est.evaluations
     # Within ~1e-4 of grazing the 1-D route of max(N·L, N·V) models loses ε / cos θ to rounding and
     # can stop short of the tolerance: those elements are integrated in two dimensions instead.
     short = one_d & (status != CONVERGED)
@@ -90,13 +101,20 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
     return Estimate(value, error, closed_form_nodes, status.astype(str))
 
 
-def _own_routes(models, theta, rtol, atol):
-    """The models' own albedo routes (``albedo_estimate``), one call per distinct model."""
-    value, error = np.zeros(theta.size), np.zeros(theta.size)
+def _own_routes(models, theta, rtol, atol, value, error, status):
+    """The models' own albedo routes (``albedo_estimate``, one call per distinct model) written into
+    ``value``, ``error`` and ``status``; returns the mask of the elements they answered (a model
+    whose ``albedo_estimate`` returns None has no route of its own)."""
+    own = np.zeros(theta.size, bool)
     for rows in indices_by_model(models):
         est = models[rows[0]].albedo_estimate(theta[rows], rtol, atol)
+        if est is None:
+            continue
+        own[rows] = True
         value[rows], error[rows] = est.value, est.error
-    return Estimate(value, error)
+        if est.status is not None:
+            status[rows] = est.status
+    return own
 
 
 def _engine(model, theta, rtol, atol):
@@ -126,7 +144,7 @@ def _per_angle(one):
         pairs = [one(model, float(t), rtol, atol, **options) for t in theta]
         value = np.array([p[0] for p in pairs], float)
         error = np.array([p[1] for p in pairs], float)
-        return Estimate(value, error, status=_status(value, error, rtol, atol))
+        return Estimate(value, error, 0, _status(value, error, rtol, atol))
     method.__doc__ = one.__doc__
     return method
 
@@ -134,7 +152,7 @@ def _per_angle(one):
 def _disk(model, theta, rtol, atol):
     """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`)."""
     est = disk_albedo_many([model] * theta.size, theta, rtol=rtol, atol=atol)
-    return Estimate(est.value, est.error, status=_status(est.value, est.error, rtol, atol))
+    return Estimate(est.value, est.error, 0, _status(est.value, est.error, rtol, atol))
 
 
 def _grid_sum(model, theta, n):
@@ -215,15 +233,27 @@ def _draw(sampler, model, L, rng, n):
     return model(L, V) * cos_v / (1 / (2 * np.pi))
 
 
-def monte_carlo_albedo(model, theta_deg, sampler, n_samples, seed_sequence):
-    """Monte Carlo albedo with ``n_samples`` drawn by ``sampler``; returns (Estimate with a rounding
-    bound, statistical standard error)."""
+@dataclass(frozen=True)
+class MonteCarloEstimate(Estimate):
+    """A Monte Carlo mean: ``error`` is its standard error (one standard deviation of the estimator),
+    ``rounding`` a bound of the error of computing the sum of these samples (a seeded reading is a
+    number in its own right, reproducible to that bound)."""
+
+    rounding: float = 0.0
+
+
+def monte_carlo_albedo(model, theta_deg, sampler, n_samples, seed_sequence, rtol=DEFAULT_RTOL,
+                       atol=DEFAULT_ATOL) -> MonteCarloEstimate:
+    """Monte Carlo albedo with ``n_samples`` drawn by ``sampler``: a :class:`MonteCarloEstimate` with the
+    mean, its standard error, ``evaluations`` = ``n_samples`` and the status of that error against
+    max(rtol |value|, atol)."""
     rng = np.random.default_rng(seed_sequence)
     L = light_direction(theta_deg)
     w = np.concatenate([_draw(sampler, model, L, rng, k) for k in _chunks(n_samples)])
     mean = w.mean()
     stderr = w.std(ddof=1) / np.sqrt(w.size) if w.size > 1 else np.inf
-    return Estimate(mean, 4 * _EPS * (np.log2(w.size) + 2) * np.abs(w).mean()), stderr
+    return MonteCarloEstimate(mean, stderr, int(w.size), _status(mean, stderr, rtol, atol),
+                              rounding=4 * _EPS * (np.log2(w.size) + 2) * np.abs(w).mean())
 
 
 def _chunks(n, size=250_000):
@@ -234,10 +264,11 @@ def _monte_carlo(model, theta, rtol, atol, n_samples=100_000, sampler="cosine", 
     """Monte Carlo with ``n_samples`` per angle, the k-th angle seeded by ``[*seed, k]``;
     error = standard error (one standard deviation)."""
     root = [int(s) for s in np.atleast_1d(seed)]
-    runs = [monte_carlo_albedo(model, float(t), sampler, n_samples, [*root, k]) for k, t in enumerate(theta)]
-    value = np.array([float(r[0].value) for r in runs])
-    error = np.array([float(r[1]) for r in runs])
-    return Estimate(value, error, status=_status(value, error, rtol, atol))
+    runs = [monte_carlo_albedo(model, float(t), sampler, n_samples, [*root, k], rtol, atol)
+            for k, t in enumerate(theta)]
+    value = np.array([float(r.value) for r in runs])
+    error = np.array([float(r.error) for r in runs])
+    return Estimate(value, error, 0, np.array([str(r.status) for r in runs]))
 
 
 #: The albedo methods by name: ``method(model, theta (1-D), rtol, atol, **options) -> Estimate``.
@@ -298,7 +329,7 @@ def albedo(model, theta_deg, method="engine", *, rtol=None, atol=None, **options
     with counting_evaluations() as count:
         est = run(model, theta.ravel(), rtol, atol, **options)
     shape = theta.shape
-    cost = count[0] + (est.evaluations or 0)
+    cost = count[0] + est.evaluations
     return Estimate(est.value.reshape(shape), est.error.reshape(shape), cost, est.status.reshape(shape))
 
 
@@ -310,7 +341,7 @@ def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
         est = _albedo_pairs([p[0] for p in pairs], np.array([p[1] for p in pairs]),
                             DEFAULT_RTOL if rtol is None else rtol, DEFAULT_ATOL if atol is None else atol)
     shape = (len(models), theta.size)
-    cost = count[0] + (est.evaluations or 0)
+    cost = count[0] + est.evaluations
     return Estimate(est.value.reshape(shape), est.error.reshape(shape), cost, est.status.reshape(shape))
 
 
@@ -321,4 +352,4 @@ def albedo_pairs(models, theta_deg, rtol=None, atol=None) -> Estimate:
     with counting_evaluations() as count:
         est = _albedo_pairs(list(models), theta, DEFAULT_RTOL if rtol is None else rtol,
                             DEFAULT_ATOL if atol is None else atol)
-    return Estimate(est.value, est.error, count[0] + (est.evaluations or 0), est.status)
+    return Estimate(est.value, est.error, count[0] + est.evaluations, est.status)

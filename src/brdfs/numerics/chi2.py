@@ -239,14 +239,13 @@ class Chi2Result:
     n_samples: int
 
 
-def chart_kind(model) -> str:
-    """'disk' for the projected-disk samplers of chapter 4 (the patch models), else 'sphere'."""
-    return "disk" if type(model).__module__.endswith("models.patch") else "sphere"
-
-
 def chi2_test(model, theta_deg, strategy=None, n_samples=100_000, seed=0, n_radial=10, n_phi=10,
               n_pilot=20_000, kind=None, rtol=1e-6):
     """Run one chi-square test of ``model.sample(·, strategy)`` at incidence ``theta_deg``.
+
+    The chart is the model's :attr:`~brdfs.physics.models.base.BRDF.sampling_domain` unless ``kind``
+    is given; on the disk chart the integrals split at the model's
+    :meth:`~brdfs.physics.models.base.BRDF.disk_boundaries`.
 
     Returns
     -------
@@ -257,13 +256,9 @@ def chi2_test(model, theta_deg, strategy=None, n_samples=100_000, seed=0, n_radi
     """
     L = light_direction(theta_deg)
     rng_pilot, rng = (np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(2))
-    kind = kind or chart_kind(model)
-    breaks, ellipse = (), None
-    if kind == "disk" and hasattr(model, "R"):
-        breaks = (float(model.R),)
-    if kind == "disk" and hasattr(model, "ratio"):      # the elliptic patch: semi-axes b and b/ratio
-        breaks = (float(model.b), float(model.b / model.ratio))
-        ellipse = (float(model.b), float(model.ratio), float(np.radians(model.u_angle_deg)))
+    kind = kind or model.sampling_domain
+    # the circles and the ellipse about V'_P where the density jumps (the patch models declare them)
+    breaks, ellipse = model.disk_boundaries() if kind == "disk" else ((), None)
     chart = _pilot_chart(model, L, strategy, kind, rng_pilot, n_pilot, n_radial, n_phi, breaks, ellipse)
     probs, _ = cell_probabilities(model, L, strategy, chart, rtol=rtol)
 

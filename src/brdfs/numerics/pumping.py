@@ -5,11 +5,14 @@ Two correction terms (section 2.3.1/2.3.2)::
     g1(L, V) = max(a(L), a(V))                      (eq. 2.20, "plain")
     g2(L, V) = max(a(L), a(V), N·V, N·L)            (eq. 2.21, "controlled")
 
-A pumped model is again a symmetric BRDF (:class:`Pumped`), so it can be pumped with its own
-albedo, level after level.  As the thesis suggests for rendering (end of section 2.3), the albedo
-a pumped model divides by is precomputed once per level as a one-variable table
-(:class:`AlbedoTable`): a piecewise Chebyshev interpolant in x = cos θ whose error is measured
-against the engine at off-grid points and carried into the error of everything computed from it.
+A pumped model is again a symmetric BRDF (:class:`brdfs.physics.models.pumped.Pumped`, a model of
+the physics layer), so it can be pumped with its own albedo, level after level.  As the thesis
+suggests for rendering (end of section 2.3), the albedo a pumped model divides by is precomputed once
+per level as a one-variable table (:class:`AlbedoTable`, the interpolant of
+:mod:`brdfs.physics.tables` with its tidy rows): a piecewise Chebyshev interpolant in x = cos θ whose
+error is measured against the engine at off-grid points and carried into the error of everything
+computed from it.  This module tabulates; the pumped model receives its table when it is built
+(:func:`brdfs.numerics.tables.pump`).
 
 Error budget.  Let ``f̃_k`` be the model actually evaluated at level k (built from interpolated
 albedos) and ``f_k`` the exact pumped model.  If |f̃_k / f_k − 1| ≤ ε_k and the table of level k
@@ -28,123 +31,30 @@ lobe is shared by all levels.  This cut the two pumping tables from 75 s (Phong)
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import pandas as pd
 from numpy.polynomial import chebyshev as cheb
 
 from brdfs.numerics.albedo import albedo
 from brdfs.core.gauss_kronrod import integrate
-from brdfs.physics.lobes import PowerCosine
-from brdfs.physics.models.base import BRDF
+from brdfs.physics.lobes import MIRROR, PowerCosine
+from brdfs.physics import tables as physics_tables
+from brdfs.physics.models.pumped import CORRECTIONS, Pumped
+from brdfs.physics.tables import CHECK_SAFETY as _CHECK_SAFETY
+from brdfs.physics.tables import chebyshev_coefficients as _coefficients
+from brdfs.physics.tables import lobatto_points
 
-CORRECTIONS = ("g1", "g2")
-#: Original models whose pumped chains :func:`pumped_albedo` integrates (cosine-power lobes around
-#: R or H without kinks of their own); any other model goes through the hemisphere engine.
-REDUCIBLE_ROOTS = ("phong", "blinn")
-_BISECTIONS = 60            # halves a segment of [0, 1] below the spacing of doubles
-_CHECK_SAFETY = 10.0        # measured interpolation error at off-grid points × this = reported
+__all__ = ["AlbedoTable", "CORRECTIONS", "Pumped", "kink_edges", "lobatto_points", "model_rtol",
+           "pumped_albedo", "pumped_models", "pumping_factor", "sequence_frame", "tables_from_frame",
+           "tabulate_albedo"]
+
 _MAX_DEGREE = 256
 _PEAK_GRADES = 6          # azimuth breakpoints w, 4w, 16w, ... around a lobe's peak of width w
 
 
-def lobatto_points(degree):
-    """Chebyshev–Lobatto points cos(π j / D), j = 0 … D, on [−1, 1] (ascending)."""
-    return np.cos(np.pi * np.arange(degree, -1, -1) / degree)
-
-
-def _coefficients(values):
-    """Chebyshev coefficients of the interpolant through ``values`` at ascending Lobatto points."""
-    degree = values.shape[-1] - 1
-    s = lobatto_points(degree)
-    return np.linalg.solve(cheb.chebvander(s, degree), values.T).T
-
-
-@dataclass(frozen=True, eq=False)
-class AlbedoTable:
-    """a(θ) as a piecewise Chebyshev interpolant in x = cos θ, with an absolute error bound.
-
-    Attributes
-    ----------
-    edges : ndarray (P + 1,)
-        Piece boundaries in x, ascending from 0 to 1 (kinks of a, if any, are edges).
-    values : ndarray (P, D + 1)
-        Albedo at the Chebyshev–Lobatto points of each piece (ascending in x).
-    error : float
-        Absolute bound on |table − albedo of the model it tabulates| (interpolation + engine).
-    model_rtol : float
-        ε of the tabulated model: its relative distance to the exact pumped model.
-    """
-
-    edges: np.ndarray
-    values: np.ndarray
-    error: float
-    model_rtol: float = 0.0
-
-    def __post_init__(self):
-        object.__setattr__(self, "_coef", _coefficients(np.asarray(self.values, float)))
-        object.__setattr__(self, "segments", self._monotone_segments())
-        object.__setattr__(self, "cosine_crossings", self._crossings_with_cosine())
-
-    @property
-    def rtol(self):
-        """δ: relative distance of the table to the exact albedo of the exact pumped model."""
-        return self.model_rtol + self.error / float(np.min(self.values))
-
-    def _local(self, x):
-        x = np.clip(np.asarray(x, float), 0.0, 1.0)
-        piece = np.clip(np.searchsorted(self.edges, x, side="right") - 1, 0, len(self.edges) - 2)
-        lo, hi = self.edges[piece], self.edges[piece + 1]
-        return piece, (2.0 * x - lo - hi) / (hi - lo)
-
-    def __call__(self, x):
-        """The tabulated albedo at x = cos θ (any shape)."""
-        piece, s = self._local(x)
-        out = np.empty(s.shape)
-        for p in np.unique(piece):
-            mask = piece == p
-            out[mask] = cheb.chebval(s[mask], self._coef[p])
-        return out
-
-    def solve(self, y, lo, hi):
-        """x in [lo, hi] (where the table is monotone) with table(x) = y; ``lo`` where there is none."""
-        y = np.asarray(y, float)
-        f_lo, f_hi = self(lo), self(hi)
-        rising = f_hi >= f_lo
-        inside = (np.minimum(f_lo, f_hi) <= y) & (y <= np.maximum(f_lo, f_hi))
-        a, b = np.full(y.shape, lo), np.full(y.shape, hi)
-        for _ in range(_BISECTIONS):
-            mid = 0.5 * (a + b)
-            below = (self(mid) < y) == rising
-            a, b = np.where(below, mid, a), np.where(below, b, mid)
-        return np.where(inside, 0.5 * (a + b), lo)
-
-    def _monotone_segments(self):
-        """Boundaries in x of the segments where the table is monotone (edges and extrema)."""
-        points = list(self.edges)
-        for p, coef in enumerate(self._coef):
-            roots = cheb.chebroots(cheb.chebder(coef)) if coef.size > 2 else np.array([])
-            real = roots[np.abs(roots.imag) < 1e-9].real
-            lo, hi = self.edges[p], self.edges[p + 1]
-            points += list(lo + (hi - lo) * (real[(real > -1) & (real < 1)] + 1) / 2)
-        return np.unique(points)
-
-    def _crossings_with_cosine(self):
-        """x where table(x) − x changes sign by more than the table's error (kinks of max(a, cos θ))."""
-        x = np.linspace(0.0, 1.0, 4097)
-        d = self(x) - x
-        significant = np.abs(d) > _CHECK_SAFETY * self.error
-        xs, ds = x[significant], d[significant]
-        change = np.nonzero(np.sign(ds[:-1]) != np.sign(ds[1:]))[0]
-        roots = []
-        for i in change:
-            a, b = xs[i], xs[i + 1]
-            for _ in range(_BISECTIONS):
-                mid = 0.5 * (a + b)
-                a, b = (mid, b) if np.sign(self(mid) - mid) == np.sign(ds[i]) else (a, mid)
-            roots.append(0.5 * (a + b))
-        return np.array(roots)
+class AlbedoTable(physics_tables.AlbedoTable):
+    """:class:`brdfs.physics.tables.AlbedoTable` (the interpolant a model is built with) with its tidy
+    rows: what :func:`tabulate_albedo` returns and the table artifacts write and read."""
 
     def to_frame(self):
         """Tidy rows: one per node (piece, x, albedo), the error bounds repeated."""
@@ -172,7 +82,7 @@ def _engine(model, x, rtol):
     """Albedo at x = cos θ: the polar-azimuth reduction :func:`pumped_albedo` for a pumped
     Phong/Blinn chain (its root in the mirror or half frame), else the hemisphere engine."""
     root, _ = _chain(model)
-    if root.name in REDUCIBLE_ROOTS and isinstance(root.lobe, PowerCosine):
+    if root.pumping_reducible and isinstance(root.lobe, PowerCosine):
         return pumped_albedo(model, x, rtol=rtol)
     theta = np.degrees(np.arccos(np.clip(x, 0.0, 1.0)))
     return albedo(model, theta, rtol=rtol)
@@ -221,7 +131,7 @@ def pumped_albedo(model, x, rtol=1e-10, atol=1e-14):
     levels = [np.broadcast_to(np.asarray(c, float), mu_l.shape) for c in model.nv_levels(mu_l)]
     cols = [np.zeros_like(mu_l), *levels, s_l, np.ones_like(mu_l)]
     bp = np.sort(np.clip(np.column_stack(cols), 0.0, 1.0), axis=1)
-    mirror_frame = root.lobe.frame == "mirror"
+    mirror_frame = root.lobe.frame is MIRROR
 
     def kernel(mu_v, elem):
         """K(μ_L, μ_V) at outer nodes mu_v (m, 21) of elements elem: an Estimate, flattened."""
@@ -303,81 +213,6 @@ def _resample(values, degree):
     if values.size == degree + 1:
         return values
     return cheb.chebval(lobatto_points(degree), _coefficients(values))
-
-
-@dataclass(frozen=True)
-class Pumped(BRDF):
-    """f* = f / g (eq. 2.16), g = g1 (eq. 2.20) or g2 (eq. 2.21) from the tabulated albedo of f.
-
-    Attributes
-    ----------
-    base : BRDF
-        The symmetric model pumped (itself possibly a :class:`Pumped`).
-    table : AlbedoTable
-        The albedo of ``base``.
-    correction : str
-        ``'g1'`` (plain) or ``'g2'`` (controlled).
-    """
-
-    base: BRDF
-    table: AlbedoTable
-    correction: str = "g1"
-
-    def __post_init__(self):
-        if self.correction not in CORRECTIONS:
-            raise ValueError(f"correction must be one of {CORRECTIONS}, got {self.correction!r}")
-        if not self.base.reciprocal:
-            raise ValueError(f"pumping needs a symmetric BRDF, got the non-reciprocal {self.base.name!r}")
-
-    @property
-    def name(self):
-        return self.base.name
-
-    @property
-    def level(self):
-        """How many times the original model has been pumped."""
-        return self.base.level + 1 if isinstance(self.base, Pumped) else 1
-
-    @property
-    def lobe(self):
-        return self.base.lobe
-
-    @property
-    def sqrt_at_horizon(self):
-        return self.base.sqrt_at_horizon
-
-    def lh_levels(self, nl, cos_delta):
-        """The base model's L·H kinks (g depends on N·L and N·V only)."""
-        return self.base.lh_levels(nl, cos_delta)
-
-    @property
-    def params(self):
-        return self.base.params
-
-    def correction_term(self, nl, nv):
-        """g(L, V) of eq. 2.20 or 2.21 from N·L and N·V."""
-        g = np.maximum(self.table(nl), self.table(nv))
-        if self.correction == "g2":
-            g = np.maximum(g, np.maximum(nl, nv))
-        return g
-
-    def _eval(self, L, V, nl, nv):
-        return self.base._eval(L, V, nl, nv) / self.correction_term(nl, nv)
-
-    def nv_levels(self, nl):
-        """N·V where g switches argument: N·V = N·L, a(V) = a(L), and for g2 also N·V = a(L),
-        a(V) = N·L and a(V) = N·V; plus the table's piece edges and the base model's kinks."""
-        segments = self.table.segments
-        bounds = list(zip(segments[:-1], segments[1:]))
-        a_l = self.table(nl)
-        levels = [*self.base.nv_levels(nl), nl]
-        if len(bounds) > 1:            # a monotone table has the single root a(V) = a(L) at N·V = N·L
-            levels += [self.table.solve(a_l, lo, hi) for lo, hi in bounds]
-        levels += list(self.table.edges[1:-1])
-        if self.correction == "g2":
-            levels += [a_l, *(self.table.solve(nl, lo, hi) for lo, hi in bounds)]
-            levels += list(self.table.cosine_crossings)
-        return tuple(levels)
 
 
 def kink_edges(table, correction):

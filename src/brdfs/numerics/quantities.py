@@ -5,11 +5,15 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.numerics.albedo import DEFAULT_ATOL, DEFAULT_RTOL, albedo_pairs
-from brdfs.core.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.mean import mean_albedo_lobe
+from brdfs.physics.lobes import HALF, MIRROR
 from brdfs.physics.models import MODELS
 from brdfs.physics.models.blinn import Blinn, BlinnCosmin
 from brdfs.physics.models.phong import Phong, PhongCosmin
+# the closed forms live on the models (re-exported here for their callers)
+from brdfs.physics.models.phong import new_model_grazing_albedo as grazing_albedo_new_model  # noqa: F401
+from brdfs.physics.models.phong import phong_mean_albedo  # noqa: F401
 
 _GOLD = (np.sqrt(5.0) - 1.0) / 2.0
 
@@ -92,8 +96,8 @@ def mean_albedo(models, rtol=None):
 def _lobe_reduction(brdf):
     """(frame, cosmin) of the models :func:`mean_albedo_lobe` covers, else None."""
     # exact types: a pumped model reports its base model's name but is not a cosine lobe
-    return {Phong: ("mirror", False), PhongCosmin: ("mirror", True),
-            Blinn: ("half", False), BlinnCosmin: ("half", True)}.get(type(brdf))
+    return {Phong: (MIRROR, False), PhongCosmin: (MIRROR, True),
+            Blinn: (HALF, False), BlinnCosmin: (HALF, True)}.get(type(brdf))
 
 
 def mean_albedo_nested(models, rtol=None):
@@ -112,7 +116,7 @@ def mean_albedo_nested(models, rtol=None):
         inner = albedo_pairs([models[e] for e in np.repeat(elem, v.shape[1])], theta.ravel(),
                             rtol=rtol / 10, atol=DEFAULT_ATOL)
         a = inner.value.reshape(v.shape) * 2 * v
-        return a, a, inner.error.reshape(v.shape) * 2 * v
+        return NodeValues(a, a, inner.error.reshape(v.shape) * 2 * v)
 
     bp = np.tile([0.0, 1.0], (len(models), 1))
     return integrate(integrand, bp, rtol=rtol, atol=DEFAULT_ATOL)
@@ -153,36 +157,3 @@ def limit_albedo_90(model_name):
     if limit is None:
         raise ValueError(f"no derived limit of a(90°) for model {model_name!r}")
     return limit
-
-
-def grazing_albedo_new_model(n):
-    """a(90°) = (n+2) / (2(n+1)) for the new model with c = (n+2)/2π  (eq. 3.27)."""
-    n = np.asarray(n, float)
-    return np.where(np.isinf(n), 0.5, (n + 2.0) / (2.0 * (n + 1.0)))
-
-
-
-def phong_mean_albedo(n):
-    """Mean albedo of the reciprocal Phong model with c = (n+2)/2π in closed form:
-
-    A(n) = (2/3) (1 + W_n / (π (n+2))),  W_n = ∫₀^{π/2} cos^n α dα (Wallis),
-
-    from A = (c/π) ∫∫ (R·V)^n (N·R)⁺ (N·V)⁺ dω_R dω_V and ∫_{S²} (N·R)⁺ (N·V)⁺ dN
-    = (2/3)((π − α) cos α + sin α) for R·V = cos α.  For even n, W_n/π = (n−1)!!/(2 n!!) is
-    rational and the value is returned exactly (A(4) = 11/16); A → 2/3 as n → ∞.
-
-    Returns (value, absolute error bound).
-    """
-    from fractions import Fraction
-    from scipy.special import gammaln
-
-    if float(n).is_integer() and int(n) % 2 == 0:
-        k = int(n)
-        ratio = Fraction(1, 2)
-        for j in range(2, k + 1, 2):
-            ratio *= Fraction(j - 1, j)
-        exact = Fraction(2, 3) * (1 + ratio / (k + 2))
-        return float(exact), float(abs(Fraction(float(exact)) - exact))
-    w = 0.5 * np.sqrt(np.pi) * np.exp(gammaln((n + 1) / 2) - gammaln(n / 2 + 1))
-    value = 2.0 / 3.0 * (1 + w / (np.pi * (n + 2)))
-    return float(value), 8 * np.finfo(float).eps * value

@@ -119,3 +119,30 @@ def unpolarised_reflectance(cos_theta: ArrayLike, ior_re: ArrayLike, ior_im: Arr
     r_perp = (cos_theta - w) / (cos_theta + w)  # eq. 1.41
     r_par = (eta2 * cos_theta - w) / (eta2 * cos_theta + w)  # eq. 1.42
     return (np.abs(r_perp) ** 2 + np.abs(r_par) ** 2) / 2  # eq. 1.43
+
+
+# --- the angle at which a model's Fresnel factor is read (eqs. 3.29, 4.53/4.54) ----------------
+
+def cos_theta_min(L: ArrayLike, V: ArrayLike) -> np.ndarray:
+    """cos Θ_min = max(N·L, N·V), in ``[0, 1]``: the angle of the new model's metals (eq. 3.29).
+
+    Θ_min = min(Θ_L, Θ_V) is symmetric in L and V, so ``f · F(Θ_min)`` stays reciprocal; N = (0, 0, 1).
+
+    >>> float(cos_theta_min(np.array([0.6, 0.0, 0.8]), np.array([0.0, 0.0, 1.0])))
+    1.0
+    """
+    L, V = np.asarray(L, float), np.asarray(V, float)
+    return np.clip(np.maximum(L[..., 2], V[..., 2]), 0.0, 1.0)
+
+
+def cos_theta_prime(L: ArrayLike, V: ArrayLike) -> np.ndarray:
+    """cos θ' with sin θ' = |L_P − V_P| / 2 (eqs. 4.52/4.53): the incidence angle of the mirror pair
+    with the same L_P − V_P, where the patch models' metals read F (eq. 4.54).
+
+    >>> float(cos_theta_prime(np.array([0.6, 0.0, 0.8]), np.array([-0.6, 0.0, 0.8])))
+    0.8
+    """
+    L, V = np.asarray(L, float), np.asarray(V, float)
+    half = 0.5 * np.hypot(L[..., 0] - V[..., 0], L[..., 1] - V[..., 1])
+    return np.sqrt(np.clip(1.0 - half * half, 0.0, 1.0))
+

@@ -5,16 +5,36 @@ sampling draws uniformly), so a narrow lobe (n = 512, m = 0.005) becomes a smoot
 [0, 1].  ``sin β dβ/dt`` — the solid-angle element per unit t — is returned in closed form so that
 no ratio of two underflowing numbers is ever formed.
 
-Frames: ``"mirror"`` — β = α, the angle between V and R (Phong family, eq. 3.5);
-``"half"`` — β = δ, the angle between H and N (Blinn, Ward, Cook–Torrance), where
-dω_V = 4 (V·H) dω_H; ``"scattering"`` — the horizontal scattering vector r = |L_xy + V_xy|
-(Kirchhoff lobes, He–Torrance), integrated by :mod:`brdfs.numerics.integrate.scattering`.
+Frames (:class:`Frame`, compared by identity, never by name): :data:`MIRROR` — β = α, the angle
+between V and R (Phong family, eq. 3.5); :data:`HALF` — β = δ, the angle between H and N (Blinn,
+Ward, Cook–Torrance), where dω_V = 4 (V·H) dω_H; :data:`SCATTERING` — the horizontal scattering
+vector r = |L_xy + V_xy| (Kirchhoff lobes, He–Torrance), integrated by
+:mod:`brdfs.numerics.integrate.scattering`.  A model without a lobe (the patch models of chapter 4,
+whose albedo is their own) declares ``lobe = None``.
 """
 from __future__ import annotations
 
+import enum
 from dataclasses import dataclass
 
 import numpy as np
+
+
+class Frame(enum.Enum):
+    """The pole of a lobe's coordinates: which direction the radial angle β is measured from."""
+
+    #: β = α, the angle between V and the mirror direction R (dω_V = sin α dα dφ).
+    MIRROR = "mirror"
+    #: β = δ, the angle between the half vector H and N (dω_V = 4 (L·H) dω_H).
+    HALF = "half"
+    #: r = |L_xy + V_xy|, the horizontal scattering vector (and N·V).
+    SCATTERING = "scattering"
+
+    def __repr__(self):
+        return f"Frame.{self.name}"
+
+
+MIRROR, HALF, SCATTERING = Frame.MIRROR, Frame.HALF, Frame.SCATTERING
 
 
 @dataclass(frozen=True)
@@ -22,7 +42,7 @@ class PowerCosine:
     """Radial weight cos^n β sin β (eq. 3.19/3.20): t = 1 − cos^(n+1) β."""
 
     n: float
-    frame: str
+    frame: Frame
 
     @property
     def rounding(self):
@@ -56,7 +76,7 @@ class MicrofacetLobe:
     distribution's own radial CDF (:meth:`brdfs.physics.distributions.Beckmann.cdf`)."""
 
     distribution: object
-    frame: str = "half"
+    frame: Frame = HALF
 
     @property
     def rounding(self):
@@ -74,9 +94,6 @@ class MicrofacetLobe:
         return self.distribution.cdf(np.tan(np.clip(beta, 0.0, np.pi / 2)))
 
 
-SCATTERING_FRAME = "scattering"
-
-
 @dataclass(frozen=True)
 class ScatteringLobe:
     """A lobe in r = |L_xy + V_xy| of radial scale ``width``, with a boundary layer of thickness
@@ -84,7 +101,7 @@ class ScatteringLobe:
 
     width: float
     horizon_scale: float
-    frame: str = SCATTERING_FRAME
+    frame: Frame = SCATTERING
 
     def radial_levels(self):
         """width × 2^k below 2 (the largest r), ascending: the scales of a Gaussian mixture in r."""

@@ -11,7 +11,9 @@ Conventions (N = (0, 0, 1)):
 * Projected-disk samplers (chapter 4) draw a point x of the unit disk; V = (x, √(1 − |x|²)) (eq. 4.17),
   and a density q per unit area of the disk is q · cos θ_V per solid angle (cos θ_V dω = dA).
 
-Functions here are vectorised over leading axes and allocate no random numbers of their own.
+Functions here are vectorised over leading axes and allocate no random numbers of their own, but
+for :func:`lens_point_by_rejection` (the thesis's "repeat ... until found"), which draws from the
+generator it is given as many numbers as its tries take.
 """
 from __future__ import annotations
 
@@ -163,3 +165,28 @@ def russian_roulette_point(cx, cy, R, u1, u2):
     in_disk = x * x + y * y < 1.0
     in_circle = np.hypot(x - cx, y - cy) <= R
     return x, y, in_disk & in_circle, np.pi * np.minimum(R, 1.0) ** 2
+
+
+def lens_point_by_rejection(cx, cy, R, rng):
+    """Uniform points in C(V'_P, R) ∩ unit disk as section 4.2.4 draws them for "normal" importance
+    sampling: uniform points of C_min (:func:`russian_roulette_point`) tried until one lies in the
+    other circle too ("repeat ... until found"); one point per entry of ``R`` (n,).
+
+    The same distribution as :func:`uniform_in_lens` (which inverts the area from two numbers); here
+    a sample costs 2 numbers per try, 2 Area(C_min)/Area(lens) in the mean, drawn from ``rng`` (a
+    :class:`numpy.random.Generator`) in rounds over the samples still pending.
+
+    Returns (x, y, the count of uniform numbers drawn).
+    """
+    R = np.asarray(R, float)
+    cx, cy = (np.broadcast_to(np.asarray(c, float), R.shape) for c in (cx, cy))
+    x, y = np.zeros(R.shape), np.zeros(R.shape)
+    pending = np.arange(R.size)
+    numbers = 0
+    while pending.size:                                   # repeat ... until found (section 4.2.4)
+        u = rng.random((pending.size, 2))
+        numbers += 2 * pending.size
+        px, py, accepted, _ = russian_roulette_point(cx[pending], cy[pending], R[pending], u[:, 0], u[:, 1])
+        x[pending[accepted]], y[pending[accepted]] = px[accepted], py[accepted]
+        pending = pending[~accepted]
+    return x, y, numbers

@@ -84,13 +84,78 @@ def describe_error(error: jsonschema.ValidationError) -> str:
     return f"Error validating config file: {_key(path)} = {_short(value)}: {reason}"
 
 
+MODEL_REF = "#/$defs/model_name"
+
+
+def _parameter_schema(classes, key: str) -> dict | None:
+    """The schema of parameter ``key`` from the models that declare it: the union of their choices
+    (:attr:`BRDF.param_choices`) or the hull of their ranges (:attr:`BRDF.param_ranges`); None if
+    none declares it (e.g. a callable)."""
+    choices = [c for cls in classes for c in cls.param_choices.get(key, ())]
+    names = ", ".join(cls.name for cls in classes)
+    if choices:
+        return {"description": f"Parameter {key} of {names} (the models' declared choices).",
+                "enum": list(dict.fromkeys(choices))}
+    ranges = [cls.param_ranges[key] for cls in classes if key in cls.param_ranges]
+    if not ranges:
+        return None
+    node = {"description": f"Parameter {key} of {names} (the models' declared range).", "type": "number"}
+    lo, hi = min(r.lo for r in ranges), max(r.hi for r in ranges)
+    if lo > float("-inf"):
+        node["exclusiveMinimum" if all(r.lo_open for r in ranges if r.lo == lo) else "minimum"] = lo
+    if hi < float("inf"):
+        node["exclusiveMaximum" if all(r.hi_open for r in ranges if r.hi == hi) else "maximum"] = hi
+    return node
+
+
+def _model_entries(node):
+    """Every object schema under ``node`` that names a model (a ``model`` property referring to
+    ``$defs/model_name``): where a model's parameters stand beside its name."""
+    if isinstance(node, dict):
+        props = node.get("properties")
+        if isinstance(props, dict) and props.get("model", {}).get("$ref") == MODEL_REF:
+            yield props
+        for value in node.values():
+            yield from _model_entries(value)
+    elif isinstance(node, list):
+        for value in node:
+            yield from _model_entries(value)
+
+
+def _fill_from_models(schema: dict, models: dict) -> None:
+    """What the schema takes from the model classes, so that a registered model (also one defined in
+    a test) needs no edit of the schema: the enum of model names; beside every ``model`` key, each
+    registered model's parameters the schema does not describe yet (from their declared ranges and
+    choices); and the accuracy map's families (:attr:`BRDF.accuracy_families`)."""
+    schema.setdefault("$defs", {}).setdefault("model_name", {"type": "string"})["enum"] = sorted(models)
+    by_key: dict[str, list] = {}
+    for cls in models.values():
+        for key in cls.param_columns():
+            by_key.setdefault(key, []).append(cls)
+    for props in _model_entries(schema):
+        for key, classes in by_key.items():
+            if key not in props and (node := _parameter_schema(classes, key)) is not None:
+                props[key] = node
+    grids = schema.get("properties", {}).get("accuracy_map", {}).get("properties", {})
+    for grid in ("reduced", "full"):
+        families = grids.get(grid, {}).get("properties", {}).get("families", {}).get("properties")
+        if families is None:
+            continue
+        for cls in models.values():
+            for family, (key, _fixed) in cls.accuracy_families.items():
+                if family not in families:
+                    items = _parameter_schema([cls], key) or {"description": f"Values of {key}.", "type": "number"}
+                    families[family] = {"description": f"Values of {key} of the family {family} ({cls.name}).",
+                                        "type": "array", "minItems": 1, "items": items}
+
+
 def load_schema(schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
-    """The config schema, with the enum of model names filled in from the model classes."""
+    """The config schema, with what it takes from the model classes filled in (:func:`_fill_from_models`)."""
     from brdfs.physics.models import MODELS
 
     with open(schema_path, encoding="utf-8") as stream:
         schema = yaml.safe_load(stream)
-    schema.setdefault("$defs", {}).setdefault("model_name", {"type": "string"})["enum"] = sorted(MODELS)
+    _fill_from_models(schema, MODELS)
     return schema
 
 

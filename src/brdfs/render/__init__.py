@@ -1,7 +1,7 @@
 """Rendering the thesis's images (Figures 2.8, 3.8–3.13, 4.11, 4.16–4.18) with the package's BRDFs.
 
 :mod:`~brdfs.render.shapes` (analytic shapes), :mod:`~brdfs.render.materials`
-(BRDF × spectrum), :mod:`~brdfs.render.sampling` (Monte Carlo proposals),
+(BRDF × spectrum), :mod:`~brdfs.render.sampling` (Monte Carlo proposals: the models' own samplers),
 :mod:`~brdfs.render.tracer` (direct lighting and paths), :mod:`~brdfs.render.spectrum`
 (eight wavelengths -> XYZ -> sRGB) and :mod:`~brdfs.render.scenes` (materials from config).
 

@@ -3,8 +3,11 @@
 A material is a sum of lobes; each lobe is a scalar BRDF of the package (``brdfs.model(name,
 **params)``, evaluated as ``model(L, V)`` on local unit vectors, N = (0, 0, 1)) times a factor
 per colour channel: a constant (diffuse colours, a_s of eq. 3.31) or a Fresnel reflectance
-from a complex index per wavelength (eq. 3.29 with F at Θ_min, eq. 4.54 with F at θ' of eq. 4.53).
-Channels are wavelengths (spectral scenes) or r, g, b (eq. 3.31). Values have shape (…, C).
+from a complex index per wavelength, read at the angle the model declares
+(:meth:`~brdfs.physics.models.base.BRDF.fresnel_cosine`: Θ_min of eq. 3.29 by default, θ' of
+eq. 4.53 for the patch models, eq. 4.54). Each lobe proposes directions with its model's own
+sampler (:mod:`brdfs.render.sampling`). Channels are wavelengths (spectral scenes) or r, g, b
+(eq. 3.31). Values have shape (…, C).
 """
 from __future__ import annotations
 
@@ -12,34 +15,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from brdfs.render.sampling import CosineSampler, proposal_for
 from brdfs.physics.fresnel import unpolarised_reflectance
+from brdfs.physics.models.base import BRDF
+from brdfs.render.sampling import COSINE, Proposal
 
 
 @dataclass(frozen=True)
-class Lambert:
-    """f = ρ/π, ρ per channel (ρ = 1 is the white-furnace material)."""
+class Lambert(BRDF):
+    """f = 1/π (ρ per channel is the lobe's factor; ρ = 1 is the white-furnace material).
 
-    reflectance: np.ndarray
+    A model like the package's: it samples with the cosine strategy every model has, which is
+    exact for it (weight ρ)."""
+
+    reflectance: np.ndarray | None = None
     name = "lambert"
+    lobe = None
 
-    def __call__(self, L, V):
-        lit = (L[..., 2] > 0) & (V[..., 2] > 0)
-        return np.where(lit, 1.0 / np.pi, 0.0)
-
-
-def _cos_theta_min(L, V):
-    """cos Θ_min = max(N·L, N·V) (eq. 3.29)."""
-    return np.clip(np.maximum(L[..., 2], V[..., 2]), 0.0, 1.0)
-
-
-def _cos_theta_prime(L, V):
-    """cos θ' with sin θ' = |L_P − V_P| / 2 (eqs. 4.52/4.53): θ_L at the mirror pair."""
-    half = 0.5 * np.hypot(L[..., 0] - V[..., 0], L[..., 1] - V[..., 1])
-    return np.sqrt(np.clip(1.0 - half * half, 0.0, 1.0))
-
-
-FRESNEL_ANGLES = {"theta_min": _cos_theta_min, "theta_prime": _cos_theta_prime}
+    def _eval(self, L, V, nl, nv):
+        return np.where(nl > 0, 1.0 / np.pi, 0.0)
 
 
 @dataclass(frozen=True)
@@ -47,26 +40,26 @@ class Lobe:
     """One term ``brdf(L, V) · factor`` of a material.
 
     ``factor`` is a constant per channel (C,), or, if ``ior`` (complex n + ik per channel) is
-    given, the unpolarised Fresnel reflectance (eqs. 1.41–1.43) at the angle ``fresnel_angle``
-    times ``scale``.
+    given, the unpolarised Fresnel reflectance (eqs. 1.41–1.43) at the model's Fresnel angle
+    (``brdf.fresnel_cosine``) times ``scale``.
     """
 
     brdf: object
     scale: np.ndarray
     ior: np.ndarray | None = None
-    fresnel_angle: str = "theta_min"
     share: float | None = None
 
     def __call__(self, L, V):
         f = np.asarray(self.brdf(L, V), float)[..., None] * self.scale
         if self.ior is None:
             return f
-        cos_t = FRESNEL_ANGLES[self.fresnel_angle](L, V)[..., None]
+        cos_t = self.brdf.fresnel_cosine(L, V)[..., None]
         return f * unpolarised_reflectance(cos_t, self.ior.real, np.abs(self.ior.imag))
 
     @property
     def proposal(self):
-        return CosineSampler() if isinstance(self.brdf, Lambert) else proposal_for(self.brdf)
+        """The model's own sampler (its default strategy)."""
+        return Proposal.of(self.brdf)
 
     @property
     def weight(self):
@@ -88,8 +81,8 @@ class Material:
         proposals = [lobe.proposal for lobe in self.lobes]
         weights = np.array([lobe.weight for lobe in self.lobes], float)
         weights = weights / weights.sum()
-        if not all(isinstance(p, CosineSampler) for p in proposals):
-            proposals.append(CosineSampler())
+        if not all(p.is_cosine for p in proposals):
+            proposals.append(Proposal(Lambert(), COSINE))
             weights = np.append((1.0 - self.defensive) * weights, self.defensive)
         object.__setattr__(self, "proposals", tuple(proposals))
         object.__setattr__(self, "probabilities", weights)
@@ -97,6 +90,11 @@ class Material:
     @property
     def channels(self):
         return int(np.size(self.lobes[0].scale))
+
+    @property
+    def sample_dimension(self) -> int:
+        """Uniform numbers one sample of :meth:`sample` consumes (besides the pick of the proposal)."""
+        return max(p.dimension for p in self.proposals)
 
     def f(self, L, V):
         """BRDF per channel (…, C)."""
@@ -107,7 +105,8 @@ class Material:
         return sum(p * q.pdf(V, L) for p, q in zip(self.probabilities, self.proposals))
 
     def sample(self, V, u, u_pick):
-        """L drawn from the mixture and the weight f(L, V) cos θ_L / pdf(L) (…, C); 0 below the horizon."""
+        """L drawn from the mixture (``u`` (…, :attr:`sample_dimension`), ``u_pick`` chooses the
+        proposal) and the weight f(L, V) cos θ_L / pdf(L) (…, C); 0 below the horizon."""
         cumulative = np.cumsum(self.probabilities)
         pick = np.minimum(np.searchsorted(cumulative, u_pick, side="right"), len(self.proposals) - 1)
         L = np.zeros(V.shape)
@@ -129,11 +128,11 @@ def lambert(reflectance, label="diffuse") -> Material:
     return Material((Lobe(Lambert(rho), rho),), label=label)
 
 
-def specular(brdf, channels: int, ior=None, scale=1.0, fresnel_angle="theta_min", label="") -> Material:
-    """A specular material ``brdf · scale · F(ior)`` (metals: eq. 3.29 / 4.54)."""
+def specular(brdf, channels: int, ior=None, scale=1.0, label="") -> Material:
+    """A specular material ``brdf · scale · F(ior)`` (metals: eq. 3.29 / 4.54, F at the model's angle)."""
     factor = np.broadcast_to(np.asarray(scale, float), (channels,)).copy()
     ior = None if ior is None else np.asarray(ior, complex)
-    return Material((Lobe(brdf, factor, ior, fresnel_angle),), label=label or getattr(brdf, "name", ""))
+    return Material((Lobe(brdf, factor, ior),), label=label or brdf.name)
 
 
 def plastic(diffuse, a_s, brdf, label="plastic") -> Material:

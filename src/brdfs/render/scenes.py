@@ -3,9 +3,10 @@
 Material entries (one dict per object):
 
 * ``{metal: gold, model: phong_cosmin, n: 20}`` — eq. 3.29: the package's model × Fresnel of the
-  metal's measured complex index at the eight wavelengths, at Θ_min (Phong-type models) or at
-  θ' of eq. 4.53 (patch models, eq. 4.54); ``pumped: 1`` divides the model by its albedo once
-  (eq. 2.20, :class:`brdfs.numerics.pumping.Pumped`);
+  metal's measured complex index at the eight wavelengths, at the angle the model declares
+  (``fresnel_cosine``: Θ_min for the Phong-type models, θ' of eq. 4.53 for the patch models,
+  eq. 4.54); ``pumped: 1`` divides the model by its albedo once (eq. 2.20,
+  :class:`brdfs.physics.models.pumped.Pumped`, its table from :mod:`brdfs.numerics.pumping`);
 * ``{rgb: [r, g, b], a_s: 0.04, n: 169}`` — the plastic of eq. 3.31 (r, g, b channels);
 * ``{diffuse: 0.5}`` — Lambert, flat spectrum;
 * ``{model: generalized_lambertian, d: 0.5}`` — any package model with F = 1 (gray).
@@ -16,13 +17,12 @@ import functools
 
 import numpy as np
 
-import brdfs
 from brdfs.numerics import pumping
-from brdfs.render import materials, spectrum
 from brdfs.physics import optical_constants
+from brdfs.physics.models import model as build_model
+from brdfs.render import materials, spectrum
 
 SPECTRAL = len(spectrum.WAVELENGTHS_NM)
-PATCH_MODELS = ("patch_exponential", "patch_elliptical", "patch_basic")
 #: Accuracy of the albedo table a pumped model divides by (a render needs no more).
 PUMPING_TABLE_RTOL = 1e-6
 
@@ -44,7 +44,7 @@ def pumped(base, levels: int):
 
 def _model(spec: dict):
     params = {k: v for k, v in spec.items() if k not in ("metal", "model", "pumped", "label", "channels")}
-    return pumped(brdfs.model(spec["model"], **params), int(spec.get("pumped", 0)))
+    return pumped(build_model(spec["model"], **params), int(spec.get("pumped", 0)))
 
 
 def make_material(spec: dict, channels: int = SPECTRAL):
@@ -56,14 +56,12 @@ def make_material(spec: dict, channels: int = SPECTRAL):
     if "rgb" in spec:
         if channels != 3:
             raise ValueError(f"plastic {spec!r}: eq. 3.31 is an r, g, b model, the scene has {channels} channels")
-        model = brdfs.model("phong_cosmin", n=spec["n"])
+        model = build_model("phong_cosmin", n=spec["n"])
         return materials.plastic(spec["rgb"], spec["a_s"], model, label=label or "plastic")
     if "metal" in spec:
         if channels != SPECTRAL:
             raise ValueError(f"metal {spec!r}: metals are rendered at the {SPECTRAL} wavelengths")
-        model = _model(spec)
-        angle = "theta_prime" if spec["model"] in PATCH_MODELS else "theta_min"
-        return materials.specular(model, channels, ior=complex_indices(spec["metal"]), fresnel_angle=angle,
+        return materials.specular(_model(spec), channels, ior=complex_indices(spec["metal"]),
                                   label=label or spec["metal"])
     if "model" in spec:
         return materials.specular(_model(spec), channels, label=label or spec["model"])

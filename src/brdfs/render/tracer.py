@@ -7,7 +7,9 @@ The renderer models no more than a scene needs:
   BRDF evaluation at the pixel centre (``spp = 1``) or at jittered positions;
 * **Monte Carlo** (``sky`` given or ``depth > 1``): paths from the eye; at every vertex the point
   lights are added by explicit connection (next-event estimation, exact for point lights), the
-  path continues by importance sampling the material (:mod:`brdfs.render.sampling`),
+  path continues by importance sampling the material with its models' own samplers
+  (:mod:`brdfs.render.sampling`; each bounce draws the numbers the most demanding one needs, plus one
+  to pick the proposal),
   and a path leaving the scene collects the homogeneous daylight S (section 3.6, eq. 3.32).
   Because the sky is only reached by sampling and the point lights only by connection, no
   contribution is counted twice and the estimator is unbiased up to the path-depth truncation.
@@ -83,6 +85,11 @@ class Scene:
     @property
     def channels(self):
         return self.objects[0].material.channels
+
+    @property
+    def sample_dimension(self) -> int:
+        """Uniform numbers a bounce draws per path for the materials' samplers (the most any needs)."""
+        return max(obj.material.sample_dimension for obj in self.objects)
 
     def intersect(self, o, d):
         """Nearest hit: (t, object index; −1 where nothing is hit)."""
@@ -192,8 +199,9 @@ def trace(scene, o, d, rng, depth):
         radiance += np.where(alive[..., None], throughput * _direct(scene, p, idx, N, T, B, Vloc), 0.0)
         if bounce == depth - 1 or scene.sky is None and depth == 1:
             break
-        u = rng.random(o.shape[:-1] + (3,))
-        Lloc, weight = _sample_materials(scene, idx, Vloc, u[..., :2], u[..., 2])
+        k = scene.sample_dimension           # 2 for most materials: u then has 3 numbers, as always
+        u = rng.random(o.shape[:-1] + (k + 1,))
+        Lloc, weight = _sample_materials(scene, idx, Vloc, u[..., :k], u[..., k])
         throughput = throughput * weight
         alive &= np.any(weight > 0, axis=-1)
         o = p + RAY_OFFSET * N

@@ -42,19 +42,21 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.core.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model
 from brdfs.numerics.integrate.hemisphere import level_azimuth, level_cos, radial_breakpoints_many
 from brdfs.numerics.integrate.mean import positive_part_azimuth
 from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
 from brdfs.physics.geometry import cos_incidence, sin_incidence
+from brdfs.physics.lobes import HALF, MIRROR
 
 _EPS = np.finfo(float).eps
 
 
 def supports(model) -> bool:
-    """Whether :func:`albedo_azimuthal` applies to ``model``: it declares ``closed_form_azimuth``."""
-    return getattr(model, "closed_form_azimuth", None) is not None
+    """Whether :func:`albedo_azimuthal` applies to ``model``: it declares ``closed_form_azimuth``
+    (every model answers it; None by default)."""
+    return model.closed_form_azimuth is not None
 
 
 def albedo_azimuthal(model, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
@@ -92,7 +94,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     bad = [m for m in models if not supports(m)]
     if bad:
         raise ValueError(f"albedo_azimuthal needs a model that declares closed_form_azimuth, "
-                         f"got {getattr(bad[0], 'name', bad[0])!r}")
+                         f"got {bad[0].name!r}")
     outside = ~((theta_deg >= 0) & (theta_deg <= 90))
     if outside.any():
         raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
@@ -106,7 +108,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
             rows = index[elem] == k
             e = elem[rows]
             value[rows], rounding[rows] = _radial_integrand(models[k], t[rows], mu[e, None], st[e, None])
-        return value, value, rounding
+        return NodeValues(value, value, rounding)
 
     return integrate(integrand, bp, rtol=rtol, atol=atol)
 
@@ -246,7 +248,7 @@ def _lower_envelope_integral(lines, c_end):
 
 
 KERNELS = {
-    "mirror": {"nv": _mirror_nv, "nv/max": _mirror_nv_over_max},
-    "half": {"nv": _half_nv, "nv/max": _half_nv_over_max, "sqrt(nv/nl)": _half_sqrt,
+    MIRROR: {"nv": _mirror_nv, "nv/max": _mirror_nv_over_max},
+    HALF: {"nv": _half_nv, "nv/max": _half_nv_over_max, "sqrt(nv/nl)": _half_sqrt,
              "G/nl": _half_torrance_sparrow, "1/nl": _half_over_nl},
 }

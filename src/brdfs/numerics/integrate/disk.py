@@ -16,11 +16,16 @@ Breakpoints, all in closed form from the disk geometry (the "no narrow feature c
 * radial: decades r = ρ·10^(−k) down to the scale of the narrowest lobe at this incidence;
   every N·V level the model declares (circles |p|² = 1 − c²; N·V = N·L of max(N·L, N·V));
   the masking and shadowing switches of Torrance–Sparrow's G (eq. 2.10), a quadratic and a cubic
-  in r along the ray; R·V = 0 for the mirror-frame lobes, where (R·V)⁺ is cut; the radii of the
-  patch models and the radial scales of He–Torrance.
+  in r along the ray; R·V = 0 for the mirror-frame lobes, where (R·V)⁺ is cut; the radii
+  r = |L_xy + V_xy| the model declares (the patch models', He–Torrance's radial scales); where the
+  ray crosses a half-plane φ_V = const through N that the model declares (``azimuth_levels``).
 * azimuthal: pieces of equal width, the tangent ray ψ = π/2 and points mu·10^k around it (the
-  ray length ρ(ψ) changes from ~cos²θ to ~2 over |ψ − π/2| ~ cos θ near grazing), and the rays
-  tangent to the kink circles.
+  ray length ρ(ψ) changes from ~cos²θ to ~2 over |ψ − π/2| ~ cos θ near grazing), the rays
+  tangent to the kink circles, and the rays through the points where a declared half-plane
+  φ_V = const meets the rim.
+
+Every kink is declared by the model (:class:`brdfs.physics.models.base.BRDF`); nothing here knows a
+model by its name.
 
 Both directions are integrated by the vectorised adaptive Gauss–Kronrod driver
 (:func:`.gauss_kronrod.integrate`): the inner radial integrals of all rays of all elements at once,
@@ -32,12 +37,12 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.core.gauss_kronrod import Estimate, integrate
+from brdfs.physics.lobes import MIRROR, SCATTERING
+from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model
 
 INNER_SHARE = 0.1             # the inner integrals get this share of the tolerance
 _PIECES = 8                   # equal ψ pieces on [0, π]
-_TWO_PI_MODELS = ("patch_elliptical",)
 _EPS = np.finfo(float).eps
 
 
@@ -64,11 +69,10 @@ def disk_albedo_many(models, theta_deg, rtol=1e-12, atol=1e-16):
     est = _disk(models, theta_deg, rtol, atol, np.abs(rough.value) + rough.error)
     value, error = np.array(est.value), np.array(est.error)
     for i, m in enumerate(models):
-        if hasattr(m, "delta_albedo"):
-            delta = m.delta_albedo(theta_deg[i])
-            value[i] += float(delta.value)
-            error[i] += float(delta.error)
-    return Estimate(value, error)
+        delta = m.delta_albedo(theta_deg[i])          # zero unless the model has a Dirac part
+        value[i] += float(delta.value)
+        error[i] += float(delta.error)
+    return Estimate(value, error, est.evaluations, est.status)
 
 
 ROUGH_RTOL = 1e-5
@@ -78,7 +82,7 @@ def _disk(models, theta_deg, rtol, atol, scale):
     """The disk integral of every element; rays to ``INNER_SHARE`` of the target relative to their own
     value, or (``scale`` given: the element's albedo) at least that share of rtol · scale spread over ψ."""
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    full = np.array([m.name in _TWO_PI_MODELS for m in models])
+    full = np.array([not m.symmetric_about_incidence_plane for m in models])
     bp = _pad([_psi_breakpoints(m, mu[i], st[i], full[i]) for i, m in enumerate(models)])
     index = first_of_model(models)      # the same model object at many angles is evaluated together
     weight_el = np.where(full, 1.0, 2.0)             # [0, π] doubled by symmetry
@@ -95,7 +99,7 @@ def _disk(models, theta_deg, rtol, atol, scale):
         inner = _rays(models, index, e, psi.ravel(), mu[e], st[e], inner_rtol, inner_atol)
         w = weight_el[e]
         value = (w * inner.value).reshape(shape)
-        return value, value, (w * inner.error).reshape(shape)
+        return NodeValues(value, value, (w * inner.error).reshape(shape))
 
     return integrate(outer, bp, rtol=rtol, atol=atol, chunk=16)
 
@@ -130,7 +134,7 @@ def _psi_breakpoints(model, mu, st, full):
         if 0 < radius < st:                     # c outside the circle: tangent rays exist
             a = np.arcsin(radius / st)
             pts.append([a, top - a] if full else [a])
-    if getattr(_lobe(model), "frame", None) == "mirror":
+    if _frame(model) is MIRROR:
         # the cut R·V = 0 of (R·V)⁺ projects to the half ellipse x²/cos²θ + y² = 1, x ≥ 0, which meets
         # the rim at (0, ±1): the rays through those points switch between crossing the cut inside
         # the disk and not (Phong, n = 1, at 86.84°: the ray at 45.04° beside the piece edge at 45°
@@ -143,34 +147,36 @@ def _psi_breakpoints(model, mu, st, full):
         if -1 < x < 1:
             a = np.arccos(x)
             pts.append([a, top - a] if full else [a])
+    for phi in _half_plane_azimuths(model, mu, full):   # the ray from c to where φ_V = φ₀ meets the rim
+        pts.append([np.mod(np.arctan2(np.sin(phi), np.cos(phi) + st), 2 * np.pi)])
     out = np.unique(np.concatenate([np.atleast_1d(np.asarray(p, float)) for p in pts]))
     return out[(out >= 0) & (out <= top)]
 
 
 def _constant_radii(model):
-    """Kinks at a fixed r = |L_xy + V_xy| (patch radii, He–Torrance's radial scales)."""
-    lobe = _lobe(model)
-    radii = list(lobe.radial_levels()) if getattr(lobe, "frame", None) == "scattering" else []
-    one = np.ones(1)
-    if getattr(model, "name", "") != "patch_elliptical":
-        radii += [float(r[0]) for r in _patch_kinks(model, one, 0 * one)]
-    return radii
+    """Kinks at a fixed r = |L_xy + V_xy| the model declares (patch radii, He–Torrance's radial scales)."""
+    return [float(r) for r in model.scattering_radius_levels()]
 
 
-def _lobe(model):
-    """The model's lobe, or None (the patch models declare none)."""
-    try:
-        return model.lobe
-    except NotImplementedError:
-        return None
+def _frame(model):
+    """The frame of the model's lobe, or None for a model without one (``lobe = None``)."""
+    return None if model.lobe is None else model.lobe.frame
+
+
+def _half_plane_azimuths(model, mu, full):
+    """The declared azimuths φ_V of half-planes with a kink, in [0, 2π) (``full``) or folded into [0, π]."""
+    out = []
+    for c in model.azimuth_levels(np.float64(mu)):
+        phi = float(np.mod(float(np.broadcast_to(c, ())), 2 * np.pi))
+        out += [phi] if full else [min(phi, 2 * np.pi - phi)]
+    return out
 
 
 def _level_radii(model, mu):
     """Radii |p| = √(1 − c²) of the model's N·V level circles (and of N·V = N·L)."""
     levels = [float(np.broadcast_to(c, ())) for c in model.nv_levels(np.float64(mu))] + [float(mu)]
-    lobe = _lobe(model)
-    if getattr(lobe, "frame", None) == "scattering":
-        levels += list(lobe.nv_levels())
+    if _frame(model) is SCATTERING:
+        levels += list(model.lobe.nv_levels())
     return [float(np.sqrt(max(1.0 - c * c, 0.0))) for c in levels if 0.0 < c < 1.0]
 
 
@@ -215,7 +221,7 @@ def _rays(models, index, elem, psi, mu, st, rtol, atol):
             jac = r * 4 * p * w2[rows] * w[rows]          # r dr/dx
             high[rows] = np.where(f == 0, 0.0, f * jac)
             rounding[rows] = np.where(np.isfinite(noise), noise * jac, 0.0)
-        return high, high, rounding
+        return NodeValues(high, high, rounding)
 
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=256)
 
@@ -237,24 +243,40 @@ def _radial_kinks(model, mu, st, cos_psi, sin_psi, rho):
     a = st * cos_psi                    # c·u = −a: |p|² = sin²θ − 2 a r + r²
     out = []
     levels = [np.broadcast_to(c, mu.shape) for c in model.nv_levels(mu)] + [mu]
-    lobe = _lobe(model)
-    frame = getattr(lobe, "frame", None)
-    if frame == "scattering":
-        levels += [np.full(mu.shape, c) for c in lobe.nv_levels()]
-        out += [np.full(mu.shape, r) for r in lobe.radial_levels()]
+    frame = _frame(model)
+    if frame is SCATTERING:
+        levels += [np.full(mu.shape, c) for c in model.lobe.nv_levels()]
     for c in levels:                    # |p|² = 1 − c²: r² − 2 a r + sin²θ − 1 + c² = 0
         disc = a * a + (1 - st) * (1 + st) - c * c
         with np.errstate(invalid="ignore"):
             root = np.sqrt(disc)
         out += [a - root, a + root]
-    if frame == "mirror":               # R·V = 0: (a² + μ²) r² − 2 a r + sin²θ − μ² = 0, μ ν = a r − sin²θ ≥ 0
+    if frame is MIRROR:                 # R·V = 0: (a² + μ²) r² − 2 a r + sin²θ − μ² = 0, μ ν = a r − sin²θ ≥ 0
         q2, q1, q0 = a * a + mu * mu, -2 * a, st * st - mu * mu
         with np.errstate(invalid="ignore", divide="ignore"):
             root = np.sqrt(q1 * q1 - 4 * q2 * q0)
             out += [(-q1 - root) / (2 * q2), (-q1 + root) / (2 * q2)]
-    if getattr(model, "G", None) == "torrance_sparrow":
+    if model.torrance_sparrow_switches:
         out += _torrance_sparrow_kinks(mu, a)
-    out += _patch_kinks(model, cos_psi, sin_psi)
+    out += list(model.scattering_radius_kinks(cos_psi, sin_psi))
+    out += _half_plane_kinks(model, mu, st, cos_psi, sin_psi)
+    return out
+
+
+def _half_plane_kinks(model, mu, st, cos_psi, sin_psi):
+    """Radii where the ray c + r u crosses a declared half-plane φ_V = φ₀ through N (the half-line
+    s e, e = (cos φ₀, sin φ₀), s ≥ 0, on the disk): (c + r u) × e = 0 gives r = sin θ sin φ₀ / sin(φ₀ − ψ),
+    kept where r > 0 and s = (c + r u)·e ≥ 0.  For a model symmetric about the plane of incidence the
+    half-plane's mirror image φ_V = −φ₀ is a kink as well."""
+    out = []
+    for c in model.azimuth_levels(mu):
+        phi0 = np.broadcast_to(np.asarray(c, float), mu.shape)
+        for phi in ((phi0, -phi0) if model.symmetric_about_incidence_plane else (phi0,)):
+            ce, se = np.cos(phi), np.sin(phi)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                r = st * se / (se * cos_psi - ce * sin_psi)
+            s = (r * cos_psi - st) * ce + r * sin_psi * se
+            out.append(np.where((r > 0) & (s >= 0), r, np.nan))
     return out
 
 
@@ -300,20 +322,3 @@ def _newton(coef, r, steps=3):
             step = np.where(dp != 0, p / dp, 0.0)
         r = r - np.where(np.isfinite(step), step, 0.0)
     return r
-
-
-def _patch_kinks(model, cos_psi, sin_psi):
-    """Radii r = |L_xy + V_xy| of the patch models' jumps and kinks (chapter 4)."""
-    name = getattr(model, "name", "")
-    if name == "patch_basic":
-        return [np.full(cos_psi.shape, model.R)]
-    if name == "generalized_lambertian":
-        return [np.full(cos_psi.shape, model.m_clip)]
-    if name == "patch_mixture":
-        return [np.ones(cos_psi.shape)]
-    if name == "patch_elliptical":          # |(ratio z·u_e, z·v_e)| = b along z = r u
-        phi = np.radians(model.u_angle_deg)
-        along_u = cos_psi * np.cos(phi) + sin_psi * np.sin(phi)
-        along_v = -cos_psi * np.sin(phi) + sin_psi * np.cos(phi)
-        return [model.b / np.hypot(model.ratio * along_u, along_v)]
-    return []

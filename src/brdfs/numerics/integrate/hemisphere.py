@@ -24,7 +24,8 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.core.gauss_kronrod import GAUSS_WEIGHTS, KRONROD_WEIGHTS, NODES, integrate
+from brdfs.physics.lobes import HALF, MIRROR
+from brdfs.core.gauss_kronrod import GAUSS_WEIGHTS, KRONROD_WEIGHTS, NODES, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
 _U = 0.5 * (NODES + 1.0)            # Kronrod nodes on [0, 1]
@@ -63,7 +64,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
             e = elem[rows]
             high[rows], low[rows], noise = _azimuthal(models[k], t[rows], mu[e, None], st[e, None])
             rounding[rows] = models[k].lobe.rounding * _EPS * np.abs(high[rows]) + noise
-        return high, low, rounding
+        return NodeValues(high, low, rounding)
 
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=192)
 
@@ -89,7 +90,7 @@ def _radial_breakpoints(model, mu, st, theta_deg):
     """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows."""
     lobe = model.lobe
     theta = np.radians(theta_deg)[:, None]
-    scale = 0.5 if lobe.frame == "half" else 1.0
+    scale = 0.5 if lobe.frame is HALF else 1.0
     beta_max = scale * (np.pi / 2 + theta)
     levels = [np.zeros_like(mu)] + [np.broadcast_to(np.asarray(c, float), mu.shape)
                                      for c in model.nv_levels(np.asarray(mu, float))]
@@ -107,9 +108,10 @@ def _radial_breakpoints(model, mu, st, theta_deg):
     t_pts = np.concatenate([np.zeros_like(t_max), lobe.t_of(cand), np.broadcast_to(1.0 - TAIL, (mu.size, TAIL.size)),
                             head, end], axis=1)
     lh = _lh_radial_breakpoints(model, mu, st, levels, t_max[:, 0])
+    az = _azimuth_radial_breakpoints(model, mu, st, theta, beta_max)
     out = []
     for i in range(mu.size):
-        row = np.concatenate([t_pts[i], lh[i]])
+        row = np.concatenate([t_pts[i], lh[i], az[i]])
         out.append(np.unique(row[(row >= 0) & (row <= t_max[i, 0])]))
     return out
 
@@ -146,7 +148,7 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     log(1 − t), then bisection to rounding, all angles at once."""
     lobe = model.lobe
     none = [np.empty(0)] * mu.size
-    if lobe.frame != "half" or len(model.lh_levels(mu, np.ones_like(mu))) == 0:
+    if lobe.frame is not HALF or len(model.lh_levels(mu, np.ones_like(mu))) == 0:
         return none
     # uniform in t (the lobe's core) and geometric in 1 − t (its tail, where the switches sit)
     unit = np.concatenate([np.linspace(0.0, 1.0, _SCAN), 1.0 - np.geomspace(1e-16, 1.0, _SCAN)])
@@ -208,7 +210,7 @@ def _azimuthal(model, t, mu, st):
     with np.errstate(divide="ignore", invalid="ignore"):
         cb, sb = lobe.angle(np.minimum(t, 0.5 + 0.5 * np.nextafter(1.0, 0)))
         jac = lobe.solid_angle_per_t(t, cb, sb)
-    if lobe.frame == "mirror":
+    if lobe.frame is MIRROR:
         A_nv, B_nv = cb * mu, sb * st
         phis = []
     else:
@@ -221,13 +223,21 @@ def _azimuthal(model, t, mu, st):
         # A cone-shaped kink at V = N (φ = 0 on the circle through it): graded cuts resolve the layer
         # of width ~ the circle's distance from N, which a fixed rule on [0, φ₁] cannot.
         phis = phis + [phi_h * k for k in KINK_GRADING]
-        if lobe.frame == "half":
+        if lobe.frame is HALF:
             # and cuts at multiples of the layer's own width: the circle of radius δ passes the cone
             # point (δ = θ/2, φ = 0) at φ-distance |δ − θ/2| / sin δ, narrower than the finest fixed
             # cut for radial nodes next to θ/2 (m = 0.5, 38°–46°: stalled at 1.2–2.1 × 1e-10)
             with np.errstate(divide="ignore", invalid="ignore"):
                 width = np.abs(np.arctan2(sb, cb) - 0.5 * np.arctan2(st, mu)) / sb
             phis = phis + [np.minimum(width * k, phi_h) for k in KINK_LAYER]
+    if len(model.azimuth_levels(mu)):
+        # the half-planes' roots, and around their common edge N (φ = 0 on the circle through it),
+        # where φ_V turns through π within φ-distance |β − β_N| / sin β, cuts at multiples of that width
+        phis = phis + _azimuth_cuts(model, cb, sb, mu, st)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            beta_n = np.arctan2(st, mu) * (0.5 if lobe.frame is HALF else 1.0)
+            width = np.abs(np.arctan2(sb, cb) - beta_n) / sb
+        phis = phis + [np.minimum(width * k, phi_h) for k in KINK_LAYER] + [phi_h * k for k in KINK_GRADING]
     cuts = np.sort(np.stack([np.zeros_like(phi_h)] + [np.minimum(p, phi_h) for p in phis] + [phi_h], -1), -1)
     cuts = _split_pieces(cuts, SUBPIECES_SQRT if model.sqrt_at_horizon else SUBPIECES)
     lo, hi = cuts[..., :-1, None], cuts[..., 1:, None]                      # (m, 21, P, 1)
@@ -276,7 +286,7 @@ def _directions(frame, cb, sb, mu, st, phi):
     cb, sb, mu, st = (x[..., None, None] for x in (cb, sb, mu, st))
     sin_cos, sin_sin = sb * np.cos(phi), sb * np.sin(phi)
     V = np.empty(phi.shape + (3,))
-    if frame == "mirror":
+    if frame is MIRROR:
         # V = cos α R + sin α (cos φ i + sin φ j), R = (−sin θ, 0, cos θ), i = (cos θ, 0, sin θ)
         V[..., 0] = sin_cos * mu - cb * st
         V[..., 1] = sin_sin
@@ -288,3 +298,80 @@ def _directions(frame, cb, sb, mu, st, phi):
     V[..., 1] = 2 * lh * sin_sin
     V[..., 2] = 2 * lh * cb - mu
     return V, 4 * lh
+
+
+# --- kinks on half-planes through N (``azimuth_levels``) ---------------------------------------
+
+#: φ-scan of :func:`_azimuth_cuts`: sign changes of the half-plane's equation on this many points
+#: of [0, π], then bisection to rounding.
+_AZIMUTH_SCAN = 128
+
+
+def _half_plane_azimuths(model, mu):
+    """The declared azimuths φ_V of the model's kinks, folded into [0, π] (the integrators take the
+    half V_y ≥ 0 of a model symmetric about the plane of incidence), per angle: a list of arrays."""
+    out = []
+    for c in model.azimuth_levels(mu):
+        phi = np.mod(np.broadcast_to(np.asarray(c, float), mu.shape), 2 * np.pi)
+        out.append(np.minimum(phi, 2 * np.pi - phi))
+    return out
+
+
+def _azimuth_radial_breakpoints(model, mu, st, theta, beta_max):
+    """Radii t where a half-plane φ_V = φ₀ through N starts or stops cutting the circle of radius β:
+    the circle through N (its edge: β = θ mirror frame, δ = θ/2 half frame), the circle through the
+    point e = (cos φ₀, sin φ₀, 0) where the half-plane meets the horizon, and (mirror frame) the circle
+    tangent to the plane of N and e, β = arcsin(sin θ |sin φ₀|).  A list of arrays, one per angle;
+    empty for a model that declares no ``azimuth_levels``."""
+    levels = _half_plane_azimuths(model, mu)
+    if not levels:
+        return [np.empty(0)] * mu.size
+    lobe = model.lobe
+    theta = theta[:, 0]
+    cand = []
+    for phi0 in levels:
+        if lobe.frame is MIRROR:
+            # R = (−sin θ, 0, cos θ): R·e = −sin θ cos φ₀
+            cand += [theta, np.arccos(np.clip(-st * np.cos(phi0), -1, 1)),
+                     np.arcsin(np.clip(st * np.abs(np.sin(phi0)), 0, 1))]
+        else:
+            # H ∝ L + e: cos δ = cos θ / |L + e|, |L + e|² = 2 + 2 sin θ cos φ₀
+            cand += [0.5 * theta, np.arccos(np.clip(mu / np.sqrt(np.maximum(2 + 2 * st * np.cos(phi0), 1e-300)), -1, 1))]
+    cand = np.stack(cand, 1)
+    cand = np.where((cand > 0) & (cand < beta_max), cand, beta_max)
+    t = lobe.t_of(cand)
+    return [row for row in t]
+
+
+def _azimuth_cuts(model, cb, sb, mu, st):
+    """φ in [0, π] on the circles of radius β (cos ``cb``, sin ``sb``, shape (m, 21)) where V crosses a
+    declared half-plane φ_V = φ₀ (``model.azimuth_levels``): the roots of V_y cos φ₀ − V_x sin φ₀ = 0
+    with V·(cos φ₀, sin φ₀, 0) ≥ 0, found by a scan and bisection (at most four per half-plane in the
+    half frame, two in the mirror frame).  A list of arrays of shape (m, 21); π where there is none."""
+    frame = model.lobe.frame
+    grid = np.linspace(0.0, np.pi, _AZIMUTH_SCAN + 1)
+    mu_b, st_b = np.broadcast_to(mu, cb.shape), np.broadcast_to(st, cb.shape)
+    out = []
+    for phi0 in _half_plane_azimuths(model, mu[..., 0]):
+        c0, s0 = np.cos(phi0)[:, None, None], np.sin(phi0)[:, None, None]
+
+        def gap(phi):
+            V, _ = _directions(frame, cb, sb, mu_b, st_b, phi[..., None, :])
+            V = V[..., 0, :, :]
+            return V[..., 1] * c0 - V[..., 0] * s0, V[..., 0] * c0 + V[..., 1] * s0
+
+        g, along = gap(np.broadcast_to(grid, cb.shape + grid.shape))
+        below = g < 0                     # a root on a scan point is bracketed once, from its left
+        change = (below[..., :-1] != below[..., 1:]) & (along[..., :-1] + along[..., 1:] > 0)
+        for k in range(min(4, int(change.sum(-1).max(initial=0)))):
+            first = np.argmax(change, -1)
+            has = np.take_along_axis(change, first[..., None], -1)[..., 0]
+            a, b = grid[first], grid[first + 1]
+            below_a = np.take_along_axis(below, first[..., None], -1)[..., 0]
+            for _ in range(52):
+                mid = 0.5 * (a + b)
+                same = (gap(mid[..., None])[0][..., 0] < 0) == below_a
+                a, b = np.where(same, mid, a), np.where(same, b, mid)
+            out.append(np.where(has, 0.5 * (a + b), np.pi))
+            np.put_along_axis(change, first[..., None], False, -1)
+    return out

@@ -23,16 +23,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.core.gauss_kronrod import integrate
+from brdfs.core.gauss_kronrod import NodeValues, integrate
+from brdfs.physics.lobes import MIRROR
 
 
 def mean_albedo_lobe(n, C, frame, cosmin, rtol=1e-10, atol=1e-14):
-    """A for w = C cos^n β in ``frame`` ("mirror" or "half"), g = 1/max(N·L, N·V) if ``cosmin``.
+    """A for w = C cos^n β in ``frame`` (:data:`~brdfs.physics.lobes.MIRROR` or ``HALF``), g = 1/max(N·L, N·V) if ``cosmin``.
 
     ``n`` and ``C`` are arrays (one integral per entry); returns an :class:`Estimate`.
     """
     n, C = (np.atleast_1d(np.asarray(x, float)) for x in (n, C))
-    inner = _mirror_inner if frame == "mirror" else _half_inner
+    inner = _mirror_inner if frame is MIRROR else _half_inner
 
     def outer(t, elem):
         y = np.log1p(-t) / (n[elem, None] + 1)          # log cos β, as in lobes.PowerCosine
@@ -40,7 +41,7 @@ def mean_albedo_lobe(n, C, frame, cosmin, rtol=1e-10, atol=1e-14):
         est = _inner_integrals(inner, beta.ravel(), cosmin, rtol / 10, atol)
         weight = (2 * C / (n + 1))[elem, None]
         value = weight * est.value.reshape(t.shape)
-        return value, value, weight * est.error.reshape(t.shape)
+        return NodeValues(value, value, weight * est.error.reshape(t.shape))
 
     bp = np.tile([0.0, 1.0], (n.size, 1))
     return integrate(outer, bp, rtol=rtol, atol=atol)

@@ -21,10 +21,8 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.physics.lobes import SCATTERING_FRAME as FRAME
-
 from brdfs.numerics.integrate.grouping import first_of_model
-from brdfs.core.gauss_kronrod import integrate
+from brdfs.core.gauss_kronrod import NodeValues, integrate
 
 INNER_RTOL = 0.25          # inner integrals to a quarter of the target, so that the outer can meet it
 
@@ -52,7 +50,7 @@ def albedo_scattering(models, theta_deg, rtol=1e-10, atol=1e-14):
             e = elem[rows]
             high[rows], low[rows], extra[rows] = _azimuthal(models[k], theta_v[rows], mu[e, None], st[e, None],
                                                              INNER_RTOL * rtol, atol)
-        return high, low, extra
+        return NodeValues(high, low, extra)
 
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=64)
 

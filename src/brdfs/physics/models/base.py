@@ -7,17 +7,30 @@ implements ``_eval`` and ``lobe`` and overrides whichever other verbs it knows m
 Shape of the integrand (read by the integration engine, :mod:`brdfs.numerics.integrate`):
 
 * ``lobe``: the change of variables that follows the lobe (:mod:`brdfs.physics.lobes`):
-  which frame (around the mirror direction R, around N for the half vector H, or the scattering
-  vector) and which radial distribution (cosine power, a microfacet distribution).
+  which :class:`~brdfs.physics.lobes.Frame` (around the mirror direction R, around N for the half
+  vector H, or the scattering vector) and which radial distribution (cosine power, a microfacet
+  distribution); ``None`` for a model without one (the patch models, whose albedo is their own).
 * ``nv_levels(nl)``: values of N·V where the integrand has a kink (e.g. N·V = N·L for the
   max(N·L, N·V) of the new model).  The horizon N·V = 0 is always added by the engine.
 * ``lh_levels(nl, cos_delta)``: kinks given as levels of L·H (half-vector frame only).
+* ``azimuth_levels(nl)``: azimuths φ_V of V about N (L in the plane φ = 0) where the integrand
+  has a kink: half-planes through N (none by default).
+* ``scattering_radius_levels()`` and ``scattering_radius_kinks(cos_psi, sin_psi)``: kinks at radii
+  r = |L_xy + V_xy| of the horizontal scattering vector — the same radius for every direction
+  (the patch radii, He–Torrance's scales), or along the direction (cos ψ, sin ψ) of L_xy + V_xy
+  (an elliptical patch).
+* ``torrance_sparrow_switches``: the integrand carries the min of eq. 2.10, whose masking and
+  shadowing switches are kinks; ``symmetric_about_incidence_plane``: f(L, V) is even in V_y.
 * ``albedo_estimate(theta_deg, rtol, atol)``: the model's own route to its albedo where it has
   one (the patch models integrate lens areas, ch. 4), which the albedo engine takes instead.
 * ``delta_albedo(theta_deg)``: the albedo of a Dirac part of the BRDF (zero by default), which
   the albedo adds to the integral of the density (He–Torrance's specular term).
 
 What is known in closed form (``None`` where nothing is):
+
+* ``exact_mean_albedo()``: the mean albedo A (eq. 1.20 / 3.37).
+* ``truncation_error(L, V)``: a bound of the error of an evaluation of f beyond its rounding
+  (a series' truncation); zero by default.
 
 * ``grazing_law()``: the law of a(θ) as cos θ → 0 (:class:`GrazingLaw`).
 * ``limit_cos_power``: k with lim_{n→∞} a(θ) = cos^k θ for θ < 90° (cosine-lobe models).
@@ -35,11 +48,13 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import ClassVar, NamedTuple
 
 import numpy as np
 
 from brdfs.core.estimate import Estimate
+from brdfs.physics.lobes import Frame
+from brdfs.physics import fresnel
 
 
 @dataclass(frozen=True)
@@ -98,7 +113,13 @@ class BRDF:
     kink_at_normal: ClassVar[bool] = False
     #: (frame, kernel) of a model whose azimuthal integral is known in closed form
     #: (:mod:`brdfs.numerics.integrate.azimuthal`, with :meth:`azimuth_weight`), None otherwise.
-    closed_form_azimuth: ClassVar[tuple[str, str] | None] = None
+    closed_form_azimuth: ClassVar[tuple[Frame, str] | None] = None
+    #: f(L, V) = f(L, V') with V' = V mirrored in the plane of incidence (V_y → −V_y): the integrators
+    #: integrate one half of the hemisphere and double it.  False for an anisotropic model.
+    symmetric_about_incidence_plane: ClassVar[bool] = True
+    #: The integrand carries the min of eq. 2.10 (Torrance–Sparrow's G): its masking and shadowing
+    #: switches are kinks (the disk reference finds them along its rays in closed form).
+    torrance_sparrow_switches: ClassVar[bool] = False
 
     def __call__(self, L, V):
         L = np.asarray(L, float)
@@ -117,13 +138,31 @@ class BRDF:
     # --- the integrand's shape ---------------------------------------------------------------
     @property
     def lobe(self):
-        raise NotImplementedError
+        """The lobe's coordinates (:mod:`brdfs.physics.lobes`), or None: every model declares it."""
+        raise NotImplementedError(f"{self.name} declares no lobe (None for a model without one)")
 
     def nv_levels(self, nl):
         return ()
 
     def lh_levels(self, nl, cos_delta):
         return ()
+
+    def azimuth_levels(self, nl):
+        """Azimuths φ_V ∈ [0, 2π) of V about N, with L in the plane φ = 0 (as
+        :func:`~brdfs.physics.geometry.light_direction`), where the integrand has a kink: the
+        half-planes φ_V = const through N.  None by default."""
+        return ()
+
+    def scattering_radius_levels(self):
+        """Radii r = |L_xy + V_xy| where the integrand has a kink or a jump, the same in every
+        direction of L_xy + V_xy (chapter 4's patch radii).  None by default."""
+        return ()
+
+    def scattering_radius_kinks(self, cos_psi, sin_psi):
+        """Radii r = |L_xy + V_xy| of the kinks along the direction (cos ψ, sin ψ) of L_xy + V_xy,
+        one array (of the shape of ``cos_psi``) per kink: by default the constant radii of
+        :meth:`scattering_radius_levels`."""
+        return [np.full(np.shape(cos_psi), r) for r in self.scattering_radius_levels()]
 
     def azimuth_weight(self, cos_beta):
         """The radial weight w(β) per unit of the lobe variable t that multiplies the closed-form
@@ -157,12 +196,53 @@ class BRDF:
         """a(θ) in closed form where one exists, NaN elsewhere."""
         return np.full(np.shape(theta_deg), np.nan)
 
+    def exact_mean_albedo(self) -> Estimate | None:
+        """The mean albedo A = (1/π) ∫ a(L) cos θ_L dω_L (eq. 1.20 / 3.37) in closed form; None by default."""
+        return None
+
+    def mirror_albedo(self, theta_deg) -> Estimate | None:
+        """The albedo of the surface's mirror (Dirac) reflection, whichever part of the BRDF this model
+        evaluates (He–Torrance's ρ_s also for its term 'dd'); None for a model that describes none."""
+        return None
+
+    def truncation_error(self, L, V):
+        """Bound of the error of ``f(L, V)`` beyond rounding (a truncated series): zero by default."""
+        return np.zeros(np.broadcast_shapes(np.shape(L), np.shape(V))[:-1])
+
     # --- sampling ------------------------------------------------------------------------------
     #: Sampling strategies of :meth:`sample`/:meth:`pdf`; the first is the model's default and
     #: ``"cosine"`` (the baseline every model accepts) is always among them.
     strategies: ClassVar[tuple[str, ...]] = ("cosine",)
     #: Uniform numbers per sample a strategy consumes (2 unless listed).
     sample_dimensions: ClassVar[dict[str, int]] = {}
+    #: The chart on which the sampler's density is smooth, for its chi-square test
+    #: (:mod:`brdfs.numerics.chi2`): ``"sphere"`` (directions, polar about the lobe) or ``"disk"``
+    #: (points of the base plane about V'_P = −L_P: the projected-disk samplers of chapter 4).
+    sampling_domain: ClassVar[str] = "sphere"
+    #: Parameters of the sampler's chi-square tests (artifact ``sampling_chi2``), narrowest lobe
+    #: first (the reduced run tests the first only); () takes the model's examples.
+    chi2_cases: ClassVar[tuple[dict, ...]] = ()
+
+    @classmethod
+    def chi2_parameters(cls) -> tuple[dict, ...]:
+        """:attr:`chi2_cases`, or where a model declares none its :attr:`examples` (narrowest, typical)."""
+        return cls.chi2_cases or tuple(cls.examples[k] for k in ("narrowest", "typical") if k in cls.examples)
+
+    @classmethod
+    def chi2_example(cls, params: dict) -> "BRDF":
+        """The model of one entry of :meth:`chi2_parameters`: ``cls(**params)`` by default."""
+        return cls(**params)
+
+    def disk_boundaries(self) -> tuple[tuple[float, ...], tuple[float, float, float] | None]:
+        """Where the sampler's density jumps on the base plane (``sampling_domain = "disk"``): radii
+        of circles about V'_P, and an ellipse (b, ratio, major-axis angle [rad]) centred at V'_P or
+        None.  The chi-square test's integrals split there.  None by default."""
+        return (), None
+
+    def fresnel_cosine(self, L, V):
+        """cos of the angle at which a metal of this model reads its Fresnel factor:
+        Θ_min, cos Θ_min = max(N·L, N·V) (eq. 3.29), by default (:mod:`brdfs.physics.fresnel`)."""
+        return fresnel.cos_theta_min(L, V)
 
     def _strategy(self, strategy):
         strategy = self.strategies[0] if strategy is None else strategy
@@ -196,6 +276,17 @@ class BRDF:
         model's (:attr:`strategies`, the first the default).
         """
         strategy = self._strategy(strategy)
+        V = self.sample_direction(L, u, strategy)
+        L = np.broadcast_to(np.asarray(L, float), V.shape)
+        pdf = self.pdf(L, V, strategy)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            weight = np.where(pdf > 0, self(L, V) * V[..., 2] / pdf, 0.0)
+        return V, weight, pdf
+
+    def sample_direction(self, L, u, strategy=None):
+        """The directions V of :meth:`sample` alone (no weight, no pdf): what a mixture of proposals
+        draws (the renderer, :mod:`brdfs.render.materials`), which weighs by the mixture's pdf."""
+        strategy = self._strategy(strategy)
         u = np.asarray(u, float)
         if u.shape[-1] < self.sample_dimension(strategy):
             raise ValueError(f"{self.name}: strategy {strategy!r} needs u of shape (..., "
@@ -204,14 +295,9 @@ class BRDF:
         if strategy == "cosine":
             r, phi = np.sqrt(u[..., 0]), 2.0 * np.pi * u[..., 1]
             nv = np.sqrt(np.maximum(1.0 - u[..., 0], 0.0))
-            V = np.stack([r * np.cos(phi), r * np.sin(phi), nv], -1)
-        else:
-            with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
-                V = self._sample_direction(L, u, strategy)
-        pdf = self.pdf(L, V, strategy)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            weight = np.where(pdf > 0, self(L, V) * V[..., 2] / pdf, 0.0)
-        return V, weight, pdf
+            return np.stack([r * np.cos(phi), r * np.sin(phi), nv], -1)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+            return self._sample_direction(L, u, strategy)
 
     def _sample_direction(self, L, u, strategy):
         raise NotImplementedError(f"{self.name}: no sampler {strategy!r}")
@@ -222,13 +308,102 @@ class BRDF:
     # --- parameters ---------------------------------------------------------------------------
     @property
     def params(self) -> dict:
-        """Parameters as the published-values file names them (n, m, C, ...)."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        """Parameters as the published-values file names them (n, m, C, ...); tables the model was
+        built with (:func:`table_field`) are not parameters."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if not _is_table(f)}
 
     @classmethod
     def param_columns(cls) -> tuple[str, ...]:
         """The names of the model's parameters (its CSV columns)."""
-        return tuple(f.name for f in dataclasses.fields(cls))
+        return tuple(f.name for f in dataclasses.fields(cls) if not _is_table(f))
+
+    # --- what the model says about itself -----------------------------------------------------
+    #: Ranges of the numeric parameters the model is valid for (those ``__post_init__`` accepts):
+    #: name -> :class:`Interval`; an infinite bound means unbounded.  Sweeps, property tests and the
+    #: config schema take the ranges from here.
+    param_ranges: ClassVar[dict[str, "Interval"]] = {}
+    #: The choices of the model's categorical parameters (e.g. Cook–Torrance's G), name -> values.
+    param_choices: ClassVar[dict[str, tuple]] = {}
+    #: Example parameters for sweeps and tests: ``"typical"`` (the default of :meth:`example`) and
+    #: ``"narrowest"`` (the sharpest lobe the thesis or the package treats), each inside
+    #: :attr:`param_ranges`.
+    examples: ClassVar[dict[str, dict]] = {}
+    #: Whether the model claims a(θ) = ∫ f cos θ_V dω_V ≤ 1 at every θ for every parameter of its
+    #: ranges with its default constant.  No claim (False) unless a model makes it; a model that
+    #: declares False says why in a comment.
+    conserves_energy: ClassVar[bool] = False
+    #: The chapter of the thesis that defines or treats the model; None for a model beyond it.
+    chapter: ClassVar[int | None] = None
+    #: The pumped chains of this model integrate by the polar-azimuth reduction of
+    #: :func:`brdfs.numerics.pumping.pumped_albedo` (a cosine-power lobe around R or H without kinks
+    #: of its own); any other model goes through the hemisphere engine.
+    pumping_reducible: ClassVar[bool] = False
+    #: Families of the accuracy map (``extra_accuracy_map``) this model stands for: family name ->
+    #: (the swept parameter, fixed parameters); ``config.yaml`` gives each family's values.  A fixed
+    #: parameter ``pumping`` (``"g1"``/``"g2"``) maps the model pumped once with that correction.
+    accuracy_families: ClassVar[dict[str, tuple[str, dict]]] = {}
+
+    @classmethod
+    def example(cls, kind: str = "typical") -> "BRDF":
+        """The model at its example parameters :attr:`examples` [``kind``] (``"typical"`` or
+        ``"narrowest"``).
+
+        >>> from brdfs.physics.models import MODELS
+        >>> MODELS["phong"].example().n
+        20.0
+        """
+        try:
+            params = cls.examples[kind]
+        except KeyError:
+            raise ValueError(f"{cls.name}: no example {kind!r}; declared: {sorted(cls.examples)}") from None
+        return cls(**params)
+
+    @classmethod
+    def table_requests(cls, **params) -> dict:
+        """The tables a model with ``params`` needs, built by a factory above the physics layer
+        (:func:`brdfs.numerics.tables.build`): field name -> :class:`brdfs.physics.tables.TableRequest`.
+        None by default: a plain model needs no table."""
+        return {}
+
+
+class Interval(NamedTuple):
+    """A range lo ≤ x ≤ hi of a parameter (``lo_open``: lo < x, ``hi_open``: x < hi); an infinite
+    bound is never reached (parameters are finite).
+
+    >>> Interval(0.0, 2.0, lo_open=True).contains(2.0), positive().contains(0.0)
+    (True, False)
+    """
+
+    lo: float
+    hi: float
+    lo_open: bool = False
+    hi_open: bool = False
+
+    def contains(self, x) -> bool:
+        x = float(x)
+        above = x > self.lo if self.lo_open else x >= self.lo
+        below = x < self.hi if self.hi_open else x <= self.hi
+        return bool(np.isfinite(x) and above and below)
+
+
+def positive(hi: float = np.inf) -> Interval:
+    """0 < x ≤ hi (what :func:`check_positive` accepts, up to ``hi``)."""
+    return Interval(0.0, hi, lo_open=True)
+
+
+def non_negative(hi: float = np.inf) -> Interval:
+    """0 ≤ x ≤ hi (:func:`check_positive` with ``allow_zero``, up to ``hi``)."""
+    return Interval(0.0, hi)
+
+
+def table_field():
+    """A dataclass field for a table the model receives when it is built (not a parameter: not in
+    :attr:`BRDF.params`, not compared; :func:`brdfs.numerics.tables.build` fills it)."""
+    return dataclasses.field(default=None, compare=False, repr=False, metadata={"table": True})
+
+
+def _is_table(f) -> bool:
+    return bool(f.metadata.get("table"))
 
 
 def positive_power(x, n):

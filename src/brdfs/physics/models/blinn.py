@@ -6,8 +6,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from brdfs.physics.geometry import n_dot_h
-from brdfs.physics.lobes import PowerCosine
-from brdfs.physics.models.base import BRDF, check_positive, positive_power
+from brdfs.physics.lobes import HALF, PowerCosine
+from brdfs.physics.models.base import BRDF, check_positive, non_negative, positive, positive_power
 from brdfs.physics import sampling
 
 
@@ -22,13 +22,14 @@ class _BlinnFamily(BRDF):
 
     @property
     def lobe(self):
-        return PowerCosine(self.n, "half")
+        return PowerCosine(self.n, HALF)
 
     # --- sampling: half vectors from the cosine power about N -----------------------------------
     #: ``"half_vector"``: H with density (n + 1)/(2π) (N·H)^n, V = 2 (L·H) H − L, so
     #: pdf(V) = (n + 1)/(2π) (N·H)^n / (4 V·H) (the half-vector Jacobian).  H with L·H ≤ 0 or a V
     #: below the horizon is rejected: the pdf's mass is P(V above the horizon) < 1.
     strategies = ("half_vector", "cosine")
+    chi2_cases = ({"n": 512}, {"n": 20}, {"n": 1})
 
     def _sample_direction(self, L, u, strategy):
         cos_d, sin_d = sampling.power_cosine(u[..., 0], self.n)
@@ -47,7 +48,16 @@ class Blinn(_BlinnFamily):
     """Reciprocal Blinn, f = C (N·H)^n (eq. 1.34 / 2.6 / 3.33)."""
 
     name = "blinn"
-    closed_form_azimuth = ("half", "nv")
+    # --- what the model says about itself
+    chapter = 1                  # eq. 1.34 (Table 1.1), again eqs. 2.6 and 3.33
+    param_ranges = {"n": non_negative(), "C": positive()}
+    examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
+    # conserves_energy = False: the default C = 1 gives a(0) > 1 for small n (C must be scaled to
+    # 1/max a, Table 3.1)
+    conserves_energy = False
+    pumping_reducible = True     # a cosine power of N·H without kinks: numerics.pumping.pumped_albedo
+    accuracy_families = {"blinn": ("n", {})}
+    closed_form_azimuth = (HALF, "nv")
     limit_cos_power = 2          # dω_V = 4 (L·H) dω_H at H = N, C_n scaling the maximum to 1: a → cos²θ
 
     def _eval(self, L, V, nl, nv):
@@ -59,6 +69,12 @@ class BlinnOriginal(_BlinnFamily):
     """Original Blinn, f = C (N·H)^n / cos θ_L (eq. 2.5) — not reciprocal."""
 
     name = "blinn_original"
+    # reciprocal = False: f divides by cos θ_L alone (eq. 2.5)
+    chapter = 2                  # eq. 2.5
+    param_ranges = {"n": non_negative(), "C": positive()}
+    examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
+    # conserves_energy = False: divided by cos θ_L, its albedo diverges at grazing incidence (sec. 2.2.1)
+    conserves_energy = False
     reciprocal = False
 
     def _eval(self, L, V, nl, nv):
@@ -70,7 +86,14 @@ class BlinnCosmin(_BlinnFamily):
     """Corrected Blinn, f = C (N·H)^n / max(N·L, N·V) (eq. 3.34)."""
 
     name = "blinn_cosmin"
-    closed_form_azimuth = ("half", "nv/max")
+    chapter = 3                  # eq. 3.34
+    param_ranges = {"n": non_negative(), "C": positive()}
+    examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
+    # conserves_energy = False: with the default C = 1 the albedo exceeds 1 for small n (Table 3.1's
+    # C_n = 1/max a is below 1 there)
+    conserves_energy = False
+    accuracy_families = {"blinn_cosmin": ("n", {})}
+    closed_form_azimuth = (HALF, "nv/max")
     limit_cos_power = 1          # as Blinn, divided by max(N·L, N·V) = cos θ: a → cos θ
 
     def _eval(self, L, V, nl, nv):

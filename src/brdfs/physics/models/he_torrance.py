@@ -35,6 +35,7 @@ References
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,7 +45,7 @@ from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import ScatteringLobe
-from brdfs.physics.models.base import BRDF, check_positive
+from brdfs.physics.models.base import BRDF, check_positive, non_negative, positive
 from brdfs.physics import sampling
 
 TERMS = ("dd", "specular", "total")
@@ -191,6 +192,17 @@ class HeTorrance(BRDF):
     ior_im: float | None = None
     term: str = "total"
     name = "he_torrance"
+    # --- what the model says about itself
+    chapter = 3                  # Figure 3.3 and the albedo beside the new model (sec. 3.7)
+    param_ranges = {"sigma0_um": positive(), "tau_um": positive(), "lambda_um": positive(),
+                    "ior_re": positive(), "ior_im": non_negative()}
+    param_choices = {"term": TERMS}
+    #: the thesis's surface (σ0 = 0.1 µm, τ = 1.7 µm); narrowest: τ = 4 µm (lobe width λ/(πτ))
+    examples = {"typical": {"sigma0_um": 0.1, "tau_um": 1.7}, "narrowest": {"sigma0_um": 0.1, "tau_um": 4.0}}
+    # conserves_energy = False: a physical-optics approximation, not constructed to keep a(θ) ≤ 1; with
+    # F = 1 the thesis's surface (σ0 = 0.1 µm, τ = 1.7 µm) has a(80°) ≈ 1.04 (extra_he_torrance_albedo)
+    conserves_energy = False
+    accuracy_families = {"he_torrance_dd": ("tau_um", {"sigma0_um": 0.1, "term": "dd", "lambda_um": 0.55})}
 
     def __post_init__(self):
         for key in ("sigma0_um", "tau_um", "lambda_um"):
@@ -247,6 +259,7 @@ class HeTorrance(BRDF):
     #: the specular albedo ρ_s = :meth:`delta_albedo` that a caller adds as a discrete term (as
     #: :func:`brdfs.numerics.albedo.albedo` does).
     strategies = ("dd_mixture", "cosine")
+    chi2_cases = ({"sigma0_um": 0.1, "tau_um": 1.7}, {"sigma0_um": 0.18, "tau_um": 3.0})
     sample_dimensions = {"dd_mixture": 3}
 
     def _planar_width(self, L):
@@ -272,3 +285,12 @@ class HeTorrance(BRDF):
     def lobe(self):
         """A function of r = |L_xy + V_xy| of width λ/(πτ) (h = 1 for m = 1), with a horizon layer of N·V ~ 2σ0/τ."""
         return ScatteringLobe(self.lambda_um / (np.pi * self.tau_um), 2.0 * self.sigma0_um / self.tau_um)
+
+    def scattering_radius_levels(self):
+        """The radial scales of D, width × 2^k (:meth:`ScatteringLobe.radial_levels`): a sum of
+        Gaussians in r = |L_xy + V_xy| (eq. 78), each changing fastest near its own scale."""
+        return tuple(self.lobe.radial_levels())
+
+    def mirror_albedo(self, theta_deg):
+        """ρ_s(θ_i) of the surface's specular delta (eqs. 73–74), whichever ``term`` this model evaluates."""
+        return dataclasses.replace(self, term="specular").delta_albedo(theta_deg)

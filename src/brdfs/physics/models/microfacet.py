@@ -1,15 +1,17 @@
 """Beckmann-lobe models: Ward (eqs. 2.8, 3.35), corrected Ward (eq. 3.36), Cook–Torrance (eqs. 2.9, 2.10)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.integrate import quad
 from scipy.special import gamma
 
-from brdfs.core.gauss_kronrod import Estimate, integrate
-from brdfs.physics.lobes import MicrofacetLobe
+from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
+from brdfs.physics.lobes import HALF, MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
-from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact
+from brdfs.physics.fresnel import unpolarised_reflectance
+from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive
 from brdfs.physics import sampling
 
 
@@ -46,6 +48,7 @@ class _BeckmannFamily(BRDF):
     #: ``"beckmann"``: H from :meth:`Beckmann.sample_normal` (density D(H) N·H), V = 2 (L·H) H − L,
     #: pdf(V) = D(H) (N·H) / (4 V·H).  H with L·H ≤ 0 or V below the horizon is rejected (mass < 1).
     strategies = ("beckmann", "cosine")
+    chi2_cases = ({"m": 0.005}, {"m": 0.1}, {"m": 0.5})
 
     def _sample_direction(self, L, u, strategy):
         H = self.distribution.sample_normal(u[..., 0], u[..., 1])
@@ -63,8 +66,15 @@ class Ward(_BeckmannFamily):
     """Isotropic Ward, f = C/(4π m²) · exp(−tan²δ/m²) / √(N·L N·V) (eq. 2.8 / 3.35)."""
 
     name = "ward"
+    # --- what the model says about itself
+    chapter = 2                  # eq. 2.8 (and eq. 3.35)
+    param_ranges = {"m": positive(), "C": positive()}
+    examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}     # m = 0.005 … 0.4: Table 3.2
+    # conserves_energy = False: a(θ) ~ K/√(cos θ) diverges at grazing incidence (sec. 2.2.1, :func:`ward_constant`)
+    conserves_energy = False
+    accuracy_families = {"ward": ("m", {})}
     sqrt_at_horizon = True
-    closed_form_azimuth = ("half", "sqrt(nv/nl)")
+    closed_form_azimuth = (HALF, "sqrt(nv/nl)")
 
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
@@ -80,7 +90,12 @@ class WardCosmin(_BeckmannFamily):
     """Corrected Ward, f = C/(4π m²) · exp(−tan²δ/m²) / max(N·L, N·V) (eq. 3.36)."""
 
     name = "ward_cosmin"
-    closed_form_azimuth = ("half", "nv/max")
+    chapter = 3                  # eq. 3.36
+    param_ranges = {"m": positive(), "C": positive()}
+    examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}     # m = 0.005 … 0.4: Table 3.2
+    conserves_energy = True      # Table 3.2: C_max = 1/max a ≥ 1, so max a ≤ 1 at the default C = 1
+    accuracy_families = {"ward_cosmin": ("m", {})}
+    closed_form_azimuth = (HALF, "nv/max")
 
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
@@ -94,8 +109,23 @@ class WardCosmin(_BeckmannFamily):
         return GrazingLaw(0.0, ward_cosmin_limit(self.m, self.C), "a(90) = U(3/2,1/2,1/m^2)/(pi m^2)")
 
     def exact_albedo(self, theta_deg):
+        """a(90°) (:func:`ward_cosmin_limit`) and a(0) = C × :func:`ward_cosmin_normal_incidence`."""
         theta = np.asarray(theta_deg, float)
-        return np.where(theta == 90.0, ward_cosmin_limit(self.m, self.C).value, np.nan)
+        out = np.where(theta == 90.0, ward_cosmin_limit(self.m, self.C).value, np.nan)
+        if np.any(theta == 0.0):
+            out = np.where(theta == 0.0, self.C * ward_cosmin_normal_incidence(self.m).value, out)
+        return out
+
+
+def ward_cosmin_normal_incidence(m) -> Estimate:
+    """a(0) of eq. 3.36 with C = 1 as a 1-D integral: with L = N, t = tan(θ_V/2) and x = t²/m²,
+    a(0) = ∫₀^(1/m²) e^(−x) (1 − m²x) / (1 + m²x)³ dx = 1 − 4m² + O(m⁴), so C_max → 1 as m → 0.
+    The range is cut at x = 60 (e^(−60) ≈ 1e-26) where 1/m² is larger; ``scipy.integrate.quad`` to
+    1e-13 relative, its own error estimate as the error."""
+    upper = min(1 / m ** 2, 60.0)
+    val, err = quad(lambda x: np.exp(-x) * (1 - m * m * x) / (1 + m * m * x) ** 3, 0, upper,
+                    epsabs=0, epsrel=1e-13, limit=200)
+    return Estimate(val, err)
 
 
 def g_torrance_sparrow(nh, nl, nv, lh):
@@ -123,6 +153,17 @@ class CookTorrance(_BeckmannFamily):
 
     G: str = "torrance_sparrow"
     name = "cook_torrance"
+    # --- what the model says about itself
+    chapter = 2                  # eqs. 2.9, 2.10
+    param_ranges = {"m": positive(), "C": positive()}
+    param_choices = {"G": GEOMETRY_FACTORS}
+    examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}
+    # conserves_energy = False: with G = 1 the albedo diverges like 1/cos θ (sec. 2.2.1,
+    # :meth:`grazing_law`); the thesis prints values above 1 at grazing angles (sec. 3.7.3)
+    conserves_energy = False
+    accuracy_families = {"cook_torrance_ts": ("m", {"G": "torrance_sparrow"}),
+                         "cook_torrance_smith": ("m", {"G": "smith"}),
+                         "cook_torrance_none": ("m", {"G": "none"})}
 
     def __post_init__(self):
         super().__post_init__()
@@ -157,7 +198,7 @@ class CookTorrance(_BeckmannFamily):
     @property
     def closed_form_azimuth(self):
         """G of eq. 2.10 and G = 1 are piecewise linear in L·H and N·V: closed forms; Smith's is not."""
-        return {"torrance_sparrow": ("half", "G/nl"), "none": ("half", "1/nl")}.get(self.G)
+        return {"torrance_sparrow": (HALF, "G/nl"), "none": (HALF, "1/nl")}.get(self.G)
 
     def azimuth_weight(self, cos_beta):
         """C e^(−tan²δ/m²)/(4π m² cos⁴δ) · 4 · sin δ dδ/dt · cos δ = C/(8π) (the kernel keeps L·H/cos δ)."""
@@ -167,6 +208,11 @@ class CookTorrance(_BeckmannFamily):
     def kink_at_normal(self):
         """G* of eq. 1.38 behaves like 1 − c √(1 − N·V): a cone-shaped kink at V = N."""
         return self.G == "smith"
+
+    @property
+    def torrance_sparrow_switches(self):
+        """G of eq. 2.10 is a min of three terms: its switches are kinks of the integrand."""
+        return self.G == "torrance_sparrow"
 
     def nv_levels(self, nl):
         """N·V = N·L: where eq. 2.10's minimum switches between its masking and shadowing terms."""
@@ -181,6 +227,27 @@ class CookTorrance(_BeckmannFamily):
         return (2 * cos_delta * nl, np.where(4 * cos_delta ** 2 > 1, masking, np.inf))
 
 
+@dataclass(frozen=True)
+class CookTorranceFresnel(CookTorrance):
+    """Cook–Torrance of eq. 2.9 times the unpolarised Fresnel reflectance F(L·H) (eqs. 1.41–1.43) of a
+    real or complex index ``ior_re + i ior_im`` (Figure 3.3 reads Cook–Torrance's "n = 5" so).
+
+    Not registered: no table or sweep draws it.  F breaks the closed forms of :class:`CookTorrance`
+    (its azimuthal kernel and grazing law assume F = 1), so they are withdrawn."""
+
+    ior_re: float = field(kw_only=True)
+    ior_im: float = field(kw_only=True, default=0.0)
+    name = "cook_torrance_fresnel"
+    closed_form_azimuth = None
+    grazing_law = BRDF.grazing_law
+    grazing_limit_model = BRDF.grazing_limit_model
+    exact_albedo = BRDF.exact_albedo
+
+    def _eval(self, L, V, nl, nv):
+        cos_lh = np.linalg.norm(L + V, axis=-1) / 2.0
+        return super()._eval(L, V, nl, nv) * unpolarised_reflectance(cos_lh, self.ior_re, self.ior_im)
+
+
 # --- closed forms at grazing incidence (Sec. 2.2.1) ------------------------------------------
 
 #: u = v² beyond which exp(−u²) = exp(−v⁴) < 1e-35: the truncation of the 1-D integrals in v.
@@ -193,7 +260,7 @@ def _v_integral(fn):
     def integrand(v, elem):
         u = v * v
         g = fn(u) * np.exp(-u * u) * 2 * v
-        return g, g, None
+        return NodeValues(g, g, None)
 
     est = integrate(integrand, np.array([[0.0, 0.5, 1.0, 1.5, 2.0, _V_MAX]]), rtol=1e-13, atol=1e-300)
     tail = 1e-35 * abs(float(est.value[0]))  # e^(−81) relative, beyond v = 3

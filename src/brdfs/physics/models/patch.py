@@ -9,14 +9,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
 from brdfs.physics import patch_geometry as patch
 from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
-from brdfs.physics import sampling
-from brdfs.physics.models.base import BRDF, check_positive
+from brdfs.physics import fresnel, sampling
+from brdfs.physics.models.base import BRDF, Interval, check_positive, non_negative, positive
 
 
 def projected_distance(L, V):
@@ -51,7 +52,15 @@ def _russian_roulette_mixture(L, u, R):
     return np.where(accepted[..., None], sampling.disk_to_direction(x, y), sampling.REJECTED)
 
 
-class _MixtureSampling:
+class _OnTheBasePlane:
+    """What every patch model declares for its samplers and metals: its samplers draw points of the
+    base plane (the chi-square test's disk chart), and a metal reads F at θ' (eqs. 4.53, 4.54)."""
+
+    sampling_domain = "disk"
+    fresnel_cosine = staticmethod(fresnel.cos_theta_prime)
+
+
+class _MixtureSampling(_OnTheBasePlane):
     """Sampling of a mixture of basic BRDFs, f = ∫ p(R) f*_R dR + p_Diffuse f*_2 (eq. 4.20).
 
     ``"russian_roulette"`` (sections 4.4 and 5.2.5; u of shape (…, 3)): R = F⁻¹(u₃) (eq. 4.27, the
@@ -63,6 +72,12 @@ class _MixtureSampling:
 
     sample_dimensions = {"russian_roulette": 3}
     strategies = ("russian_roulette", "cosine")
+    #: Uniform numbers :meth:`basic_radius` consumes per sample.
+    basic_radius_dimension = 1
+
+    def basic_radius(self, u):
+        """R of the basic BRDF f*_R a sample draws from (eq. 4.20): F⁻¹(u₀) (eq. 4.27)."""
+        return self.radius_of_cdf(u[..., 0])
 
     def _sample_direction(self, L, u, strategy):
         return _russian_roulette_mixture(L, u, self.radius_of_cdf(u[..., 2]))
@@ -72,16 +87,28 @@ class _MixtureSampling:
 
 
 @dataclass(frozen=True)
-class PatchBasic(BRDF):
+class PatchBasic(_OnTheBasePlane, BRDF):
     """Basic BRDF f*(R) = c(R) where m(L, V) ≤ R, else 0  (eq. 4.2); c(R) = 1/(π min(1, R²)) (eq. 4.7)."""
 
     R: float
     C: float | None = None
     name = "patch_basic"
+    # --- what the model says about itself
+    chapter = 4                  # eqs. 4.2, 4.7
+    param_ranges = {"R": Interval(0.0, 2.0, lo_open=True), "C": positive()}
+    examples = {"typical": {"R": 0.5}, "narrowest": {"R": 0.2}}     # R = 0.2: Figure 4.3
+    conserves_energy = True      # c(R) = 1/(π min(1, R²)): a = lens area / patch area ≤ 1 (eq. 4.8)
 
     def __post_init__(self):
         _check_radius("R", self.R)
         _default_constant(self, patch.basic_constant(self.R))
+
+    # --- the integrand's shape: a jump at m = R; no lobe (the albedo is the lens area, eq. 4.8)
+    lobe = None
+
+    def scattering_radius_levels(self):
+        """The jump of f*(R) at m(L, V) = |L_xy + V_xy| = R (eq. 4.2)."""
+        return (float(self.R),)
 
     def _eval(self, L, V, nl, nv):
         return np.where(projected_distance(L, V) <= self.R, self.C, 0.0)
@@ -99,6 +126,17 @@ class PatchBasic(BRDF):
     #: mass 1.  ``"russian_roulette"`` (eqs. 4.18, 4.19): uniform in C_min, rejected outside the
     #: other circle, weight 1 (for the default C), pdf = f cos θ_V, mass a_R(L).
     strategies = ("exact", "russian_roulette", "cosine")
+    chi2_cases = ({"R": 0.05}, {"R": 0.5}, {"R": 1.5})
+    #: Uniform numbers :meth:`basic_radius` consumes per sample: none, R is the model's.
+    basic_radius_dimension = 0
+
+    def basic_radius(self, u):
+        """R of the basic BRDF a sample draws from (section 4.2.4): the model's own, for every sample."""
+        return np.full(np.shape(u)[:-1], self.R)
+
+    def disk_boundaries(self):
+        """The circle C(V'_P, R), where f*(R) jumps (eq. 4.2)."""
+        return (float(self.R),), None
 
     def _sample_direction(self, L, u, strategy):
         cx, cy = _mirrored_projection(L)
@@ -124,9 +162,18 @@ class PatchExponential(_MixtureSampling, BRDF):
     s: float
     C: float | None = None
     name = "patch_exponential"
+    # --- what the model says about itself
+    chapter = 4                  # eqs. 4.44–4.46
+    param_ranges = {"s": non_negative(), "C": positive()}
+    examples = {"typical": {"s": 4.0}, "narrowest": {"s": 512.0}}
+    conserves_energy = True      # C_max of eq. 4.45 makes max a = a(N) = 1 (ξ decreasing)
+    accuracy_families = {"patch_exponential": ("s", {})}
 
     def __post_init__(self):
         _default_constant(self, patch.ExponentialProfile(self.s).c_max)
+
+    #: No lobe: the albedo is the mixture of lens areas (eqs. 4.22, 4.24); e^{−s m} has no kink.
+    lobe = None
 
     def albedo_estimate(self, theta_deg, rtol, atol):
         """∫ p(R) a_R(L) dR over the lens areas (eqs. 4.22, 4.24)."""
@@ -134,6 +181,8 @@ class PatchExponential(_MixtureSampling, BRDF):
 
     def _eval(self, L, V, nl, nv):
         return self.C * np.exp(-self.s * projected_distance(L, V))
+
+    chi2_cases = ({"s": 512}, {"s": 10}, {"s": 1})
 
     @property
     def total_weight(self) -> float:
@@ -146,19 +195,33 @@ class PatchExponential(_MixtureSampling, BRDF):
 
 
 @dataclass(frozen=True)
-class GeneralizedLambertian(BRDF):
+class GeneralizedLambertian(_OnTheBasePlane, BRDF):
     """f = C min((1 − (m/2)²)^{−d/2}, ξ(m_clip))  (eqs. 4.58/4.59); C = 1/max albedo by default."""
 
     d: float
     m_clip: float = 1.9
     C: float | None = None
     name = "generalized_lambertian"
+    # --- what the model says about itself
+    chapter = 4                  # eqs. 4.58, 4.59 (Table 4.3)
+    param_ranges = {"d": Interval(0.0, 1.0), "m_clip": Interval(0.0, 2.0, lo_open=True, hi_open=True),
+                    "C": positive()}
+    examples = {"typical": {"d": 0.5}, "narrowest": {"d": 1.0}}
+    conserves_energy = True      # C = 1/max a by default
+    accuracy_families = {"generalized_lambertian": ("d", {})}
 
     def __post_init__(self):
         profile = patch.GeneralizedLambertProfile(self.d, self.m_clip)
         if self.C is None:
             _default_constant(self, patch.generalized_lambert_c_max(profile).value)
         check_positive("C", self.C)
+
+    #: No lobe: the albedo is the mixture of lens areas (eqs. 4.22, 4.24).
+    lobe = None
+
+    def scattering_radius_levels(self):
+        """The kink of min(ξ(m), ξ(m_clip)) at m = m_clip (eq. 4.59)."""
+        return (float(self.m_clip),)
 
     def _eval(self, L, V, nl, nv):
         return self.C * patch.GeneralizedLambertProfile(self.d, self.m_clip).xi(projected_distance(L, V))
@@ -171,6 +234,17 @@ class GeneralizedLambertian(BRDF):
     #: "with a cosine distribution ... and an appropriate multiplier correction factor for each
     #: ray" (section 4.7.4) — the cosine strategy, exact up to the weight f·π ≤ C ξ_max π.
     strategies = ("cosine",)
+    chi2_cases = ({"d": 1.0}, {"d": 0.5})
+
+
+def _uniform_weight(R):
+    """p(R) = 1/2 on [0, 2]: a normalised weight (eq. 4.21), the example mixture."""
+    return np.full(np.shape(R), 0.5)
+
+
+def _falling_weight(R):
+    """p(R) = (2 − R)/2 on [0, 2], normalised, weighted toward small patches: the narrower example."""
+    return 1.0 - 0.5 * np.asarray(R, float)
 
 
 @dataclass(frozen=True)
@@ -186,11 +260,26 @@ class PatchMixture(_MixtureSampling, BRDF):
     p_diffuse: float = 0.0
     rtol: float = 1e-12
     name = "patch_mixture"
+    # --- what the model says about itself
+    chapter = 4                  # eqs. 4.20, 4.21
+    param_ranges = {"p_diffuse": non_negative(), "rtol": positive()}
+    examples = {"typical": {"weight": _uniform_weight}, "narrowest": {"weight": _falling_weight}}
+    # conserves_energy = False: a ≤ W = ∫p + p_Diffuse, which is 1 only for a normalised weight
+    # (eq. 4.21); the model takes any weight and does not normalise it
+    conserves_energy = False
 
     def __post_init__(self):
         if not callable(self.weight):
             raise ValueError(f"patch_mixture: weight must be a callable p(R), got {self.weight!r}")
         check_positive("p_diffuse", self.p_diffuse, allow_zero=True)
+        check_positive("rtol", self.rtol)
+
+    #: No lobe (its albedo is integrated over the projected disk only, ``method="disk"``).
+    lobe = None
+
+    def scattering_radius_levels(self):
+        """The kink of c(R) = 1/(π min(1, R²)) at m = 1, inherited by ∫_m² p(R) c(R) dR (eq. 4.21)."""
+        return (1.0,)
 
     def _eval(self, L, V, nl, nv):
         m = np.minimum(projected_distance(L, V), 2.0)
@@ -205,6 +294,22 @@ class PatchMixture(_MixtureSampling, BRDF):
 
     #: Points per call of the integration driver in ``_eval``.
     block = 2048
+
+    #: The chi-square tests' mixtures: the exponential profile's weight, rebuilt generically
+    #: (:meth:`chi2_example`), so that the sampler runs the tabulated F⁻¹.
+    chi2_cases = ({"s": 512}, {"s": 10})
+
+    @classmethod
+    def chi2_example(cls, params):
+        """The p(R) mixture with the exponential profile's weight (eqs. 4.41, 4.47) of ``params["s"]``:
+        the same BRDF as ``patch_exponential``, built generically."""
+        return cls.of_profile(patch.ExponentialProfile(params["s"]), rtol=1e-7)
+
+    @classmethod
+    def of_profile(cls, profile, rtol=1e-12):
+        """The mixture of a profile's weight p(R) and Dirac p_Diffuse at C = C_max (eqs. 4.40, 4.41)."""
+        return cls(weight=partial(patch.weight, profile, C=profile.c_max),
+                   p_diffuse=patch.diffuse_weight(profile, profile.c_max), rtol=rtol)
 
     # --- F(R) and F⁻¹ (eq. 4.27) for sampling ---------------------------------------------------
     #: Intervals of the table of F (section 4.4: "stored in a sufficiently large one-dimensional array").
@@ -275,7 +380,7 @@ class PatchMixture(_MixtureSampling, BRDF):
 
 
 @dataclass(frozen=True)
-class PatchElliptical(BRDF):
+class PatchElliptical(_OnTheBasePlane, BRDF):
     """Anisotropic basic BRDF: c(b) where the elliptic distance ≤ b, else 0  (eqs. 4.32, 4.34, 4.36).
 
     m = √((B/A · z·u)² + (z·v)²) with z = V_P − L'_P, u = (cos φ_u, sin φ_u, 0) the major axis
@@ -287,12 +392,30 @@ class PatchElliptical(BRDF):
     u_angle_deg: float = 0.0
     C: float | None = None
     name = "patch_elliptical"
+    # --- what the model says about itself
+    chapter = 4                  # eqs. 4.32, 4.34, 4.36
+    param_ranges = {"b": Interval(0.0, 2.0, lo_open=True), "ratio": Interval(0.0, 1.0, lo_open=True),
+                    "u_angle_deg": Interval(-np.inf, np.inf), "C": positive()}
+    #: Figure 4.10's first ellipse; narrowest: Figure 4.11's copper (b = 0.08, B/A = 0.2)
+    examples = {"typical": {"b": 0.3, "ratio": 0.5}, "narrowest": {"b": 0.08, "ratio": 0.2}}
+    conserves_energy = True      # c(b) = 1/min(π a b, π) (eq. 4.36): a = area(E ∩ disk)/min(π a b, π) ≤ 1
 
     def __post_init__(self):
         _check_radius("b", self.b)
         if not 0.0 < float(self.ratio) <= 1.0:
             raise ValueError(f"patch_elliptical: ratio B/A must lie in (0, 1], got {self.ratio!r}")
         _default_constant(self, patch.elliptical_constant(self.b, self.ratio))
+
+    # --- the integrand's shape: a jump on an ellipse, not symmetric about the plane of incidence
+    lobe = None
+    symmetric_about_incidence_plane = False
+
+    def scattering_radius_kinks(self, cos_psi, sin_psi):
+        """The jump on the ellipse |(ratio z·u, z·v)| = b (eq. 4.34) along z = r (cos ψ, sin ψ)."""
+        phi = np.radians(self.u_angle_deg)
+        along_u = cos_psi * np.cos(phi) + sin_psi * np.sin(phi)
+        along_v = -cos_psi * np.sin(phi) + sin_psi * np.cos(phi)
+        return [self.b / np.hypot(self.ratio * along_u, along_v)]
 
     def _eval(self, L, V, nl, nv):
         phi = np.radians(self.u_angle_deg)
@@ -308,6 +431,11 @@ class PatchElliptical(BRDF):
     #: disk, kept if inside the other; pdf = cos θ_V / min(π a b, π) on E(V'_P) ∩ disk, mass
     #: Area(E(V'_P) ∩ disk) / min(π a b, π), weight C · min(π a b, π) (1 while the ellipse fits).
     strategies = ("russian_roulette", "cosine")
+    chi2_cases = ({"b": 0.05, "ratio": 0.25}, {"b": 0.3, "ratio": 0.5})
+
+    def disk_boundaries(self):
+        """The ellipse E(V'_P) (semi-axes b and b/ratio about V'_P), where f jumps (eq. 4.32)."""
+        return (float(self.b), float(self.b / self.ratio)), (float(self.b), float(self.ratio), float(np.radians(self.u_angle_deg)))
 
     def _domain_area(self):
         return min(np.pi * self.b * self.b / self.ratio, np.pi)

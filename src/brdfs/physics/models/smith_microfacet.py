@@ -17,12 +17,16 @@ SIGGRAPH course, Sec. "Multiple scattering"; Kelemen & Szirmay-Kalos 2001)::
     f_ms(L, V) = F_ms (1 − E(μ_L)) (1 − E(μ_V)) / (π (1 − E_avg)),   E_avg = 2 ∫₀¹ E(μ) μ dμ,
     F_ms = F_avg² E_avg / (1 − F_avg (1 − E_avg)),                    F_avg = 2 ∫₀¹ F(μ) μ dμ,
 
-E(μ) the single-scattering albedo of the same model with F = 1 (so F_ms = 1 for F = 1).  E is
-computed here by the engine (:func:`brdfs.numerics.albedo.albedo`) and tabulated as a Chebyshev
-interpolant with a measured error (:func:`brdfs.numerics.pumping.tabulate_albedo`), E_avg
-integrated from the interpolant exactly; then ∫ f_ms μ_V dω_V = 1 − E_table(μ_L) and the
-compensated albedo for F = 1 is E(μ_L) + 1 − E_table(μ_L) = 1 up to the table's error.
-f_ms is symmetric in L and V by construction.
+E(μ) the single-scattering albedo of the same model with F = 1 (so F_ms = 1 for F = 1).  A
+compensated model receives E when it is built, as a Chebyshev table with a measured error (the
+field ``energy``, an :class:`brdfs.physics.tables.AlbedoTable`): it names the table it needs
+(:meth:`_SmithMicrofacet.table_requests`) and the factory above the physics layer computes it
+(:func:`brdfs.numerics.tables.build`, the engine's albedo tabulated by
+:func:`brdfs.numerics.pumping.tabulate_albedo`).  Built without it, it raises
+:class:`brdfs.physics.tables.MissingTable`: nothing here integrates.  E_avg is integrated from the
+interpolant exactly (:func:`brdfs.physics.tables.cosine_weighted_average`); then
+∫ f_ms μ_V dω_V = 1 − E_table(μ_L) and the compensated albedo for F = 1 is
+E(μ_L) + 1 − E_table(μ_L) = 1 up to the table's error.  f_ms is symmetric in L and V by construction.
 """
 from __future__ import annotations
 
@@ -35,7 +39,8 @@ from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import MicrofacetLobe
 from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.fresnel import unpolarised_reflectance
-from brdfs.physics.models.base import BRDF, check_positive, exact
+from brdfs.physics.models.base import BRDF, check_positive, exact, non_negative, positive, table_field
+from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
 
 G2_FORMS = ("separable", "height_correlated")
 COMPENSATIONS = ("none", "kulla_conty")
@@ -46,13 +51,10 @@ E_TABLE_RTOL = 1.0e-6
 E_ENGINE_RTOL = 1.0e-7
 
 
-def energy_table_edges(alpha, name="ggx"):
-    """Pieces of [0, 1] in μ for the E table: E(μ) turns steeply, and not like a polynomial, on the
-    scale μ ~ α toward μ = 0 (E(0) = 1 for the height-correlated G2; GGX's tails make E − E(0) fall
-    off like a fractional power), so the GGX edges are α·10^-k (k = 1 … 4) and α/3, α, 3α, 10α (those
-    inside (0, 1)): geometric toward 0.  Beckmann's E is smooth there (its tails are Gaussian): α/10, α,
-    10α suffice (fewer engine calls for the same checked accuracy)."""
-    factors = (1e-4, 1e-3, 1e-2, 0.1, 1 / 3, 1.0, 3.0, 10.0) if name == "ggx" else (0.1, 1.0, 10.0)
+def energy_table_edges(alpha, factors):
+    """Pieces of [0, 1] in μ for the E table: 0, the multiples ``factors`` × α inside (0, 1), and 1.
+    E(μ) turns steeply, and not like a polynomial, on the scale μ ~ α toward μ = 0, so the factors are
+    the distribution's (:attr:`_SmithMicrofacet.energy_edge_factors`)."""
     inner = [k * alpha for k in factors if 0 < k * alpha < 1]
     return tuple([0.0, *inner, 1.0])
 
@@ -99,7 +101,41 @@ class _SmithMicrofacet(BRDF):
     compensation: str = "none"
     ior_re: float | None = None
     ior_im: float = 0.0
+    #: E(μ) of the single-scattering model with F = 1 and this G2: the table a compensated model is
+    #: built with (:meth:`table_requests`); None without compensation.
+    energy: AlbedoTable | None = table_field()
     distribution_type: ClassVar[type] = GGX
+    #: Multiples of α at which the E table is split (:func:`energy_table_edges`).
+    energy_edge_factors: ClassVar[tuple[float, ...]] = (0.1, 1.0, 10.0)
+    #: Whether single scattering integrates in the distribution's own CDF (:attr:`lobe`) rather
+    #: than the tangent coordinate.
+    single_scattering_in_own_cdf: ClassVar[bool] = False
+
+    # --- what the model says about itself
+    chapter = None               # today's practice, beyond the thesis (issue 18)
+    param_ranges = {"alpha": positive(), "ior_re": positive(), "ior_im": non_negative()}
+    param_choices = {"G2": G2_FORMS, "compensation": COMPENSATIONS}
+    #: α = 0.3 ≈ the Blinn-matched roughness of n = 20; α = 0.01, the narrowest the engine is held to
+    examples = {"typical": {"alpha": 0.3}, "narrowest": {"alpha": 0.01}}
+    #: Single scattering loses the energy of the paths that hit the surface again (E ≤ 1); with
+    #: Kulla–Conty's term the albedo is F_ms-weighted 1 (1 for F = 1) within the table's error.
+    conserves_energy = True
+
+    @classmethod
+    def energy_request(cls, alpha, G2="height_correlated") -> TableRequest:
+        """The E table of roughness ``alpha`` and ``G2``: single scattering with F = 1, pieces
+        :func:`energy_table_edges`, Chebyshev degree 4 and up to :data:`E_TABLE_RTOL` on engine
+        values at :data:`E_ENGINE_RTOL`."""
+        alpha = float(alpha)
+        return TableRequest(cls(alpha=alpha, G2=G2), energy_table_edges(alpha, cls.energy_edge_factors),
+                            degree=4, target_rtol=E_TABLE_RTOL, engine_rtol=E_ENGINE_RTOL)
+
+    @classmethod
+    def table_requests(cls, **params):
+        """``{"energy": E table}`` for ``compensation='kulla_conty'`` (:meth:`energy_request`), else none."""
+        if params.get("compensation", "none") != "kulla_conty":
+            return {}
+        return {"energy": cls.energy_request(params["alpha"], params.get("G2", "height_correlated"))}
 
     def __post_init__(self):
         check_positive("alpha", self.alpha)
@@ -111,7 +147,12 @@ class _SmithMicrofacet(BRDF):
             check_positive("ior_re", self.ior_re)
             check_positive("ior_im", self.ior_im, allow_zero=True)
         if self.compensation == "kulla_conty":
-            self.energy_table()     # built (or fetched from the cache) now, not inside an integration
+            if self.energy is None:
+                raise MissingTable(
+                    f"{self.name} with compensation='kulla_conty' needs its E table (field 'energy'), which "
+                    f"the physics layer does not compute: build it with brdfs.model({self.name!r}, ...) "
+                    f"(brdfs.numerics.tables.build), which tabulates it")
+            object.__setattr__(self, "_energy_average", cosine_weighted_average(self.energy))
 
     # --- shape ---------------------------------------------------------------------------------
     @property
@@ -124,7 +165,7 @@ class _SmithMicrofacet(BRDF):
         tangent coordinate t = tan δ/(α + tan δ) (:class:`TangentCoordinate`) for GGX and for every
         compensated model (f_ms spreads over the whole hemisphere, and Beckmann's t = 1 − exp(−tan²δ/α²)
         rounds to 1 beyond tan δ ≈ 6α, where that part of the integrand would be lost)."""
-        if self.name == "beckmann" and self.compensation == "none":
+        if self.single_scattering_in_own_cdf and self.compensation == "none":
             return MicrofacetLobe(self.distribution)
         return MicrofacetLobe(TangentCoordinate(self.alpha))
 
@@ -192,8 +233,11 @@ class _SmithMicrofacet(BRDF):
 
     # --- the energy tables -------------------------------------------------------------------
     def energy_table(self):
-        """(E table, E_avg) of the single-scattering model with F = 1 and this G2 (cached per α)."""
-        return energy_table(self.name, float(self.alpha), self.G2)
+        """(E table, E_avg) of the single-scattering model with F = 1 and this G2: the table the model
+        was built with and its cosine-weighted average (:func:`cosine_weighted_average`)."""
+        if self.energy is None:
+            raise MissingTable(f"{self.name} without compensation has no E table")
+        return self.energy, self._energy_average
 
     def fresnel_average(self):
         """F_avg = 2 ∫₀¹ F(μ) μ dμ (64-point Gauss–Legendre; F is smooth)."""
@@ -233,6 +277,7 @@ class _SmithMicrofacet(BRDF):
     #: ``"visible_normals"``: V reflected about a visible normal (mixed with the cosine lobe with
     #: probability 1 − E(μ_L) when compensated); ``"cosine"``: the protocol's baseline.
     strategies = ("visible_normals", "cosine")
+    chi2_cases = ({"alpha": 0.01}, {"alpha": 0.3}, {"alpha": 1.0})
 
     def _pdf(self, L, V, strategy):
         """Density of the visible-normal sampler: D_L(H) / (4 L·H) (visible normals seen from L,
@@ -274,6 +319,9 @@ class GGXMicrofacet(_SmithMicrofacet):
 
     name = "ggx"
     distribution_type = GGX
+    #: GGX's tails make E − E(0) fall off like a fractional power toward μ = 0 (E(0) = 1 for the
+    #: height-correlated G2): edges α·10^-k (k = 1 … 4) and α/3, α, 3α, 10α, geometric toward 0.
+    energy_edge_factors = (1e-4, 1e-3, 1e-2, 0.1, 1 / 3, 1.0, 3.0, 10.0)
 
 
 @dataclass(frozen=True)
@@ -282,69 +330,14 @@ class BeckmannMicrofacet(_SmithMicrofacet):
 
     name = "beckmann"
     distribution_type = Beckmann
+    #: Beckmann's E is smooth near μ = 0 (Gaussian tails): α/10, α, 10α suffice (fewer engine calls
+    #: for the same checked accuracy).
+    energy_edge_factors = (0.1, 1.0, 10.0)
+    #: Single scattering integrates in Beckmann's own CDF (:attr:`lobe`).
+    single_scattering_in_own_cdf = True
 
 
 SMITH_MODELS = {cls.name: cls for cls in (GGXMicrofacet, BeckmannMicrofacet)}
-
-
-#: E tables by (model name, α, G2): computed once per process, or read from the table artifact
-#: ``extra_microfacet_albedo`` (:func:`seed_energy_tables`) so that the figures do not recompute them.
-_ENERGY_TABLES: dict[tuple, tuple] = {}
-
-
-def energy_table(name: str, alpha: float, G2: str):
-    """The single-scattering albedo E(μ) (F = 1) of model ``name`` as a Chebyshev table in μ with its
-    error bound, and E_avg = 2 ∫₀¹ E(μ) μ dμ integrated from the table exactly (Gauss–Legendre of
-    degree above the interpolant's), its error 2 ∫ err μ dμ = the table's error bound.  Cached per
-    (name, α, G2).
-
-    Returns
-    -------
-    (AlbedoTable, Estimate)
-    """
-    from brdfs.numerics.pumping import tabulate_albedo
-
-    key = (name, float(alpha), G2)
-    if key not in _ENERGY_TABLES:
-        single = SMITH_MODELS[name](alpha=alpha, G2=G2)
-        table = tabulate_albedo(single, energy_table_edges(alpha, name), degree=4, target_rtol=E_TABLE_RTOL,
-                                engine_rtol=E_ENGINE_RTOL)
-        _ENERGY_TABLES[key] = (table, cosine_weighted_average(table))
-    return _ENERGY_TABLES[key]
-
-
-def energy_table_frame(name: str, alpha: float, G2: str):
-    """The E table's nodes as tidy rows (``mu`` = node, ``albedo``, ``albedo_err`` = the table's bound,
-    with ``piece, x_lo, x_hi, node``), for :func:`seed_energy_tables`."""
-    table = energy_table(name, alpha, G2)[0]
-    rows = table.to_frame().rename(columns={"cos_theta": "mu"}).drop(columns=["model_rtol"])
-    return rows.assign(model=name, G2=G2, alpha=float(alpha))
-
-
-def seed_energy_tables(frame) -> int:
-    """Put the E tables stored by :func:`energy_table_frame` (rows with a ``piece``) into the cache;
-    returns how many."""
-    from brdfs.numerics.pumping import AlbedoTable
-
-    nodes = frame.dropna(subset=["piece"])
-    count = 0
-    for (name, alpha, G2), g in nodes.groupby(["model", "alpha", "G2"]):
-        table = AlbedoTable.from_frame(g.rename(columns={"mu": "cos_theta"}).assign(
-            model_rtol=0.0, piece=g["piece"].astype(int), node=g["node"].astype(int)))
-        _ENERGY_TABLES[(name, float(alpha), G2)] = (table, cosine_weighted_average(table))
-        count += 1
-    return count
-
-
-def cosine_weighted_average(table) -> Estimate:
-    """2 ∫₀¹ table(μ) μ dμ, exact for the piecewise polynomial (Gauss–Legendre, 2·(D+1) nodes a piece)."""
-    degree = table.values.shape[1] - 1
-    x, w = np.polynomial.legendre.leggauss(degree + 2)
-    total = 0.0
-    for lo, hi in zip(table.edges[:-1], table.edges[1:]):
-        mu = 0.5 * (lo + hi) + 0.5 * (hi - lo) * x
-        total += 0.5 * (hi - lo) * np.sum(w * table(mu) * mu)
-    return Estimate(2.0 * total, table.error + 64 * np.finfo(float).eps)
 
 
 def ggx_alpha1_normal_albedo() -> Estimate:

@@ -1,0 +1,67 @@
+"""The model factory above the physics layer: models that need tables receive them when they are built.
+
+A model of :mod:`brdfs.physics.models` that divides by or subtracts an albedo names the tables it
+needs (:meth:`~brdfs.physics.models.base.BRDF.table_requests`: field -> a
+:class:`~brdfs.physics.tables.TableRequest`), and the physics layer computes none (built there without
+its table, such a model raises :class:`~brdfs.physics.tables.MissingTable`).  Here each request is
+tabulated by the engine (:func:`brdfs.numerics.pumping.tabulate_albedo`), once per process (cached by
+the request, a value), and handed to the model:
+
+* :func:`build` (the package's front door :func:`brdfs.model`): a model by its name, e.g.
+  ``build("ggx", alpha=0.3, compensation="kulla_conty")`` (Kulla–Conty's E table);
+* :func:`pump`: a model pumped once (sec. 2.3, :class:`brdfs.physics.models.pumped.Pumped`) with the
+  albedo table of the model it pumps;
+* :func:`seed`: put a table read from an artifact's CSV into the cache, so that a figure reuses the
+  table an upstream artifact computed instead of computing it again.
+"""
+from __future__ import annotations
+
+from brdfs.numerics.pumping import tabulate_albedo
+from brdfs.physics.models import MODELS
+from brdfs.physics.models import model as plain_model
+from brdfs.physics.models.pumped import Pumped
+from brdfs.physics.tables import AlbedoTable, TableRequest
+
+#: Tables by request: computed once per process, or seeded (:func:`seed`) from an artifact's CSV.
+_TABLES: dict[TableRequest, AlbedoTable] = {}
+
+
+def tabulate(request: TableRequest) -> AlbedoTable:
+    """The table of ``request`` (:func:`brdfs.numerics.pumping.tabulate_albedo`), cached."""
+    if request not in _TABLES:
+        _TABLES[request] = tabulate_albedo(request.model, request.edges, target_rtol=request.target_rtol,
+                                           engine_rtol=request.engine_rtol, degree=request.degree,
+                                           model_rtol=request.model_rtol)
+    return _TABLES[request]
+
+
+def seed(request: TableRequest, table: AlbedoTable) -> None:
+    """Use ``table`` (e.g. read back from the CSV of the artifact that computed it) for ``request``."""
+    _TABLES[request] = table
+
+
+def build(name: str, **params):
+    """The model ``name`` with ``params`` and every table it needs (:func:`tabulate`), e.g.
+    ``build("ggx", alpha=0.5, compensation="kulla_conty")``; a model that needs none is built as
+    :func:`brdfs.physics.models.model` builds it.
+
+    >>> f = build("beckmann", alpha=0.5, compensation="kulla_conty")
+    >>> f.energy is not None and f.params == {"alpha": 0.5, "G2": "height_correlated",
+    ...     "compensation": "kulla_conty", "ior_re": None, "ior_im": 0.0}
+    True
+    """
+    cls = MODELS.get(name)
+    requests = cls.table_requests(**params) if cls is not None else {}
+    tables = {field: tabulate(request) for field, request in requests.items() if params.get(field) is None}
+    return plain_model(name, **{**params, **tables})
+
+
+def pump(base, correction: str = "g1", target_rtol: float = 1e-9, engine_rtol: float = 1e-11) -> Pumped:
+    """``base`` pumped once with ``correction`` (eq. 2.20 ``'g1'`` or 2.21 ``'g2'``), dividing by its
+    albedo tabulated on [0, 1] in cos θ to ``target_rtol`` on engine values at ``engine_rtol``."""
+    table = tabulate(TableRequest(base, (0.0, 1.0), target_rtol=target_rtol, engine_rtol=engine_rtol))
+    return Pumped(base, table, correction)
+
+
+#: The package's front door :func:`brdfs.model` is :func:`build`.
+model = build

@@ -1,0 +1,151 @@
+"""A model says everything about itself: the declarations every registered model carries (parameter
+ranges and choices, narrowest and typical examples, chapter, reciprocity and energy claims) hold of
+the model itself, and a model that needs a table is not built by the physics layer without it."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from brdfs import albedo
+from brdfs.physics.geometry import direction
+from brdfs.physics.models import MODELS
+from brdfs.physics.models import model as physics_model
+from brdfs.physics.models.base import BRDF, Interval, counting_evaluations
+from brdfs.physics.tables import MissingTable
+
+KINDS = ("typical", "narrowest")
+
+
+def _rng_directions(seed, n=400):
+    rng = np.random.default_rng(seed)
+    cos_t, phi = rng.random(n), 2 * np.pi * rng.random(n)
+    s = np.sqrt(1 - cos_t ** 2)
+    return np.stack([s * np.cos(phi), s * np.sin(phi), cos_t], -1)
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_model_declares_a_typical_and_a_narrowest_example_inside_its_ranges(name):
+    cls = MODELS[name]
+    assert set(KINDS) <= set(cls.examples), f"{name} declares {sorted(cls.examples)}"
+    for kind in KINDS:
+        for key, value in cls.examples[kind].items():
+            assert key in cls.param_columns(), f"{name} {kind}: {key} is no parameter"
+            if key in cls.param_choices:
+                assert value in cls.param_choices[key], (name, kind, key, value)
+            elif not callable(value):
+                assert key in cls.param_ranges, f"{name}: no range declared for {key}"
+                assert cls.param_ranges[key].contains(value), (name, kind, key, value, cls.param_ranges[key])
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_declared_range_and_choice_names_a_parameter(name):
+    cls = MODELS[name]
+    for key, interval in cls.param_ranges.items():
+        assert key in cls.param_columns() and isinstance(interval, Interval), (name, key)
+        assert interval.lo < interval.hi
+    for key, choices in cls.param_choices.items():
+        assert key in cls.param_columns() and len(choices) >= 1, (name, key)
+
+
+def _outside(interval: Interval):
+    """Values just outside a range, at its finite bounds (the open bound itself where it is open)."""
+    out = []
+    if np.isfinite(interval.lo):
+        out.append(interval.lo if interval.lo_open else interval.lo - max(1e-3, 1e-3 * abs(interval.lo)))
+    if np.isfinite(interval.hi):
+        out.append(interval.hi if interval.hi_open else interval.hi + max(1e-3, 1e-3 * abs(interval.hi)))
+    return out
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_the_model_rejects_a_value_just_outside_each_declared_range_and_accepts_the_closed_bounds(name):
+    """The ranges are the ones ``__post_init__`` validates: a value beyond a bound raises ValueError,
+    a closed finite bound builds."""
+    cls = MODELS[name]
+    base = dict(cls.examples["typical"])
+    for key, interval in cls.param_ranges.items():
+        extra = {"ior_im": 0.0} if key == "ior_re" else {"ior_re": 1.5} if key == "ior_im" else {}
+        for bad in _outside(interval):
+            with pytest.raises(ValueError):
+                cls(**{**base, **extra, key: bad})
+        for bound, is_open in ((interval.lo, interval.lo_open), (interval.hi, interval.hi_open)):
+            if np.isfinite(bound) and not is_open:
+                cls(**{**base, **extra, key: bound})
+    for key, choices in cls.param_choices.items():
+        with pytest.raises(ValueError):
+            cls(**{**base, key: "no_such_choice"})
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_models_examples_build_and_evaluate_finite_and_non_negative(name, kind):
+    brdf = MODELS[name].example(kind)
+    assert isinstance(brdf, MODELS[name])
+    L = _rng_directions(1, 64)
+    mirror = L * np.array([-1.0, -1.0, 1.0])                # V = R: inside every lobe, however narrow
+    V = np.concatenate([_rng_directions(2, 64), mirror])
+    f = brdf(np.concatenate([L, L]), V)
+    assert f.shape == (128,) and np.all(np.isfinite(f)) and np.all(f >= 0), (name, kind)
+    assert np.all(f[64:] > 0), f"{name} {kind}: zero at the mirror direction"
+
+
+def test_an_unknown_example_kind_is_named_in_the_error():
+    with pytest.raises(ValueError, match="no example 'widest'"):
+        MODELS["phong"].example("widest")
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_model_declares_its_chapter_and_its_claims(name):
+    cls = MODELS[name]
+    assert cls.chapter is None or cls.chapter in (1, 2, 3, 4), (name, cls.chapter)
+    assert isinstance(cls.reciprocal, bool) and isinstance(cls.conserves_energy, bool)
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_the_reciprocity_claim_holds_of_the_typical_example(name):
+    """reciprocal = True: f(L, V) = f(V, L); False: a pair of directions where they differ."""
+    brdf = MODELS[name].example()
+    L, V = _rng_directions(3), _rng_directions(4)
+    forward, backward = brdf(L, V), brdf(V, L)
+    if MODELS[name].reciprocal:
+        np.testing.assert_allclose(forward, backward, rtol=1e-9, atol=1e-12 * np.max(forward))
+    else:
+        assert np.max(np.abs(forward - backward)) > 1e-6 * np.max(forward)
+
+
+@pytest.mark.parametrize("name", sorted(n for n, c in MODELS.items() if c.conserves_energy))
+def test_the_energy_conservation_claim_holds_of_the_typical_example(name):
+    """conserves_energy = True: a(θ) ≤ 1 within the reported error at angles up to 89.9°."""
+    brdf = MODELS[name].example()
+    theta = np.array([0.0, 30.0, 60.0, 80.0, 89.0, 89.9])
+    try:
+        est = albedo(brdf, theta, rtol=1e-7)
+    except ValueError:          # a model with neither lobe nor own route: the projected-disk route
+        est = albedo(brdf, theta, method="disk", rtol=1e-7)
+    assert np.all(est.value <= 1.0 + est.error + 1e-12), (name, est.value)
+
+
+def test_the_energy_claims_that_are_false_are_false_for_a_reason_the_engine_sees():
+    """Spot checks of declared False: the original Phong's albedo exceeds 1 toward grazing incidence,
+    Ward's grazing law diverges (a ~ K/√cos θ), and He–Torrance's exceeds 1 at 80°."""
+    assert not MODELS["phong_original"].conserves_energy
+    assert float(albedo(MODELS["phong_original"].example(), 89.9, rtol=1e-6).value) > 1.0
+    assert not MODELS["ward"].conserves_energy and MODELS["ward"].example().grazing_law().exponent > 0
+    assert not MODELS["he_torrance"].conserves_energy
+    assert float(albedo(MODELS["he_torrance"].example(), 80.0, rtol=1e-6).value) > 1.0
+
+
+def test_the_base_class_claims_nothing_and_needs_no_table():
+    assert BRDF.conserves_energy is False and BRDF.chapter is None
+    assert BRDF.examples == {} and BRDF.param_ranges == {}
+    assert BRDF.table_requests(n=1.0) == {}
+
+
+@pytest.mark.parametrize("name", ["ggx", "beckmann"])
+def test_a_compensated_model_built_in_physics_without_its_table_raises_and_computes_nothing(name):
+    with counting_evaluations() as count, pytest.raises(MissingTable, match="needs its E table"):
+        physics_model(name, alpha=0.5, compensation="kulla_conty")
+    assert count[0] == 0
+    assert physics_model(name, alpha=0.5).energy is None      # single scattering needs none
+    assert MODELS[name].table_requests(alpha=0.5) == {}
+    assert set(MODELS[name].table_requests(alpha=0.5, compensation="kulla_conty")) == {"energy"}
