@@ -31,8 +31,9 @@ lock: $(STAMP)
 	$(BIN)/pip-compile --quiet --extra test --strip-extras --no-emit-index-url --no-emit-find-links \
 	    --output-file requirements.lock pyproject.toml
 
+# The full build batches cheap artifacts (workflow/profiles/full: --config batches=true).
 all: $(STAMP)
-	$(SNAKEMAKE) --profile workflow/profiles/default
+	$(SNAKEMAKE) --profile workflow/profiles/full
 
 test: $(STAMP)
 	$(BIN)/python -m pytest

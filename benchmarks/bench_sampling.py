@@ -10,8 +10,9 @@ import numpy as np
 import pandas as pd
 
 from brdfs.artifacts.fig_4_9_sampling_efficiency import MODELS as FIG_4_9_MODELS, STRATEGIES, draw
-from brdfs.artifacts.sampling_chi2 import PARAMETERS, build
+from brdfs.artifacts.sampling_chi2 import build, parameters
 from brdfs.physics.geometry import light_direction
+from brdfs.physics.models import MODELS, model
 from brdfs.pipeline.io import REPO_ROOT
 
 N = 200_000
@@ -29,15 +30,15 @@ def _time(fn, repeats=3):
 def main():
     rows = []
     for name, params in FIG_4_9_MODELS:
-        brdf = build(name, params)
+        brdf = model(name, **params)
         for theta in (0.0, 60.0, 85.0):
             for strategy in STRATEGIES:
                 t = _time(lambda: draw(brdf, strategy, theta, N, np.random.default_rng(1)))
                 rows.append({"benchmark": "fig_4_9", "model": name, "strategy": strategy, "theta_deg": theta,
                              "ns_per_sample": 1e9 * t / N})
     L = light_direction(60.0)
-    for name, plist in PARAMETERS.items():
-        brdf = build(name, plist[0])
+    for name in MODELS:
+        brdf = build(name, parameters(name)[0])
         for strategy in brdf.strategies:
             u = np.random.default_rng(2).random((N // 10, brdf.sample_dimension(strategy)))
             t = _time(lambda: brdf.sample(L, u, strategy), repeats=1)

@@ -4,7 +4,8 @@ Python BSDF plugin) and of brdfs.render on the same scene.
 Scene: a sphere of the new model (phong_cosmin, n = 20, F = 1) on a diffuse floor (rho = 0.5),
 one point light, 160 x 120 pixels; (a) direct lighting, 1 sample per pixel; (b) daylight (constant
 environment) + point light, paths of depth 3, 16 samples per pixel, both with cosine-weighted
-BSDF sampling in Mitsuba (the plugin) and the mixture proposals in numpy.
+BSDF sampling in Mitsuba (the plugin) and, in numpy, the mixture of the model's own sampler with a
+defensive cosine share (brdfs.render.sampling).
 
 Run (Mitsuba is NOT a project dependency; use a throw-away venv):
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba==3.9.1 numpy scipy pandas

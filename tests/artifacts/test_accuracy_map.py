@@ -36,3 +36,48 @@ def test_flags_mark_a_disagreement_beyond_the_combined_errors():
         "reference_albedo": [1.0 + 1.5e-12, 1.0 + 6.4e-6, 1.0], "reference_albedo_err": [1e-12, 1e-13, 1e-13]}), TOL)
     assert df["dishonest"].tolist() == [False, True, False]
     assert df["failed"].tolist() == [False, False, True]
+
+
+def test_the_families_are_the_models_declarations_and_a_pumped_family_is_pumped_once():
+    """Each family builds the model that declares it, at the swept value and fixed parameters; the
+    pumped families divide by one albedo table of their base (tabulated once, shared by g1 and g2)."""
+    from brdfs.physics.models.pumped import Pumped
+
+    ts = accuracy_map.build("cook_torrance_ts", 0.1, REDUCED)
+    assert (ts.name, ts.m, ts.G) == ("cook_torrance", 0.1, "torrance_sparrow")
+    g1, g2 = (accuracy_map.build(f"pumped_phong_{c}", 20.0, REDUCED) for c in ("g1", "g2"))
+    assert isinstance(g1, Pumped) and (g1.correction, g2.correction) == ("g1", "g2")
+    assert g1.base == g2.base and g1.base.n == 20.0 and g1.level == 1
+    assert g1.table is g2.table and g1.table.error < 1e-6
+
+
+def test_a_model_defined_in_a_test_gets_honest_rows_from_its_declared_family():
+    from dataclasses import dataclass
+
+    from brdfs.physics.lobes import HALF, PowerCosine
+    from brdfs.physics.models import BRDF, MODELS, register
+    from brdfs.physics.models.base import Interval
+
+    @dataclass(frozen=True)
+    class Lambert(BRDF):
+        rho: float = 1.0
+        name = "lambert_in_the_accuracy_map_test"
+        param_ranges = {"rho": Interval(0.0, 1.0)}
+        accuracy_families = {"lambert_rho": ("rho", {})}
+
+        def _eval(self, L, V, nl, nv):
+            return np.full(np.broadcast_shapes(nl.shape, nv.shape), self.rho / np.pi)
+
+        @property
+        def lobe(self):
+            return PowerCosine(0.0, HALF)
+
+    register(Lambert)
+    try:
+        sec = {**REDUCED, "reduced": {"theta_deg": [0.0, 45.0, 89.0], "families": {"lambert_rho": [0.5]}}}
+        df = accuracy_map.accuracy_map(sec, TOL)
+    finally:
+        del MODELS[Lambert.name]
+    assert set(df["model"]) == {Lambert.name} and set(df["parameter"]) == {"rho"} and len(df) == 3
+    assert not (df["dishonest"] | df["failed"]).any()
+    assert np.allclose(df["albedo"], 0.5, rtol=0, atol=1e-9)

@@ -1,7 +1,9 @@
 """The vectorised Gauss–Kronrod driver (integrate.gauss_kronrod): its error estimate against exact integrals."""
 import numpy as np
 
-from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, GAUSS_WEIGHTS, NODES, integrate
+import pytest
+
+from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, GAUSS_WEIGHTS, NODES, NodeValues, integrate
 
 
 def _rule_error(f, exact):
@@ -35,3 +37,18 @@ def test_error_brackets_the_truth_on_a_refined_singular_integral():
     true = abs(est.value[0] + 0.25)
     assert true <= est.error[0] <= max(1000 * true, 1e-13)
     assert est.status[0] == "converged"
+
+
+def test_an_integrand_returning_node_values_reports_their_gauss_value_and_carries_their_known_error():
+    """The two kinds of integrand: a plain array (high = low, nothing known) and ``NodeValues`` of an
+    inner estimate.  Its Gauss values ``low`` are what the driver sums (x² + 1e-6 x⁴ against x²: the
+    value moves by 6.4e-6), and its known error (1e-9 per unit length, rules agreeing) enters the
+    reported error, so no split brings it to 1e-12 and the element is not converged."""
+    plain = integrate(lambda x, e: x * x, np.array([[0.0, 2.0]]), rtol=1e-12, atol=0)
+    assert abs(plain.value[0] - 8 / 3) <= plain.error[0] <= 1e-13 and plain.status[0] == "converged"
+    shifted = integrate(lambda x, e: NodeValues(x * x, x * x + 1e-6 * x ** 4, None), np.array([[0.0, 2.0]]),
+                        rtol=1e-3, atol=0)
+    assert shifted.value[0] == pytest.approx(8 / 3 + 1e-6 * 32 / 5, rel=1e-14)
+    known = integrate(lambda x, e: NodeValues(x * x, x * x, np.full_like(x, 1e-9)), np.array([[0.0, 2.0]]),
+                      rtol=1e-12, atol=0)
+    assert 2e-9 <= known.error[0] <= 3e-9 and known.status[0] != "converged"

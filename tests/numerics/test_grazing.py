@@ -105,9 +105,11 @@ def test_grid_reading_converges_and_monte_carlo_is_unbiased():
     errs = [abs(albedo(brdf, theta, "midpoint_grid", n_theta=k, n_phi=4 * k).value - exact) for k in (90, 180, 900)]
     assert errs[2] < errs[1] < errs[0] and errs[2] < 1e-3
     for sampler in ("uniform", "cosine", "beckmann_half_vector"):
-        est, stderr = monte_carlo_albedo(brdf, theta, sampler, 200_000, np.random.SeedSequence([1, 2]))
-        assert abs(est.value - exact) < 5 * stderr
-        again, _ = monte_carlo_albedo(brdf, theta, sampler, 200_000, np.random.SeedSequence([1, 2]))
+        est = monte_carlo_albedo(brdf, theta, sampler, 200_000, np.random.SeedSequence([1, 2]))
+        assert abs(est.value - exact) < 5 * est.error             # the error is the standard error
+        assert est.evaluations == 200_000 and est.status == "budget_exhausted"      # not 1e-10
+        assert 0 < est.rounding < 1e-12 * est.value
+        again = monte_carlo_albedo(brdf, theta, sampler, 200_000, np.random.SeedSequence([1, 2]))
         assert again.value == est.value
 
 

@@ -152,3 +152,19 @@ def test_models_outside_the_reduction_go_through_the_engine(monkeypatch):
     assert np.allclose(est.value, albedo(model("ward", m=0.2), np.degrees(np.arccos(x)), rtol=1e-8).value, rtol=1e-7)
     pumping._engine(model("phong", n=3), x, 1e-8)
     assert called
+
+
+def test_the_pumped_model_is_a_physics_model_that_numerics_reexports():
+    from brdfs.physics.models.pumped import Pumped
+
+    assert pumping.Pumped is Pumped and Pumped.__module__ == "brdfs.physics.models.pumped"
+
+
+def test_only_a_root_that_declares_it_takes_the_polar_azimuth_reduction(phong_table, monkeypatch):
+    """Phong and Blinn declare ``pumping_reducible`` (a kink-free cosine power of R·V or N·H); a pumped
+    new model (kinked at N·V = N·L) goes through the hemisphere engine."""
+    reduced = []
+    monkeypatch.setattr(pumping, "pumped_albedo", lambda m, x, rtol: reduced.append(m.base.name) or albedo(m, 0.0))
+    pumping._engine(pumping.Pumped(model("phong", n=N_EXP), phong_table, "g1"), np.array([1.0]), 1e-8)
+    pumping._engine(pumping.Pumped(model("phong_cosmin", n=N_EXP), phong_table, "g1"), np.array([1.0]), 1e-8)
+    assert reduced == ["phong"]

@@ -97,6 +97,33 @@ def test_brdf_from_a_pixel_is_the_same_when_camera_and_light_swap(name, params):
     assert recovered[0] > 0
 
 
+@pytest.mark.parametrize("name, params, angle", [
+    ("phong_cosmin", {"n": 3}, "theta_min"),
+    ("patch_exponential", {"s": 2.0}, "theta_prime"),
+    ("patch_elliptical", {"b": 1.0, "ratio": 0.8}, "theta_prime"),
+])
+def test_a_metal_reads_its_fresnel_factor_at_the_angle_its_model_declares(name, params, angle):
+    """Eq. 3.29 reads F at Θ_min = min(θ_L, θ_V); the patch models' metals (eq. 4.54) at θ' with
+    sin θ' = |L_P − V_P| / 2 (eq. 4.53): a floor point lit by one lamp returns f(L, V) F(θ_F) I cos θ_L / r²."""
+    model = brdfs.model(name, **params)
+    ior = np.array([0.2 + 3.0j, 1.1 + 2.5j, 0.6 + 1.2j])
+    floor = tracer.SceneObject(shapes.Rectangle((0, 0, 0), (3, 3)), materials.specular(model, 3, ior=ior), "floor")
+    point, eye, lamp, intensity = np.array([0.2, -0.1, 0.0]), np.array([-1.0, -2.0, 0.6]), np.array([1.2, 1.5, 1.9]), 5.0
+    scene = tracer.Scene([floor], [tracer.PointLight(tuple(lamp), np.full(3, intensity))])
+    radiance = tracer.render(scene, tracer.Camera(tuple(eye), tuple(point), 3, 3, fov_deg=5)).radiance[1, 1]
+    L, V = normalize(lamp - point), normalize(eye - point)
+    half = 0.5 * np.hypot(*(L[:2] - V[:2]))
+    readings = {"theta_min": max(L[2], V[2]), "theta_prime": np.sqrt(1.0 - half * half)}
+    assert abs(readings["theta_min"] - readings["theta_prime"]) > 0.05      # the two readings differ here
+    cos_f = readings[angle]
+    from brdfs.physics.fresnel import unpolarised_reflectance
+    to_lamp = lamp - point
+    r2 = to_lamp @ to_lamp
+    expected = float(model(L, V)) * unpolarised_reflectance(cos_f, ior.real, ior.imag) * intensity * L[2] / r2
+    assert np.all(expected > 0)
+    np.testing.assert_allclose(radiance, expected, rtol=1e-9)
+
+
 def test_direct_image_of_a_sphere_is_the_closed_form_shading():
     """Every pixel of a point-lit sphere (gold, new model with Fresnel at Θ_min) equals
     f(L, V) F I cos θ_L / r² computed here from the ray–sphere geometry in closed form."""

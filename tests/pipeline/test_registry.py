@@ -1,7 +1,16 @@
-"""The artifact registry: declarations, dependency resolution, config subsets."""
+"""The artifact registry: declarations (read without importing, and by the decorators), dependency
+resolution, batches, config subsets."""
+
+import importlib
+import pkgutil
+import subprocess
+import sys
+import textwrap
 
 import pandas as pd
 import pytest
+
+import brdfs.artifacts
 
 from brdfs.pipeline import registry as artifacts
 from brdfs.pipeline.published import COMPARISON_COLUMNS
@@ -46,10 +55,16 @@ def test_config_subset_holds_the_declared_sections_plus_seed_and_tolerance():
 
 
 @pytest.fixture
-def toy_registry(monkeypatch):
-    """Two toy tables, ``extra_toy_b`` depending on ``extra_toy_a``, counting their computations."""
+def empty_registry(monkeypatch):
+    """A registry holding nothing of the package: neither scanned nor imported declarations."""
     monkeypatch.setattr(artifacts, "_ARTIFACTS", {})
-    monkeypatch.setattr(artifacts, "_load_all", lambda: None)
+    monkeypatch.setattr(artifacts, "_COMPARISONS", {})
+    monkeypatch.setattr(artifacts, "_package_declarations", lambda: ({}, {}))
+
+
+@pytest.fixture
+def toy_registry(empty_registry):
+    """Two toy tables, ``extra_toy_b`` depending on ``extra_toy_a``, counting their computations."""
     calls = []
 
     def compute_a(cfg, deps):
@@ -61,8 +76,8 @@ def toy_registry(monkeypatch):
         return deps["extra_toy_a"].assign(y=deps["extra_toy_a"]["x"] * cfg["toy"]["factor"])
 
     compute_a.__module__, compute_b.__module__ = "toy_a", "toy_b"
-    artifacts.table("extra_toy_a", config=())(compute_a)
-    artifacts.table("extra_toy_b", deps=("extra_toy_a",), config=("toy",))(compute_b)
+    artifacts.table("extra_toy_a", config=(), chapter=None)(compute_a)
+    artifacts.table("extra_toy_b", deps=("extra_toy_a",), config=("toy",), chapter=None)(compute_b)
     return calls
 
 
@@ -75,36 +90,31 @@ def test_dependencies_are_computed_once(toy_registry):
     assert first["extra_toy_b"]["y"].tolist() == [0.1 * 3.0, 1 / 3 * 3.0]
 
 
-def test_dependency_cycles_are_reported(monkeypatch):
-    monkeypatch.setattr(artifacts, "_ARTIFACTS", {})
-    monkeypatch.setattr(artifacts, "_load_all", lambda: None)
-
+def test_dependency_cycles_are_reported(empty_registry):
     def compute(cfg, deps):
         return pd.DataFrame({"x": [1]})
 
     for name, dep, module in (("extra_loop_a", "extra_loop_b", "m_a"), ("extra_loop_b", "extra_loop_a", "m_b")):
         fn = lambda cfg, deps: compute(cfg, deps)  # noqa: E731  (a distinct function per module)
         fn.__module__ = module
-        artifacts.table(name, deps=(dep,))(fn)
+        artifacts.table(name, deps=(dep,), chapter=None)(fn)
     with pytest.raises(ValueError, match="dependency cycle: extra_loop_a -> extra_loop_b -> extra_loop_a"):
         artifacts.compute_tables({"seed": 0, "tolerance": {}}, ["extra_loop_a"], {})
 
 
-def test_two_tables_in_one_module_or_one_name_twice_are_refused(monkeypatch):
-    monkeypatch.setattr(artifacts, "_ARTIFACTS", {})
-
+def test_two_tables_in_one_module_or_one_name_twice_are_refused(empty_registry):
     def one(cfg, deps):
         return pd.DataFrame()
 
     def two(cfg, deps):
         return pd.DataFrame()
 
-    artifacts.table("extra_one")(one)
+    artifacts.table("extra_one", chapter=None)(one)
     with pytest.raises(ValueError, match="one table or figure per module"):
-        artifacts.table("extra_two")(two)
+        artifacts.table("extra_two", chapter=None)(two)
     two.__module__ = "elsewhere"
     with pytest.raises(ValueError, match="registered twice"):
-        artifacts.table("extra_one")(two)
+        artifacts.table("extra_one", chapter=None)(two)
 
 
 def test_compute_must_return_a_dataframe(toy_registry):
@@ -112,7 +122,7 @@ def test_compute_must_return_a_dataframe(toy_registry):
         return pd.DataFrame()
 
     empty.__module__ = "toy_empty"
-    artifacts.table("extra_empty")(empty)
+    artifacts.table("extra_empty", chapter=None)(empty)
     with pytest.raises(TypeError, match="non-empty DataFrame"):
         artifacts.get_artifact("extra_empty").compute({"seed": 0, "tolerance": {}}, {})
 
@@ -121,3 +131,73 @@ def test_compute_all_comparisons_gives_the_merged_comparison(all_comparisons):
     merged = all_comparisons
     assert tuple(merged.columns) == COMPARISON_COLUMNS
     assert set(merged["artifact"]) == set(artifacts.comparisons())
+
+
+def test_the_scan_of_the_decorator_lines_declares_what_importing_the_modules_registers():
+    scanned, scanned_comparisons = artifacts.artifacts(), artifacts.comparisons()
+    for module in pkgutil.iter_modules(brdfs.artifacts.__path__):
+        if not module.name.startswith("_"):
+            importlib.import_module(f"brdfs.artifacts.{module.name}")
+    assert artifacts._ARTIFACTS == scanned                # name, kind, module, deps, config, resources, chapter, batch
+    assert artifacts._COMPARISONS == scanned_comparisons  # artifact, module, tables, config
+    assert artifacts.get_artifact("extra_microfacet_albedo").deps == (
+        "extra_pumping_albedo_phong", "extra_pumping_albedo_blinn")  # tuple(mf.PUMPING_TABLES.values())
+    assert artifacts.get_artifact("fig_1_1_surface_elements").config == ("diagrams",)  # dg.SECTION
+
+
+def test_listing_the_artifacts_imports_no_artifact_module_nor_the_numerical_libraries():
+    code = ("import sys; from brdfs.pipeline import registry; a = registry.artifacts(); c = registry.comparisons(); "
+            "[x.sources for x in (*a.values(), *c.values())]; "
+            "print(len(a), len(c), sorted(m for m in sys.modules if m.startswith('brdfs.artifacts') "
+            "or m.split('.')[0] in ('numpy', 'pandas', 'scipy', 'matplotlib')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split(" ", 2)
+    assert int(out[0]) >= 68 and int(out[1]) >= 13
+    assert out[2].strip() == "[]"
+
+
+def test_a_decorator_argument_the_scan_cannot_read_is_reported_with_its_file_and_line(tmp_path, monkeypatch):
+    path = tmp_path / "extra_toy_scan.py"
+    path.write_text(textwrap.dedent("""\
+        from brdfs.artifacts import _microfacet_energy as mf
+        from brdfs.pipeline.registry import table
+
+        NAME = "extra_toy_scan"
+        DEPS = (*mf.PUMPING_TABLES.values(), "table_3_1_blinn_constants")
+
+
+        @table(NAME, deps=DEPS, config=("toy",), resources={"runtime": 1}, chapter=2)
+        def compute(cfg, deps):
+            pass
+        """))
+    monkeypatch.setattr(artifacts, "_module_file", lambda module, real=artifacts._module_file:
+                        path if module == "brdfs.artifacts.extra_toy_scan" else real(module))
+    artifacts._scope.cache_clear()
+    (entry,) = artifacts._declarations_in("brdfs.artifacts.extra_toy_scan")
+    assert (entry.name, entry.kind, entry.config, entry.chapter, entry.batch, entry.resources["runtime"]) == (
+        "extra_toy_scan", "table", ("toy",), 2, "extra", 1)
+    assert entry.deps == ("extra_pumping_albedo_phong", "extra_pumping_albedo_blinn", "table_3_1_blinn_constants")
+
+    path.write_text(path.read_text().replace("config=(\"toy\",)", "config=sections()"))
+    artifacts._scope.cache_clear()
+    artifacts._parse.cache_clear()
+    with pytest.raises(artifacts.DeclarationError, match=r"extra_toy_scan.py:8: cannot read: 'sections\(\)'"):
+        artifacts._declarations_in("brdfs.artifacts.extra_toy_scan")
+    artifacts._scope.cache_clear()
+
+
+def test_thesis_artifacts_default_to_their_numbers_chapter_and_an_extra_must_declare_its_own(empty_registry):
+    def compute(cfg, deps):
+        return pd.DataFrame({"x": [1]})
+
+    compute.__module__ = "toy_chapter"
+    artifacts.figure("fig_4_99_toy")(compute)
+    assert artifacts.get_artifact("fig_4_99_toy").chapter == 4
+    with pytest.raises(artifacts.DeclarationError, match="extra_toy_chapter: declare the report chapter"):
+        artifacts.table("extra_toy_chapter")(compute)
+
+
+def test_a_batch_lists_its_members_after_their_dependencies():
+    chapter_3 = [a.name for a in artifacts.batches()["chapter_3"]]
+    assert chapter_3.index("table_3_1_blinn_constants") < chapter_3.index("table_1_1_blinn_constants")
+    assert chapter_3.index("table_3_1_blinn_constants") < chapter_3.index("table_3_3_mean_albedo")
+    assert "fig_3_4_albedo_with_new_model" not in chapter_3   # batch=None: a job of its own

@@ -1,9 +1,13 @@
 """The HTML report's grouping, captions and verdicts (brdfs.pipeline.report)."""
 
+from types import SimpleNamespace
+
 import pandas as pd
 from docutils.core import publish_parts
+from jinja2 import Environment
 
 from brdfs.pipeline import registry, report
+from brdfs.pipeline.io import REPO_ROOT
 
 
 def test_every_artifact_has_a_written_caption_naming_its_thesis_number():
@@ -14,14 +18,34 @@ def test_every_artifact_has_a_written_caption_naming_its_thesis_number():
         assert number is None or text.startswith(f"**{number}"), f"{name}: caption does not start from {number}"
 
 
-def test_every_thesis_artifact_is_grouped_under_its_chapter():
-    for name in registry.artifacts():
+def test_every_artifact_is_grouped_under_the_chapter_its_decorator_declares():
+    for name, artifact in registry.artifacts().items():
         number = report.thesis_number(name)
-        if number:
-            assert report.category(name) == report.CHAPTERS[int(number.split()[1].split(".")[0])], name
-    assert report.category("fig_2_1_albedo_classical") == report.CHAPTERS[2]
+        if number:   # thesis-numbered: the chapter of its number, by default
+            assert artifact.chapter == int(number.split()[1].split(".")[0]), name
+        assert report.category(artifact.chapter) == (report.NUMERICS if artifact.chapter is None
+                                                     else report.CHAPTERS[artifact.chapter]), name
+    assert registry.get_artifact("extra_accuracy_map").chapter is None      # numerics, not a chapter
+    assert registry.get_artifact("extra_ward_in_range").chapter == 3
+    assert report.category(2) == report.CHAPTERS[2]
     assert report.subcategory("table_3_2_ward_cmax") == "Tables"
-    assert report.category("extra_unknown_new_check") == "Beyond the thesis"
+
+
+def test_the_caption_template_shows_the_committed_caption_and_the_verdict_read_when_rendered(tmp_path):
+    template = Environment().from_string((REPO_ROOT / "workflow" / "report" / "artifact.rst").read_text())
+    csv = tmp_path / "published_comparison.csv"
+    texts = report.ReportTexts(sources={"ward_cmax": ("table_3_2_ward_cmax",)}, comparison_csv=str(csv))
+    job = SimpleNamespace(config={report.CONFIG_KEY: texts},
+                          wildcards=SimpleNamespace(name="table_3_2_ward_cmax", kind="tables"))
+    before = template.render(snakemake=job)    # nothing built yet: said so, nothing read
+    assert before.startswith(report.caption("table_3_2_ward_cmax")) and "**Table 3.2" in before
+    assert "published_comparison.csv is not built yet" in before
+    comparison([["ward_cmax", "Table 3.2, eq. 3.36", "ward_cosmin", "0.4", "C_max", "1.63", "1.6204", "differs",
+                 "closed form"]]).to_csv(csv, index=False)
+    after = template.render(snakemake=job)     # the comparison as it is when the report renders
+    assert "0 of 1 printed numbers reproduce, 1 differ" in after
+    assert "``results/tables/table_3_2_ward_cmax.csv``" in after
+    assert "0 reproduce, 1 differ" in texts.summary()
 
 
 def comparison(rows):

@@ -1,36 +1,87 @@
-"""The workflow end to end: `snakemake` builds a few cheap artifacts in a fresh copy of the repository.
+"""The workflow end to end: `snakemake` plans and builds a few cheap artifacts in a fresh copy of the repository.
 
 So that the test command exercises the rules (generic artifact rule, logs, benchmarks, atomic
-outputs, up-to-date detection) and not only the package.
+outputs, up-to-date detection, report captions) and not only the package, and that planning
+has no side effects: it writes nothing and reads no output.
 """
 
 import os
+import re
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import pandas as pd
+import pytest
 
-from brdfs.pipeline import registry
 from brdfs.pipeline.io import REPO_ROOT
 
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
 TARGETS = ["results/tables/table_1_2_metal_reflectance.png", "results/figures/fig_5_1_patch_based_brdf.png"]
 
 
+def copy_repository(destination: Path) -> Path:
+    for name in ("Snakefile", "config.yaml", "workflow", "data", "src"):
+        source = REPO_ROOT / name
+        (shutil.copytree if source.is_dir() else shutil.copy)(source, destination / name,
+                                                              **({"symlinks": True} if source.is_dir() else {}))
+    for cache in destination.rglob("__pycache__"):
+        shutil.rmtree(cache)
+    return destination
+
+
 def snakemake(cwd: Path, *args: str) -> subprocess.CompletedProcess:
-    env = {**os.environ, "PYTHONPATH": str(cwd / "src"),
+    env = {**os.environ, "PYTHONPATH": str(cwd / "src"), "PYTHONDONTWRITEBYTECODE": "1",
            "PATH": f"{SNAKEMAKE.parent}{os.pathsep}{os.environ.get('PATH', '')}"}
     return subprocess.run([str(SNAKEMAKE), "--cores", "1", *args], cwd=cwd, capture_output=True, text=True,
                           env=env, timeout=300)
 
 
-def test_snakemake_builds_cheap_artifacts_with_logs_and_benchmarks_then_has_nothing_to_do(tmp_path):
-    for name in ("Snakefile", "config.yaml", "workflow", "data", "src"):
-        source = REPO_ROOT / name
-        (shutil.copytree if source.is_dir() else shutil.copy)(source, tmp_path / name,
-                                                              **({"symlinks": True} if source.is_dir() else {}))
+def planned_jobs(run: subprocess.CompletedProcess) -> dict[str, int]:
+    """The "Job stats" table of a dry run: jobs by rule."""
+    table = (run.stdout + run.stderr).split("Job stats:")[1].split("\n\n")[0]
+    return {m[1]: int(m[2]) for m in re.finditer(r"^(\S+)\s+(\d+)$", table, re.M) if m[1] != "total"}
+
+
+def tree(root: Path) -> dict[str, tuple[int, int]]:
+    """Every file under ``root`` (size and modification time) but Snakemake's own cache of file times."""
+    return {p.relative_to(root).as_posix(): (p.stat().st_size, p.stat().st_mtime_ns) for p in root.rglob("*")
+            if p.is_file() and not p.relative_to(root).as_posix().startswith(".snakemake/iocache/")}
+
+
+@pytest.fixture(scope="module")
+def pristine(tmp_path_factory) -> Path:
+    """A copy of the repository in which nothing is ever built (only planned)."""
+    return copy_repository(tmp_path_factory.mktemp("plan"))
+
+
+def test_planning_one_table_from_scratch_yields_exactly_one_job(pristine):
+    run = snakemake(pristine, "-n", "results/tables/table_3_2_ward_cmax.png")
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert planned_jobs(run) == {"artifact": 1}
+
+
+@pytest.mark.parametrize("mode", [(), ("--config", "batches=true")], ids=["one-job-per-artifact", "full-build"])
+def test_planning_the_whole_workflow_writes_nothing_and_reads_no_output(pristine, mode):
+    # A comparison no parser reads: planning that read the outputs would stop on it.
+    (pristine / "results" / "checks").mkdir(parents=True, exist_ok=True)
+    (pristine / "results" / "checks" / "published_comparison.csv").write_text('artifact,"unterminated\n')
+    before = tree(pristine)
+    run = snakemake(pristine, "-n", *mode)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert tree(pristine) == before
+    assert not (pristine / ".snakemake" / "report_captions").exists()
+    jobs = planned_jobs(run)
+    assert jobs["check"] == jobs["merge_comparison"] == 1
+    if mode:   # the full build: cheap artifacts in batches, Table 3.2 with the rest of chapter 3
+        assert jobs["batch_chapter_3"] == 1 and jobs["artifact"] < 20
+    else:
+        assert not [rule for rule in jobs if rule.startswith("batch_")] and jobs["artifact"] >= 68
+
+
+def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then_has_nothing_to_do(tmp_path):
+    copy_repository(tmp_path)
     run = snakemake(tmp_path, *TARGETS)
     assert run.returncode == 0, run.stderr[-3000:]
 
@@ -38,14 +89,18 @@ def test_snakemake_builds_cheap_artifacts_with_logs_and_benchmarks_then_has_noth
         png, csv = tmp_path / target, (tmp_path / target).with_suffix(".csv")
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         assert not pd.read_csv(csv).empty
-        name = png.stem
-        kind, job = ("batches", registry.get_artifact(name).batch) if registry.get_artifact(name).batch \
-            else (png.parent.name, name)
-        log = (tmp_path / "results" / "logs" / kind / f"{job}.log").read_text()
+        kind, name = png.parent.name, png.stem
+        log = (tmp_path / "results" / "logs" / kind / f"{name}.log").read_text()
         assert f"step: compute {name}" in log and "done in" in log, log
-        assert (tmp_path / "results" / "benchmarks" / "rules" / kind / f"{job}.tsv").is_file()
+        assert (tmp_path / "results" / "benchmarks" / "rules" / kind / f"{name}.tsv").is_file()
     # Atomic writes leave no temporary behind.
     assert not [p for p in (tmp_path / "results").rglob(".*") if p.is_file()]
 
     again = snakemake(tmp_path, "-n", *TARGETS)
     assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr, again.stdout
+
+    # The report of these two: each PNG with its committed caption, rendered by the one template.
+    report = snakemake(tmp_path, "--report", "report.html", *TARGETS)
+    assert report.returncode == 0, report.stderr[-3000:]
+    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert "Table 1.2" in html and "Figure 5.1" in html and "not built yet" in html

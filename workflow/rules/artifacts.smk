@@ -1,11 +1,14 @@
 # The rules of every registered table and figure: its CSV and PNG from its module's compute()
 # and plot(). Inputs are the CSVs of its declared deps and the package files its module imports;
-# params are the config sections it reads. Each PNG goes into the HTML report under its thesis
-# chapter, with its caption (brdfs.pipeline.report).
+# params are the config sections it reads. Each PNG goes into the HTML report under the thesis
+# chapter its decorator declares, with its caption (brdfs.pipeline.report).
 #
-# Cheap artifacts are computed together, one job per batch (registry.batches(): a chapter, or the
-# extras), so that each does not pay the ~1 s start-up of a Python process; an expensive one
-# (declared with batch=None) gets the generic `artifact` rule, one job of its own.
+# `artifact` is ONE rule for every registered table, figure and check: one job per artifact. In
+# the full build only (`--config batches=true`, `make all`), the cheap artifacts of a batch
+# (registry.batches(): a chapter, the extras, the microfacet or render figures) are computed by
+# one rule per batch, `batch_<name>`, one job each, so that each does not pay the ~1 s start-up
+# of a Python process; an expensive artifact (declared with batch=None) keeps its own job.
+# The report is planned without batches, so every PNG gets its caption through `artifact`.
 
 
 rule artifact:
@@ -17,7 +20,7 @@ rule artifact:
         png=report(
             "results/{kind}/{name}.png",
             caption="../report/artifact.rst",
-            category=lambda wc: report_text.category(wc.name),
+            category=lambda wc: report_text.category(ARTIFACTS[wc.name].chapter),
             subcategory=lambda wc: report_text.subcategory(wc.name),
             labels=lambda wc: {"artifact": wc.name, "thesis": report_text.thesis_number(wc.name) or "extra"},
         ),
@@ -28,7 +31,6 @@ rule artifact:
         kind="tables|figures|checks",
         name=wildcard_choice(SOLO),
     threads: lambda wc: ARTIFACTS[wc.name].resources["threads"]
-    priority: lambda wc: priority([ARTIFACTS[wc.name]])
     resources:
         mem_mb=lambda wc: ARTIFACTS[wc.name].resources["mem_mb"],
         runtime=lambda wc: ARTIFACTS[wc.name].resources["runtime"],
@@ -49,12 +51,11 @@ for _batch, _members in BATCHES.items():
             tables=batch_inputs(_members),
             code=sorted({s for a in _members for s in a.sources}),
         output:
-            [path for a in _members for path in (a.csv, report_png(a.png, a.name))],
+            [path for a in _members for path in (a.csv, a.png)],
         params:
             artifacts=[a.name for a in _members],
             config=registry.config_subset(config, sorted({s for a in _members for s in a.config})),
         threads: max(a.resources["threads"] for a in _members)
-        priority: priority(_members)
         resources:
             mem_mb=max(a.resources["mem_mb"] for a in _members),
             runtime=sum(a.resources["runtime"] for a in _members),

@@ -1,4 +1,4 @@
-"""Compute registered tables and figures (one, or a batch in dependency order) and write each
+"""Compute registered tables and figures (one, or a batch of the full build in dependency order) and write each
 CSV and PNG atomically.
 
 The outputs come in the order of ``params.artifacts``, a CSV and a PNG each. A member's

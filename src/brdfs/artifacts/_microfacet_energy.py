@@ -29,15 +29,17 @@ COLUMNS = ["family", "model", "variant", "pumping", "level", "n", "alpha", "G2",
 
 
 def alpha_of_n(family: str, n):
-    """α matched to a Phong (mirror lobe) or Blinn (half-vector lobe) exponent n (module docstring)."""
+    """α matched to the exponent n of the cosine-lobe model ``family`` (Phong: mirror lobe, Blinn:
+    half-vector lobe; the model's :attr:`~brdfs.physics.models.base.BRDF.half_angle_exponent_factor`,
+    module docstring)."""
     n = np.asarray(n, float)
-    return np.sqrt(2.0 / ((4.0 * n if family == "phong" else n) + 2.0))
+    return np.sqrt(2.0 / (MODELS[family].half_angle_exponent_factor * n + 2.0))
 
 
 def n_of_alpha(family: str, alpha):
     """Inverse of :func:`alpha_of_n`."""
     blinn = 2.0 / np.asarray(alpha, float) ** 2 - 2.0
-    return blinn / 4.0 if family == "phong" else blinn
+    return blinn / MODELS[family].half_angle_exponent_factor
 
 
 def pumped_family(family: str, table_df: pd.DataFrame, correction: str, levels: int):
@@ -49,12 +51,14 @@ def pumped_family(family: str, table_df: pd.DataFrame, correction: str, levels: 
 
 
 def new_model(family: str, n: float):
-    """The thesis's new model of the family: phong_cosmin with c = (n+2)/2π (eq. 3.10), or blinn_cosmin
-    (eq. 3.34) with C = 1/max a (its Table 3.1 constant, computed)."""
-    if family == "phong":
-        return model("phong_cosmin", n=n)
-    C = float(maximal_constant([model("blinn_cosmin", n=n)], rtol=1e-9)[0].value[0])
-    return model("blinn_cosmin", n=n, C=C)
+    """The thesis's new model of the family (:attr:`~brdfs.physics.models.base.BRDF.corrected_by`):
+    phong_cosmin with c = (n+2)/2π (eq. 3.10), or blinn_cosmin (eq. 3.34) with C = 1/max a (its
+    Table 3.1 constant, computed: :attr:`~brdfs.physics.models.base.BRDF.constant_is_computed`)."""
+    name = MODELS[family].corrected_by
+    if not MODELS[name].constant_is_computed:
+        return model(name, n=n)
+    C = float(maximal_constant([model(name, n=n)], rtol=1e-9)[0].value[0])
+    return model(name, n=n, C=C)
 
 
 def microfacet(name: str, alpha: float, compensation: str = "none", G2: str = "height_correlated", **fresnel):

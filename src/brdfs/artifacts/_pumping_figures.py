@@ -14,7 +14,7 @@ from brdfs.pipeline import plotting
 from brdfs.numerics import pumping
 from brdfs import albedo
 from brdfs.physics.geometry import cos_incidence, light_direction, mirror
-from brdfs.physics.models import model, phong_constant
+from brdfs.physics.models import MODELS, model, phong_constant
 from brdfs.numerics.quantities import maximal_constant
 
 #: Relative rounding bound of one BRDF evaluation (powers n ≤ 100 of a rounded dot product).
@@ -23,12 +23,11 @@ LEVEL_COLUMNS = ["model", "n", "C", "pumping", "level"]
 
 
 def base_model(name: str, n: float, C: float | None = None):
-    """Reciprocal Phong with c = (n+2)/2π (eq. 3.6) or Blinn with C = 1/max a (computed)."""
-    if name == "phong":
-        return model("phong", n=n, C=C)
-    if C is None:
-        C = float(maximal_constant([model("blinn", n=n)])[0].value[0])
-    return model("blinn", n=n, C=C)
+    """Reciprocal Phong with c = (n+2)/2π (eq. 3.6) or Blinn with C = 1/max a (computed: the model's
+    :attr:`~brdfs.physics.models.base.BRDF.constant_is_computed`)."""
+    if C is None and MODELS[name].constant_is_computed:
+        C = float(maximal_constant([model(name, n=n)])[0].value[0])
+    return model(name, n=n, C=C)
 
 
 def albedo_tables(name: str, cfg: dict) -> pd.DataFrame:

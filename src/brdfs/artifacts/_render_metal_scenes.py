@@ -5,18 +5,18 @@ from brdfs.artifacts import _render_figures as rf
 from brdfs.render import shapes
 
 
-def _key(model):
-    return "n" if model == "phong_cosmin" else "s"
+def _params(entry):
+    """The model parameters of a config entry ``{metal: ..., <parameter>: ...}`` (n, s, ...)."""
+    return {k: v for k, v in entry.items() if k != "metal"}
 
 
 def describe(entries, model="phong_cosmin"):
     """'silver n=20, aluminium n=40, ...' from config entries (panel titles follow the config)."""
-    return ", ".join(f"{e['metal']} {_key(model)}={e[_key(model)]:g}" for e in entries)
+    return ", ".join(" ".join([e["metal"], *(f"{k}={v:g}" for k, v in _params(e).items())]) for e in entries)
 
 
 def _metal(entry, model="phong_cosmin"):
-    key = "n" if model == "phong_cosmin" else "s"
-    return {"metal": entry["metal"], "model": model, key: entry[key]}
+    return {"metal": entry["metal"], "model": model, **_params(entry)}
 
 
 def tank_and_spheres(cfg, entries, model, title, base=None):

@@ -50,7 +50,7 @@ def _blinn_rows(n, constants, tol):
     return rows
 
 
-@table(NAME, deps=(CONSTANTS,), config=("chapter3_claims",))
+@table(NAME, deps=(CONSTANTS,), config=("chapter3_claims",), chapter=3)
 def compute(cfg: dict, deps: dict) -> pd.DataFrame:
     sec, tol = cfg["chapter3_claims"], cfg["tolerance"]["rtol"]
     rows = (_grazing_rows(sec["grazing_limit_n"], sec["limit_check_n"], tol)

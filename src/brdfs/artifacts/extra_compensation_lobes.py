@@ -21,6 +21,8 @@ from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
 DEPS = (*mf.PUMPING_TABLES.values(), mf.ENERGY_TABLE)
+#: Marker colours of the walks per distribution.
+WALK_COLOURS = {"ggx": "k", "beckmann": "0.5"}
 #: Relative rounding of a closed-form BRDF value (powers ≤ 100 of rounded dot products, tables' polynomials).
 EVAL_RTOL = 256 * np.finfo(float).eps
 COLUMNS = ["family", "model", "variant", "pumping", "level", "n", "alpha", "theta_deg", "theta_v_deg", "phi_deg",
@@ -54,7 +56,7 @@ class _MultipleScatteringOnly:
         return np.where((nl >= 0) & (nv > 0), self.brdf.multiple_scattering(nl, nv), 0.0)
 
 
-@figure("extra_compensation_lobes", deps=DEPS, config=("microfacet",), batch="microfacet")
+@figure("extra_compensation_lobes", deps=DEPS, config=("microfacet",), batch="microfacet", chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Rows ``family, model, variant, pumping, level, n, alpha, theta_deg, theta_v_deg, phi_deg, intensity, intensity_err``."""
     c = cfg["microfacet"]
@@ -111,7 +113,7 @@ def plot(df: pd.DataFrame, path) -> None:
             x, y = np.radians(signed.to_numpy()[order]), g["intensity"].to_numpy()[order]
             label = f"{name} {variant}" + (f" ×{int(level)}" if variant == "pumped" else "")
             if variant.startswith("walk"):
-                ax.plot(x, y, "o" if variant == "walk" else "^", ms=3, color="k" if name == "ggx" else "0.5",
+                ax.plot(x, y, "o" if variant == "walk" else "^", ms=3, color=WALK_COLOURS.get(name, "0.5"),
                         mfc="none" if variant == "walk_multiple" else None, label=label)
             else:
                 ax.plot(x, y, {"kulla_conty": "--", "ms_term": ":", "new_model": "-."}.get(variant, "-"), lw=1.0,

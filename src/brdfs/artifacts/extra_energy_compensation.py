@@ -27,11 +27,13 @@ import pandas as pd
 from brdfs.artifacts import _microfacet_energy as mf
 from brdfs.numerics.albedo import albedo
 from brdfs.physics.geometry import cos_incidence
-from brdfs.physics.models import model
+from brdfs.physics.models import MODELS, model
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import figure
 
 DEPS = (*mf.PUMPING_TABLES.values(), mf.ENERGY_TABLE)
+#: The walk the thesis's models (which have no walk of their own) are compared with.
+REFERENCE_WALK = "ggx"
 
 
 def _theta_grid(c):
@@ -84,18 +86,21 @@ def _microfacet_rows(family, alpha, theta, walk_theta, c, seed, family_index):
     return frames
 
 
-def _sweep_rows(family, n_thesis, c):
-    """1 − a against α at the sweep angles (new model, original Phong; microfacet single scattering once,
-    in the rows of family ``phong``)."""
+def _sweep_rows(family, first, c):
+    """1 − a against α at the sweep angles (new model, original model; microfacet single scattering once,
+    in the rows of the ``first`` family).  Only a family whose new model has a closed-form constant is
+    swept (Phong's; blinn_cosmin's C_n needs a maximisation per n: panel 1 only)."""
     theta = np.asarray(c["sweep_theta_deg"], float)
+    new_name = MODELS[family].corrected_by
+    swept = not MODELS[new_name].constant_is_computed
     frames = []
     for alpha in c["sweep_alpha"]:
         n = float(mf.n_of_alpha(family, alpha))
-        brdfs = [] if family != "phong" else [
+        brdfs = [] if not first else [
             (name, mf.microfacet(name, alpha), "single_scattering", np.nan) for name in ("ggx", "beckmann")]
-        if n > 0 and family == "phong":     # blinn_cosmin's C_n needs a maximisation per n: panel 1 only
-            brdfs += [("phong_cosmin", model("phong_cosmin", n=n), "new_model", n),
-                      ("phong", model("phong", n=n), "original", n)]
+        if n > 0 and swept:
+            brdfs += [(new_name, model(new_name, n=n), "new_model", n),
+                      (family, model(family, n=n), "original", n)]
         for name, brdf, variant, n_col in brdfs:
             est = albedo(brdf, theta, rtol=c["rtol"])
             frames.append(mf.rows(family=family, model=name, variant=variant, n=n_col, alpha=alpha,
@@ -142,7 +147,7 @@ def _deviation_rows(albedo_rows):
         for keys, g in fam[~fam["variant"].isin(["walk", "walk_single"])].groupby(
                 ["model", "variant", "pumping", "level"], dropna=False):
             name = keys[0]
-            ref = walks[walks["model"] == (name if name in ("ggx", "beckmann") else "ggx")]
+            ref = walks[walks["model"] == (name if name in set(walks["model"]) else REFERENCE_WALK)]
             merged = g.merge(ref[["theta_deg", "value", "value_err"]], on="theta_deg", suffixes=("", "_walk"))
             if merged.empty:
                 continue
@@ -178,7 +183,7 @@ def _gold_rows(alpha_by_family, c, seed):
     return frames
 
 
-@figure("extra_energy_compensation", deps=DEPS, config=("microfacet",), batch="microfacet")
+@figure("extra_energy_compensation", deps=DEPS, config=("microfacet",), batch="microfacet", chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Tidy rows ``family, model, variant, pumping, level, n, alpha, G2, quantity, theta_deg, value, value_err``."""
     c = cfg["microfacet"]
@@ -193,8 +198,8 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
         frames += _microfacet_rows(family, alphas[family], theta, walk_theta, c, cfg["seed"], index)
     albedo_rows = pd.concat(frames, ignore_index=True)
     out = [albedo_rows, _loss_at_tabulated(albedo_rows, c["sweep_theta_deg"])]
-    for family in ("phong", "blinn"):
-        out += _sweep_rows(family, None, c)
+    for index, family in enumerate(("phong", "blinn")):
+        out += _sweep_rows(family, index == 0, c)
     out += _deviation_rows(albedo_rows)
     out += _deviation_from_one_rows(albedo_rows)
     out += _gold_rows(alphas, c, cfg["seed"])

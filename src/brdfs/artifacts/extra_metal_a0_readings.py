@@ -65,7 +65,7 @@ def _readings(ior_re: float, ior_im: float) -> list[tuple[str, str, str]]:
     ]
 
 
-@table("extra_metal_a0_readings", config=("metal_reflectance",))
+@table("extra_metal_a0_readings", config=("metal_reflectance",), chapter=1)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Eq. 1.40 under each reading of each metal's inputs.
 

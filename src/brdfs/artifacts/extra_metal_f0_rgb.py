@@ -32,7 +32,7 @@ def f0_linear_srgb(metal: str, dataset: str | None = None):
     return spectral_colour.reflectance_to_linear_srgb(wl, f0), m_abs @ (white * err)
 
 
-@table(NAME, config=(SECTION,), resources={"runtime": 1})
+@table(NAME, config=(SECTION,), resources={"runtime": 1}, chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Columns ``metal, r, g, b, r_err, g_err, b_err, dataset, citation``."""
     rows = []

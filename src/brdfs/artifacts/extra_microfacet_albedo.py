@@ -20,6 +20,8 @@ from brdfs.artifacts import _microfacet_energy as mf
 from brdfs.pipeline import plotting
 from brdfs.pipeline.registry import table
 
+#: Panel titles per distribution.
+TITLES = {"ggx": "GGX", "beckmann": "Beckmann"}
 COLUMNS = ["model", "G2", "alpha", "quantity", "mu", "albedo", "albedo_err", "piece", "x_lo", "x_hi", "node"]
 
 
@@ -28,7 +30,7 @@ def figure_alphas(deps) -> list[float]:
     return [float(mf.alpha_of_n(family, deps[name]["n"].iloc[0])) for family, name in mf.PUMPING_TABLES.items()]
 
 
-@table("extra_microfacet_albedo", deps=tuple(mf.PUMPING_TABLES.values()), config=("microfacet",), batch="microfacet")
+@table("extra_microfacet_albedo", deps=tuple(mf.PUMPING_TABLES.values()), config=("microfacet",), batch="microfacet", chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Columns ``model, G2, alpha, quantity (E | E_avg | E_table_node), mu, albedo, albedo_err`` and, for the
     node rows, ``piece, x_lo, x_hi, node``."""
@@ -63,8 +65,7 @@ def plot(df: pd.DataFrame, path) -> None:
             avg = averages[(averages["model"] == name) & (averages["G2"] == G2) & (averages["alpha"] == alpha)]
             label = f"α = {alpha:g}, {G2}" + (f", E_avg = {avg['albedo'].iloc[0]:.4f}" if not avg.empty else "")
             ax.plot(g["mu"], g["albedo"], "-" if G2 == "height_correlated" else "--", marker=".", label=label)
-        ax.set(xlabel="μ = cos θ", ylabel="single-scattering albedo E(μ), F = 1", title=name.upper() if name == "ggx"
-               else "Beckmann")
+        ax.set(xlabel="μ = cos θ", ylabel="single-scattering albedo E(μ), F = 1", title=TITLES[name])
         ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
     fig.suptitle("Single-scattering albedo of microfacet conductors with Smith's G2 (engine)", fontsize=9)
     plotting.savefig(fig, path)

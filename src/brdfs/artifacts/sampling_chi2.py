@@ -70,7 +70,7 @@ def _run(job):
                      n_pilot=max(n // 4, 5000))
 
 
-@check(NAME, config=(SECTION,), resources={"runtime": 2, "threads": 1})
+@check(NAME, config=(SECTION,), resources={"runtime": 2, "threads": 1}, chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """``model, parameters, strategy, theta_deg, n_samples, statistic, dof, p_value, sidak_level,
     pdf_mass, accepted_fraction, weight_error, passed``."""

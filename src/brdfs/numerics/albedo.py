@@ -74,6 +74,10 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
     if lobeless:
         raise ValueError(f"{lobeless[0].name!r} declares neither a lobe nor its own albedo route; "
                          "use method='disk'")
+    asymmetric = [m for m, o in zip(models, own) if not o and not m.symmetric_about_incidence_plane]
+    if asymmetric:                  # the engine integrates φ over [0, π] and doubles it
+        raise ValueError(f"{asymmetric[0].name!r} is not symmetric about the plane of incidence, which the "
+                         "engine assumes; use method='disk'")
     kirchhoff = np.array([not o and m.lobe.frame is SCATTERING for m, o in zip(models, own)], bool)
     one_d = np.array([closed_form_azimuth and azimuthal.supports(m) for m in models], bool) & ~kirchhoff & ~own
     schemes = ((one_d, azimuthal.albedo_many), (kirchhoff, albedo_scattering),

@@ -12,10 +12,12 @@ Differences from those harnesses, and why:
   or two cells and tests nothing, so the cells are polar about the lobe: a *sphere chart* — polar
   angle α about an axis A (the mean sampled direction of an independent pilot run) and azimuth φ
   about A — or, for the patch models whose sampler draws points of the base plane (chapter 4), a
-  *disk chart* — polar radius r and azimuth about the patch centre V'_P = −L_P on the unit disk.
+  *disk chart* — polar radius r and azimuth about the patch centre V'_P = −L_P on the unit disk
+  (the model declares which: ``sampling_domain``).
   The radial and azimuthal edges are quantiles of the pilot's coordinates (roughly equal expected
   counts, also when the horizon cuts the lobe in half).  The horizon (the unit circle) is a closed-form level of φ at every radius and is
-  passed to the inner integral as a breakpoint, as are a model's circle radii R (disk chart).
+  passed to the inner integral as a breakpoint, as are the circles and the ellipse about V'_P where a
+  model's density jumps (disk chart; the model declares them: ``disk_boundaries``).
 * Samplers may reject (a sub-probability pdf, see :mod:`brdfs.physics.sampling`): the rejected
   samples form one more cell, expecting N (1 − ∫pdf), so the test also checks the pdf's mass.
 * A sample in a cell whose pdf integral is zero fails the test outright (p = 0), as in Mitsuba.

@@ -7,10 +7,8 @@ import numpy as np
 from brdfs.numerics.albedo import DEFAULT_ATOL, DEFAULT_RTOL, albedo_pairs
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.mean import mean_albedo_lobe
-from brdfs.physics.lobes import HALF, MIRROR
+from brdfs.physics.lobes import PowerCosine
 from brdfs.physics.models import MODELS
-from brdfs.physics.models.blinn import Blinn, BlinnCosmin
-from brdfs.physics.models.phong import Phong, PhongCosmin
 # the closed forms live on the models (re-exported here for their callers)
 from brdfs.physics.models.phong import new_model_grazing_albedo as grazing_albedo_new_model  # noqa: F401
 from brdfs.physics.models.phong import phong_mean_albedo  # noqa: F401
@@ -94,10 +92,15 @@ def mean_albedo(models, rtol=None):
 
 
 def _lobe_reduction(brdf):
-    """(frame, cosmin) of the models :func:`mean_albedo_lobe` covers, else None."""
-    # exact types: a pumped model reports its base model's name but is not a cosine lobe
-    return {Phong: (MIRROR, False), PhongCosmin: (MIRROR, True),
-            Blinn: (HALF, False), BlinnCosmin: (HALF, True)}.get(type(brdf))
+    """(frame, cosmin) of the models :func:`mean_albedo_lobe` covers, else None: a cosine-power lobe
+    (:class:`~brdfs.physics.lobes.PowerCosine`) whose declared closed-form azimuth is the kernel g = 1
+    (``"nv"``: reciprocal Phong, Blinn) or g = 1/max(N·L, N·V) (``"nv/max"``: the new model, corrected
+    Blinn) — what the model says about its integrand, not its type or name (a pumped model or a metal
+    declares no closed-form azimuth)."""
+    declared = brdf.closed_form_azimuth
+    if declared is None or not isinstance(brdf.lobe, PowerCosine) or declared[1] not in ("nv", "nv/max"):
+        return None
+    return declared[0], declared[1] == "nv/max"
 
 
 def mean_albedo_nested(models, rtol=None):

@@ -3,7 +3,10 @@
 The workflow (``workflow/rules/common.smk``) and in-process runs (tests,
 ``python -m brdfs.pipeline.regression``) validate through :func:`validate_config`: the JSON
 schema of ``workflow/schemas/config.schema.yaml`` with default filling (the jsonschema FAQ
-recipe Snakemake uses) and the model names taken from the model classes. A bad
+recipe Snakemake uses) and what the schema takes from the model classes (:func:`load_schema`: the
+model names; beside every ``model`` key, each registered model's parameters with its declared ranges
+and choices; the accuracy map's families), so that a model registered with
+:func:`brdfs.physics.models.register`, also one defined in a test, needs no edit of the schema. A bad
 configuration raises :class:`ConfigError`, whose message is one line naming the key and its
 value (``workflow/rules/common.smk`` prints it and stops before any rule runs).
 """

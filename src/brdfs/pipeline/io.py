@@ -17,9 +17,10 @@ import time
 import uuid
 from collections.abc import Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import numpy as np
-import pandas as pd
+if TYPE_CHECKING:  # numpy and pandas are imported by the functions that need them, so that the
+    import pandas as pd  # workflow can plan (REPO_ROOT, the registry) without importing them
 
 #: The repository root (``src/brdfs/pipeline/io.py`` -> four levels up).
 REPO_ROOT = Path(__file__).resolve().parents[3]
@@ -57,12 +58,16 @@ def write_csv(df: pd.DataFrame, path: str | os.PathLike) -> None:
     pandas formats floats through ``str``, which numpy's ``legacy='1.13'`` print options (set
     by some libraries on import) cut to 12 digits: the options are pinned here.
     """
+    import numpy as np
+
     with atomic_output(path) as tmp, np.printoptions(legacy=False):
         df.to_csv(tmp, index=False)
 
 
 def read_csv(path: str | os.PathLike, **kwargs) -> pd.DataFrame:
     """Read a CSV written by :func:`write_csv`; floats read back exactly."""
+    import pandas as pd
+
     return pd.read_csv(path, **kwargs)
 
 

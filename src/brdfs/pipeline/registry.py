@@ -15,35 +15,59 @@ artifacts whose tidy DataFrames the function receives (read from their CSVs, so
 that in the pipeline and in-process they are the same numbers); ``config`` names
 the config.yaml sections the function reads: ``cfg`` holds exactly those plus
 ``seed`` and ``tolerance``, so that the pipeline reruns an artifact when, and
-only when, a section it reads changes. A comparison's rows go through
-:func:`brdfs.pipeline.published.make_fragment`.
+only when, a section it reads changes. ``chapter`` is the thesis chapter the HTML
+report files it under (default: the number in a ``fig_N_M``/``table_N_M`` name;
+``extra_*`` and checks declare it, None for numerics and extensions beyond the
+thesis). ``resources`` are its rule's threads, memory and run time; ``batch`` the
+job it shares with other cheap artifacts in the full build (``make all``). A
+comparison's rows go through :func:`brdfs.pipeline.published.make_fragment`.
 
-Modules of this package are imported on first use of the registry.
+The registry knows what only it can know: which artifacts exist, their config
+sections, dependencies, resources, chapters and batches, and the package source
+files each module imports (so that an edit reruns exactly the artifacts it
+affects). Scheduling is Snakemake's; the registry's one dependency resolution
+(:func:`dependency_order`, the only place a cycle is detected) serves in-process
+runs (:func:`compute_tables`, the regression baseline) and the order within a batch.
+
+The declarations are read in two ways that agree (``tests/pipeline/test_registry.py``):
+
+- :func:`artifacts` and :func:`comparisons` read the decorator lines of
+  ``src/brdfs/artifacts/*.py`` from their syntax tree, without importing the
+  modules, so that Snakemake lists every artifact while it plans at the cost of
+  parsing ~80 files (tens of ms) instead of importing them with numpy, scipy,
+  pandas and matplotlib (~1.5 s). A decorator argument must therefore be a
+  literal, a module-level constant, a constant of an imported package module, or
+  ``tuple(...)``/``list(...)``/``sorted(...)``/``d.values()``/``d.keys()`` of those;
+  anything else is a :class:`DeclarationError` naming the file and line.
+- Importing a module runs its decorators, which register the functions;
+  :meth:`Artifact.compute` and :meth:`Comparison.fragment` import their module on
+  first use. Decorators run outside the package (a test's toy artifact) register
+  artifacts the scan cannot see.
 """
 
 from __future__ import annotations
 
 import ast
+import dataclasses
 import functools
 import importlib
 import inspect
-import pkgutil
 import re
-import sys
 import tempfile
 from collections.abc import Callable, Iterable
-import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.pipeline import io
-from brdfs.pipeline import published
+
+if TYPE_CHECKING:  # pandas is imported where a DataFrame is made, not when the workflow plans
+    import pandas as pd
 
 _PACKAGE_ROOT = Path(__file__).resolve().parents[1]
+_ARTIFACTS_DIR = _PACKAGE_ROOT / "artifacts"
 
-ComputeFn = Callable[[dict, dict[str, pd.DataFrame]], pd.DataFrame]
+ComputeFn = Callable[[dict, dict], "pd.DataFrame"]
 
 #: Resources of an artifact's rule unless its decorator says otherwise (runtime in minutes).
 DEFAULT_RESOURCES = {"threads": 1, "mem_mb": 2000, "runtime": 10}
@@ -57,6 +81,14 @@ _NAME_PATTERNS = {
     "check": re.compile(r"[a-z0-9_]+"),
     "comparison": re.compile(r"[a-z0-9_]+"),
 }
+_NUMBERED = re.compile(r"(?:fig|table)_(\d+)_\d+_")
+
+#: Default of ``chapter=`` and ``batch=``: derived from the artifact's name.
+AUTO = "auto"
+
+
+class DeclarationError(ValueError):
+    """A decorator line the registry cannot read without importing its module, or a bad declaration."""
 
 
 def config_subset(cfg: dict, sections: Iterable[str]) -> dict:
@@ -74,6 +106,9 @@ def config_subset(cfg: dict, sections: Iterable[str]) -> dict:
     return {s: cfg[s] for s in wanted}
 
 
+# --- the source files an artifact depends on ------------------------------------------------------
+
+
 def _module_file(module: str) -> Path | None:
     """The source file of a ``brdfs`` module, or None outside the package."""
     if module != "brdfs" and not module.startswith("brdfs."):
@@ -86,10 +121,15 @@ def _module_file(module: str) -> Path | None:
 
 
 @functools.lru_cache(maxsize=None)
+def _parse(path: Path) -> ast.Module:
+    return ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+
+
+@functools.lru_cache(maxsize=None)
 def _imports_of(path: Path) -> frozenset[Path]:
-    """The package source files ``path`` imports directly (absolute ``brdfs`` imports)."""
+    """The package source files ``path`` imports directly (absolute ``brdfs`` imports, also inside functions)."""
     found = set()
-    for node in ast.walk(ast.parse(path.read_text())):
+    for node in ast.walk(_parse(path)):
         if isinstance(node, ast.Import):
             names = [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
@@ -106,13 +146,13 @@ def _imports_of(path: Path) -> frozenset[Path]:
     return frozenset(found)
 
 
-def _sources_of(fn: Callable) -> list[str]:
-    """The source files ``fn``'s results can depend on, relative to the repository root.
+def _sources_of(path: Path) -> list[str]:
+    """The source files a module's results can depend on, relative to the repository root.
 
-    The module defining ``fn`` and, transitively, every package module it imports, read
-    from the import statements, so that an edit reruns exactly the artifacts it affects.
+    The module and, transitively, every package module it imports, read from the import
+    statements, so that an edit reruns exactly the artifacts it affects.
     """
-    todo = [Path(inspect.getsourcefile(fn)).resolve()]
+    todo = [path.resolve()]
     seen: set[Path] = set()
     while todo:
         path = todo.pop()
@@ -122,37 +162,46 @@ def _sources_of(fn: Callable) -> list[str]:
     return sorted(p.relative_to(io.REPO_ROOT).as_posix() for p in seen)
 
 
+# --- declarations ----------------------------------------------------------------------------------
+
+
 @dataclass(frozen=True)
 class Artifact:
-    """A registered table or figure.
+    """A registered table, figure or check.
 
     Attributes
     ----------
     name : str
         The file stem, e.g. ``table_1_2_metal_reflectance``.
     kind : str
-        ``'table'`` or ``'figure'``.
+        ``'table'``, ``'figure'`` or ``'check'``.
+    module : str
+        The module that defines ``compute`` and ``plot``.
     deps : tuple of str
         Artifacts whose DataFrames ``compute`` receives.
     config : tuple of str
         The config.yaml sections ``compute`` reads.
-    fn : callable
-        ``compute(cfg, deps) -> DataFrame``.
     resources : dict
         ``threads``, ``mem_mb`` and ``runtime`` (minutes) of its rule, for a cluster's scheduler
         (:data:`DEFAULT_RESOURCES` updated by the decorator's ``resources``).
+    chapter : int or None
+        The thesis chapter the report files it under; None: numerics and extensions beyond the thesis.
     batch : str or None
-        The job it is computed in together with other cheap artifacts (:func:`default_batch`), so
-        that each does not pay a process start-up; None for a job of its own.
+        The job it shares with other cheap artifacts in the full build (default: ``chapter_<N>`` or
+        ``extra``, from its name); None for a job of its own.
+    fn : callable or None
+        ``compute(cfg, deps) -> DataFrame`` once its module is imported (not part of the declaration).
     """
 
     name: str
     kind: str
-    deps: tuple[str, ...]
-    config: tuple[str, ...]
-    fn: ComputeFn
+    module: str
+    deps: tuple[str, ...] = ()
+    config: tuple[str, ...] = ()
     resources: dict = dataclasses.field(default_factory=lambda: dict(DEFAULT_RESOURCES))
+    chapter: int | None = None
     batch: str | None = None
+    fn: ComputeFn | None = dataclasses.field(default=None, compare=False, repr=False)
 
     @property
     def csv(self) -> str:
@@ -167,18 +216,23 @@ class Artifact:
     @property
     def sources(self) -> list[str]:
         """The source files the artifact can depend on (see :func:`_sources_of`)."""
-        return _sources_of(self.fn)
+        return _sources_of(_source_file(self.module, self.fn))
+
+    def _function(self) -> ComputeFn:
+        return self.fn or _loaded(_ARTIFACTS, self.name, self.module).fn
 
     def compute(self, cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
         """Compute the artifact's tidy DataFrame from ``cfg`` and its dependencies."""
-        df = self.fn(config_subset(cfg, self.config), _select(self.name, "dependencies", self.deps, deps))
+        import pandas as pd
+
+        df = self._function()(config_subset(cfg, self.config), _select(self.name, "dependencies", self.deps, deps))
         if not isinstance(df, pd.DataFrame) or df.empty or not df.columns.is_unique:
             raise TypeError(f"{self.name}: compute must return a non-empty DataFrame with unique columns")
         return df.reset_index(drop=True)
 
     def plot(self, df: pd.DataFrame, path: str | Path) -> None:
         """Draw the artifact with its module's ``plot(df, path)``."""
-        sys.modules[self.fn.__module__].plot(df, path)
+        importlib.import_module(self.module).plot(df, path)
 
     def write(self, df: pd.DataFrame, csv: str | Path, png: str | Path) -> None:
         """Write the CSV and the PNG, each atomically."""
@@ -195,18 +249,22 @@ class Comparison:
     ----------
     artifact : str
         The ``artifact`` column of the published values.
+    module : str
+        The module that defines ``rows``.
     tables : tuple of str
         Artifacts whose DataFrames ``fn`` receives.
     config : tuple of str
         The config.yaml sections ``fn`` reads.
-    fn : callable
-        ``rows(cfg, tables) -> DataFrame``, the input of :func:`brdfs.pipeline.published.make_fragment`.
+    fn : callable or None
+        ``rows(cfg, tables) -> DataFrame``, the input of :func:`brdfs.pipeline.published.make_fragment`,
+        once its module is imported.
     """
 
     artifact: str
-    tables: tuple[str, ...]
-    config: tuple[str, ...]
-    fn: ComputeFn
+    module: str
+    tables: tuple[str, ...] = ()
+    config: tuple[str, ...] = ()
+    fn: ComputeFn | None = dataclasses.field(default=None, compare=False, repr=False)
 
     @property
     def fragment_csv(self) -> str:
@@ -216,15 +274,27 @@ class Comparison:
     @property
     def sources(self) -> list[str]:
         """The source files the comparison can depend on (see :func:`_sources_of`)."""
-        return _sources_of(self.fn)
+        return _sources_of(_source_file(self.module, self.fn))
 
     def fragment(self, cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
         """The comparison fragment (see :func:`brdfs.pipeline.published.make_fragment`)."""
-        rows = self.fn(config_subset(cfg, self.config), _select(self.artifact, "tables", self.tables, tables))
+        from brdfs.pipeline import published
+
+        fn = self.fn or _loaded(_COMPARISONS, self.artifact, self.module).fn
+        rows = fn(config_subset(cfg, self.config), _select(self.artifact, "tables", self.tables, tables))
         return published.make_fragment(self.artifact, rows)
 
 
-def _select(owner: str, what: str, names: tuple[str, ...], given: dict[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+def _source_file(module: str, fn: Callable | None) -> Path:
+    path = _module_file(module)
+    if path is None and fn is not None:
+        path = Path(inspect.getsourcefile(fn))
+    if path is None:
+        raise KeyError(f"no source file for module {module!r}")
+    return path
+
+
+def _select(owner: str, what: str, names: tuple[str, ...], given: dict) -> dict:
     """The DataFrames ``names`` of ``given``, or a KeyError naming the missing ones."""
     missing = [n for n in names if n not in given]
     if missing:
@@ -232,59 +302,77 @@ def _select(owner: str, what: str, names: tuple[str, ...], given: dict[str, pd.D
     return {n: given[n] for n in names}
 
 
-_ARTIFACTS: dict[str, Artifact] = {}
-_COMPARISONS: dict[str, Comparison] = {}
-
-
 def _check_name(kind: str, name: str) -> None:
     if not _NAME_PATTERNS[kind].fullmatch(name):
         raise ValueError(f"{kind} name {name!r} does not match {_NAME_PATTERNS[kind].pattern}")
 
 
-def _register(registry: dict, key: str, entry: Artifact | Comparison) -> None:
-    """Add ``entry``; re-registering the same function (a module reload) replaces it."""
-    old, fn = registry.get(key), entry.fn
-    if old is not None and (old.fn.__module__, old.fn.__qualname__) != (fn.__module__, fn.__qualname__):
-        raise ValueError(f"{key!r} is registered twice: in {old.fn.__module__} and {fn.__module__}")
-    registry[key] = entry
-
-
-#: ``batch=`` of a decorator: the artifact goes into :func:`default_batch`.
-AUTO = "auto"
-_CHAPTER = re.compile(r"(?:fig|table)_(\d+)_")
-
-
 def default_batch(name: str) -> str:
-    """The batch of a cheap artifact: its thesis chapter (``chapter_3``), or ``extra``.
+    """The batch of a cheap artifact in the full build: its thesis chapter (``chapter_3``), or ``extra``.
 
     >>> default_batch("fig_4_13_inverse_cdf"), default_batch("extra_ward_in_range")
     ('chapter_4', 'extra')
     """
-    match = _CHAPTER.match(name)
+    match = _NUMBERED.match(name)
     return f"chapter_{match[1]}" if match else "extra"
 
 
-def _artifact_decorator(kind: str, name: str, deps: Iterable[str], config: Iterable[str], resources: dict | None,
-                        batch: str | None):
+def _declare_artifact(kind: str, module: str, name: str, deps: Iterable[str] = (), config: Iterable[str] = (),
+                      resources: dict | None = None, chapter: int | None | str = AUTO,
+                      batch: str | None = AUTO) -> Artifact:
+    """The one constructor of a declaration, for the decorators and for the static scan alike."""
     _check_name(kind, name)
     unknown = set(resources or {}) - set(DEFAULT_RESOURCES)
     if unknown:
         raise ValueError(f"{name}: unknown resources {sorted(unknown)}; known: {sorted(DEFAULT_RESOURCES)}")
-    declared = {**DEFAULT_RESOURCES, **(resources or {})}
+    numbered = _NUMBERED.match(name)
+    if chapter == AUTO:
+        if not numbered:
+            raise DeclarationError(f"{name}: declare the report chapter (chapter=N for the chapter whose claims it "
+                                   "examines, chapter=None for numerics and extensions beyond the thesis)")
+        chapter = int(numbered[1])
+    if chapter is not None and not (isinstance(chapter, int) and chapter >= 1):
+        raise DeclarationError(f"{name}: chapter must be a thesis chapter number or None, not {chapter!r}")
+    return Artifact(name, kind, module, tuple(deps), tuple(config), {**DEFAULT_RESOURCES, **(resources or {})},
+                    chapter, default_batch(name) if batch == AUTO else batch)
+
+
+def _declare_comparison(module: str, artifact: str, tables: Iterable[str] = (),
+                        config: Iterable[str] = ()) -> Comparison:
+    _check_name("comparison", artifact)
+    return Comparison(artifact, module, tuple(tables), tuple(config))
+
+
+# Registered at run time by the decorators (modules imported in this process), by name.
+_ARTIFACTS: dict[str, Artifact] = {}
+_COMPARISONS: dict[str, Comparison] = {}
+
+
+def _register(registry: dict, key: str, entry: Artifact | Comparison) -> None:
+    """Add ``entry``; re-registering from the same module (a reload) replaces it."""
+    old = registry.get(key)
+    if old is not None and old.module != entry.module:
+        raise ValueError(f"{key!r} is registered twice: in {old.module} and {entry.module}")
+    if isinstance(entry, Artifact):
+        others = [a.name for a in registry.values() if a.module == entry.module and a.name != key]
+        if others:
+            raise ValueError(f"{entry.module} already defines {others}: one table or figure per module")
+    registry[key] = entry
+
+
+def _artifact_decorator(kind: str, *args, **kwargs):
+    _check_name(kind, args[0] if args else kwargs["name"])
 
     def decorate(fn: ComputeFn) -> ComputeFn:
-        others = [a.name for a in _ARTIFACTS.values() if a.fn.__module__ == fn.__module__ and a.name != name]
-        if others:
-            raise ValueError(f"{fn.__module__} already defines {others}: one table or figure per module")
-        group = default_batch(name) if batch == AUTO else batch
-        _register(_ARTIFACTS, name, Artifact(name, kind, tuple(deps), tuple(config), fn, declared, group))
+        entry = _declare_artifact(kind, fn.__module__, *args, **kwargs)
+        _register(_ARTIFACTS, entry.name, dataclasses.replace(entry, fn=fn))
         return fn
 
     return decorate
 
 
 def table(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
-          batch: str | None = AUTO):
+          chapter: int | None | str = AUTO, batch: str | None = AUTO):
     """Register ``compute(cfg, deps) -> DataFrame`` as the table ``name``.
 
     Parameters
@@ -298,31 +386,34 @@ def table(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resou
         The config.yaml sections ``compute`` reads (``seed`` and ``tolerance`` always come).
     resources : dict, optional
         Overrides of :data:`DEFAULT_RESOURCES` for its rule.
+    chapter : int or None
+        The thesis chapter of its place in the report: by default N of ``table_N_M``; an
+        ``extra_*`` declares it (None: numerics and extensions beyond the thesis).
     batch : str or None
-        The job it shares with other cheap artifacts (default: its chapter, :func:`default_batch`);
-        None for an expensive artifact, which gets a job of its own.
+        The job it shares with other cheap artifacts in the full build (default: its chapter,
+        :func:`default_batch`); None for an expensive artifact, which always has a job of its own.
     """
-    return _artifact_decorator("table", name, deps, config, resources, batch)
+    return _artifact_decorator("table", name, deps, config, resources, chapter, batch)
 
 
 def figure(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
-           batch: str | None = AUTO):
+           chapter: int | None | str = AUTO, batch: str | None = AUTO):
     """Register ``compute(cfg, deps) -> DataFrame`` (the plotted data) as the figure ``name``.
 
     As :func:`table`, with names ``fig_<N>_<M>_<slug>`` or ``extra_<slug>``,
     written to ``results/figures/``.
     """
-    return _artifact_decorator("figure", name, deps, config, resources, batch)
+    return _artifact_decorator("figure", name, deps, config, resources, chapter, batch)
 
 
 def check(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
-          batch: str | None = None):
+          chapter: int | None | str = AUTO, batch: str | None = None):
     """Register ``compute(cfg, deps) -> DataFrame`` (a verification's tidy results) as the check ``name``.
 
     As :func:`table`, with any ``[a-z0-9_]+`` name, written to ``results/checks/<name>.csv`` and ``.png``;
     a job of its own by default.
     """
-    return _artifact_decorator("check", name, deps, config, resources, batch)
+    return _artifact_decorator("check", name, deps, config, resources, chapter, batch)
 
 
 def comparison(artifact: str, tables: Iterable[str] = (), config: Iterable[str] = ()):
@@ -341,109 +432,185 @@ def comparison(artifact: str, tables: Iterable[str] = (), config: Iterable[str] 
     _check_name("comparison", artifact)
 
     def decorate(fn: ComputeFn) -> ComputeFn:
-        _register(_COMPARISONS, artifact, Comparison(artifact, tuple(tables), tuple(config), fn))
+        entry = _declare_comparison(fn.__module__, artifact, tables, config)
+        _register(_COMPARISONS, artifact, dataclasses.replace(entry, fn=fn))
         return fn
 
     return decorate
 
 
-def _load_all() -> None:
-    """Import every artifact module of this package (registering its artifacts)."""
-    import brdfs.artifacts as package
+_DECORATORS = {"table": table, "figure": figure, "check": check, "comparison": comparison}
 
-    for module in pkgutil.iter_modules(package.__path__):
-        if not module.name.startswith("_"):
-            importlib.import_module(f"{package.__name__}.{module.name}")
+
+def _loaded(registry: dict, key: str, module: str):
+    """The run-time entry of ``key``, importing ``module`` (which registers it) if need be."""
+    if key not in registry:
+        importlib.import_module(module)
+    if key not in registry:
+        raise DeclarationError(f"{module} was scanned as declaring {key!r} but registers no such entry")
+    return registry[key]
+
+
+# --- reading the decorator lines without importing --------------------------------------------------
+
+
+class _Scope:
+    """What the module-level statements of one source file bind, for :func:`_evaluate`."""
+
+    def __init__(self, module: str, path: Path):
+        self.module, self.path = module, path
+        self.values: dict[str, ast.expr] = {}  # NAME = <expression>
+        self.modules: dict[str, str] = {}  # local name -> a package module (import ... as / from pkg import mod)
+        self.imported: dict[str, tuple[str, str]] = {}  # local name -> (module, name) of `from module import name`
+        for node in _parse(path).body:
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+                self.values[node.targets[0].id] = node.value
+            elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name) and node.value is not None:
+                self.values[node.target.id] = node.value
+            elif isinstance(node, ast.Import):
+                for a in node.names:
+                    if a.asname:
+                        self.modules[a.asname] = a.name
+            elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                for a in node.names:
+                    full = f"{node.module}.{a.name}"
+                    if _module_file(full) is not None:
+                        self.modules[a.asname or a.name] = full
+                    else:
+                        self.imported[a.asname or a.name] = (node.module, a.name)
+
+    def error(self, node: ast.AST, why: str) -> DeclarationError:
+        return DeclarationError(f"{self.path}:{getattr(node, 'lineno', '?')}: {why}: {ast.unparse(node)!r} (the "
+                                "registry reads decorator arguments without importing the module: use literals, "
+                                "module constants or constants of imported package modules)")
+
+
+@functools.lru_cache(maxsize=None)
+def _scope(module: str) -> _Scope:
+    path = _module_file(module)
+    if path is None:
+        raise DeclarationError(f"{module}: not a module of the package")
+    return _Scope(module, path)
+
+
+_CALLS = {"tuple": tuple, "list": list, "sorted": sorted}
+_METHODS = {"values": dict.values, "keys": dict.keys}
+
+
+def _evaluate(node: ast.expr, scope: _Scope, depth: int = 0):
+    """The value of a decorator argument: literals, names bound to them, ``tuple(...)``, ``d.values()``."""
+    if depth > 50:
+        raise scope.error(node, "constants refer to each other in a loop")
+    if isinstance(node, ast.Constant):
+        return node.value
+    if isinstance(node, (ast.Tuple, ast.List)):
+        items = []
+        for element in node.elts:
+            if isinstance(element, ast.Starred):
+                items.extend(_evaluate(element.value, scope, depth + 1))
+            else:
+                items.append(_evaluate(element, scope, depth + 1))
+        return tuple(items) if isinstance(node, ast.Tuple) else items
+    if isinstance(node, ast.Dict) and None not in node.keys:
+        return {_evaluate(k, scope, depth + 1): _evaluate(v, scope, depth + 1) for k, v in zip(node.keys, node.values)}
+    if isinstance(node, ast.Name):
+        return _constant(node.id, scope, node, depth)
+    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in scope.modules:
+        return _constant(node.attr, _scope(scope.modules[node.value.id]), node, depth)
+    if isinstance(node, ast.Call) and not node.keywords:
+        func = node.func
+        if isinstance(func, ast.Name) and func.id in _CALLS and len(node.args) == 1 and func.id not in scope.values:
+            return _CALLS[func.id](_evaluate(node.args[0], scope, depth + 1))
+        if isinstance(func, ast.Attribute) and func.attr in _METHODS and not node.args:
+            value = _evaluate(func.value, scope, depth + 1)
+            if isinstance(value, dict):
+                return list(_METHODS[func.attr](value))
+    raise scope.error(node, "cannot read")
+
+
+def _constant(name: str, scope: _Scope, node: ast.AST, depth: int):
+    if name in scope.values:
+        return _evaluate(scope.values[name], scope, depth + 1)
+    if name in scope.imported:
+        module, original = scope.imported[name]
+        return _constant(original, _scope(module), node, depth + 1)
+    if name in scope.modules:
+        raise scope.error(node, f"{name} is a module, not a constant")
+    raise scope.error(node, f"{name} is not a module-level constant")
+
+
+def _declarations_in(module: str) -> list[Artifact | Comparison]:
+    """The declarations of one artifact module, read from its decorator lines."""
+    scope = _scope(module)
+    registry_names = {local: name for local, (mod, name) in scope.imported.items() if mod == __name__}
+    registry_aliases = {local for local, mod in scope.modules.items() if mod == __name__}
+    found = []
+    for node in _parse(scope.path).body:
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        for decorator in node.decorator_list:
+            if not isinstance(decorator, ast.Call):
+                continue
+            func = decorator.func
+            if isinstance(func, ast.Name) and func.id in registry_names:
+                kind = registry_names[func.id]
+            elif isinstance(func, ast.Attribute) and isinstance(func.value, ast.Name) \
+                    and func.value.id in registry_aliases:
+                kind = func.attr
+            else:
+                continue
+            if kind not in _DECORATORS:
+                continue
+            args = [_evaluate(a, scope) for a in decorator.args]
+            kwargs = {k.arg: _evaluate(k.value, scope) for k in decorator.keywords if k.arg is not None}
+            if len(kwargs) != len(decorator.keywords):
+                raise scope.error(decorator, "**kwargs in a decorator")
+            try:
+                bound = inspect.signature(_DECORATORS[kind]).bind(*args, **kwargs)
+            except TypeError as exc:
+                raise scope.error(decorator, str(exc)) from exc
+            bound.apply_defaults()
+            if kind == "comparison":
+                found.append(_declare_comparison(module, **bound.arguments))
+            else:
+                found.append(_declare_artifact(kind, module, **bound.arguments))
+    return found
+
+
+@functools.lru_cache(maxsize=None)
+def _package_declarations() -> tuple[dict[str, Artifact], dict[str, Comparison]]:
+    """Every declaration of ``src/brdfs/artifacts/<name>.py`` (``_*.py`` are helpers), read statically."""
+    found_artifacts: dict[str, Artifact] = {}
+    found_comparisons: dict[str, Comparison] = {}
+    for path in sorted(_ARTIFACTS_DIR.glob("*.py")):
+        if path.name.startswith("_"):
+            continue
+        for entry in _declarations_in(f"brdfs.artifacts.{path.stem}"):
+            if isinstance(entry, Artifact):
+                _register(found_artifacts, entry.name, entry)
+            else:
+                _register(found_comparisons, entry.artifact, entry)
+    return found_artifacts, found_comparisons
 
 
 def artifacts() -> dict[str, Artifact]:
-    """Every registered table and figure, by name."""
-    _load_all()
-    return dict(_ARTIFACTS)
+    """Every table, figure and check, by name: the package's (read without importing) and any registered
+    at run time by decorators outside it."""
+    return {**_package_declarations()[0], **_ARTIFACTS}
 
 
 def comparisons() -> dict[str, Comparison]:
-    """Every registered comparison, by artifact of the published values."""
-    _load_all()
-    return dict(_COMPARISONS)
-
-
-def batches() -> dict[str, list[Artifact]]:
-    """The batched artifacts by batch, each list in dependency order (a member's dependencies in
-    the same batch come first).
-
-    Raises
-    ------
-    ValueError
-        If two batches depend on each other (their jobs could never start).
-    """
-    registered = artifacts()
-    groups: dict[str, list[Artifact]] = {}
-    for name in _dependency_order(registered):
-        a = registered[name]
-        if a.batch is not None:
-            groups.setdefault(a.batch, []).append(a)
-    needs = {b: {registered[d].batch or d for a in members for d in a.deps} - {b} for b, members in groups.items()}
-    for b in needs:
-        seen, todo = set(), list(needs[b])
-        while todo:
-            x = todo.pop()
-            if x == b:
-                raise ValueError(f"batch {b!r} depends on itself through other batches")
-            if x not in seen:
-                seen.add(x)
-                todo.extend(needs.get(x, ()))
-    return groups
-
-
-def chain_lengths() -> dict[str, int]:
-    """For every artifact, the number of jobs that wait for it, one after another (the longest
-    chain of dependants below it, batches counted as one job): a scheduler that starts long chains
-    first keeps both cores busy to the end."""
-    registered = artifacts()
-    users: dict[str, set[str]] = {name: set() for name in registered}
-    for a in registered.values():
-        for d in a.deps:
-            users[d].add(a.name)
-    memo: dict[str, int] = {}
-
-    def length(name):
-        if name not in memo:
-            memo[name] = 1 + max((length(u) for u in users[name]), default=0)
-        return memo[name]
-
-    return {name: length(name) for name in registered}
-
-
-def _dependency_order(registered: dict[str, Artifact]) -> list[str]:
-    order: list[str] = []
-
-    def visit(name, path):
-        if name in order:
-            return
-        if name in path:
-            raise ValueError(f"dependency cycle: {' -> '.join((*path, name))}")
-        for d in registered[name].deps:
-            visit(d, (*path, name))
-        order.append(name)
-
-    for name in sorted(registered):
-        visit(name, ())
-    return order
+    """Every comparison, by artifact of the published values (as :func:`artifacts`)."""
+    return {**_package_declarations()[1], **_COMPARISONS}
 
 
 def get_artifact(name: str) -> Artifact:
     """The table or figure ``name``.
 
-    Imports only the module of the same name (one job need not import every artifact, nor the
-    libraries only some of them use: 1.6 s → ~1 s of start-up); every module only if that fails.
+    A job imports only the module of the same name (registering it), without scanning the others.
     """
-    if name not in _ARTIFACTS and name.isidentifier():
-        try:
-            importlib.import_module(f"brdfs.artifacts.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"brdfs.artifacts.{name}":
-                raise
+    if name not in _ARTIFACTS and name.isidentifier() and (_ARTIFACTS_DIR / f"{name}.py").is_file():
+        importlib.import_module(f"brdfs.artifacts.{name}")
     if name in _ARTIFACTS:
         return _ARTIFACTS[name]
     registered = artifacts()
@@ -458,6 +625,54 @@ def get_comparison(artifact: str) -> Comparison:
     if artifact not in registered:
         raise KeyError(f"no comparison {artifact!r}; registered: {sorted(registered)}")
     return registered[artifact]
+
+
+# --- dependencies ----------------------------------------------------------------------------------
+
+
+def dependency_order(names: Iterable[str], registered: dict[str, Artifact] | None = None,
+                     done: Iterable[str] = ()) -> list[str]:
+    """``names`` and, before each, its dependencies not in ``done``, each once.
+
+    The one dependency resolution of the package (depth first, dependencies in their declared
+    order) and the one place a cycle is detected.
+
+    Raises
+    ------
+    ValueError
+        On a dependency cycle, naming it.
+    KeyError
+        On a dependency that is not registered.
+    """
+    registered = artifacts() if registered is None else registered
+    done, order = set(done), []
+
+    def visit(name: str, path: tuple[str, ...]) -> None:
+        if name in path:
+            raise ValueError(f"dependency cycle: {' -> '.join((*path, name))}")
+        if name in done:
+            return
+        if name not in registered:
+            raise KeyError(f"no table or figure {name!r}" + (f" (a dependency of {path[-1]})" if path else ""))
+        for d in registered[name].deps:
+            visit(d, (*path, name))
+        done.add(name)
+        order.append(name)
+
+    for name in names:
+        visit(name, ())
+    return order
+
+
+def batches(registered: dict[str, Artifact] | None = None) -> dict[str, list[Artifact]]:
+    """The batched artifacts by batch, each list in dependency order (a member's dependencies in
+    the same batch come first)."""
+    registered = artifacts() if registered is None else registered
+    groups: dict[str, list[Artifact]] = {}
+    for name in dependency_order(sorted(registered), registered):
+        if registered[name].batch is not None:
+            groups.setdefault(registered[name].batch, []).append(registered[name])
+    return groups
 
 
 def read_tables(paths: Iterable[str | Path]) -> dict[str, pd.DataFrame]:
@@ -483,17 +698,11 @@ def compute_tables(cfg: dict, names: Iterable[str], cache: dict[str, pd.DataFram
     dict
         The wanted DataFrames, by name.
     """
-
-    def resolve(name: str, path: tuple[str, ...]) -> pd.DataFrame:
-        if name in path:
-            raise ValueError(f"dependency cycle: {' -> '.join((*path, name))}")
-        if name not in cache:
-            artifact = get_artifact(name)
-            deps = {d: resolve(d, (*path, name)) for d in artifact.deps}
-            cache[name] = io.roundtrip_csv(artifact.compute(cfg, deps))
-        return cache[name]
-
-    return {name: resolve(name, ()) for name in names}
+    names = list(names)
+    for name in dependency_order(names, done=cache):
+        artifact = get_artifact(name)
+        cache[name] = io.roundtrip_csv(artifact.compute(cfg, {d: cache[d] for d in artifact.deps}))
+    return {name: cache[name] for name in names}
 
 
 def compute_all_comparisons(cfg: dict, only: Iterable[str] | None = None) -> pd.DataFrame:
@@ -503,12 +712,16 @@ def compute_all_comparisons(cfg: dict, only: Iterable[str] | None = None) -> pd.
     ----------
     cfg : dict
         The whole validated config (see :func:`brdfs.pipeline.config.load_config`).
+    only : iterable of str, optional
+        The comparisons to compute (default: all).
 
     Returns
     -------
     pandas.DataFrame
         As ``results/checks/published_comparison.csv``.
     """
+    from brdfs.pipeline import published
+
     cache: dict[str, pd.DataFrame] = {}
     with tempfile.TemporaryDirectory() as tmp:
         paths = []

@@ -1,26 +1,32 @@
 """What the HTML report (``snakemake --report results/report.html``) says about each artifact.
 
-Every table and figure appears in the report under its thesis chapter (the number in its
-name; :data:`EXTRA_CHAPTERS` places the ``extra_*`` artifacts), with the caption of
-``workflow/report/captions/<name>.rst`` followed by its verdict against the printed
-numbers, read from ``results/checks/published_comparison.csv`` when the report is built.
+Every table and figure appears in the report under the thesis chapter its registry decorator
+declares (``chapter=``; by default the number in its name), with the caption of
+``workflow/report/captions/<name>.rst`` followed by its verdict against the printed numbers.
 
-Snakemake renders a caption file with Jinja, without a template loader; the generic
-caption ``workflow/report/artifact.rst`` therefore reads the texts from
-:func:`context`, which ``workflow/rules/common.smk`` puts under the config key
-:data:`CONFIG_KEY` after the configuration has been validated (no rule reads it).
+One caption mechanism: the generic rule's ``report()`` caption is the template
+``workflow/report/artifact.rst``, which Snakemake renders with Jinja (without a template loader)
+when it writes the report. The template asks :class:`ReportTexts`, which
+``workflow/rules/common.smk`` puts under the config key :data:`CONFIG_KEY` (no rule reads it), for
+the artifact's caption and verdict. Nothing is read while Snakemake plans the DAG: the committed
+caption and ``results/checks/published_comparison.csv`` (the output of ``merge_comparison``, which
+the report includes) are read when the report renders them.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import os
 import re
 from collections.abc import Iterable
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.pipeline.io import REPO_ROOT
+
+if TYPE_CHECKING:  # pandas is imported when a comparison is read, not when the workflow plans
+    import pandas as pd
 
 CAPTIONS_DIR = REPO_ROOT / "workflow" / "report" / "captions"
 CONFIG_KEY = "_report"
@@ -32,22 +38,8 @@ CHAPTERS = {
     4: "Chapter 4: Models with fast importance sampling",
     5: "Chapter 5: Central concepts and future directions",
 }
-#: Category of the checks that belong to no chapter (the integration engine itself).
-NUMERICS = "Numerics: accuracy and stability of the integration"
-
-#: The chapter whose numbers an ``extra_*`` artifact examines (None: :data:`NUMERICS`).
-EXTRA_CHAPTERS = {
-    "extra_metal_a0_readings": 1,
-    "extra_he_torrance_albedo": 2,
-    "extra_pumping_albedo_phong": 2,
-    "extra_pumping_albedo_blinn": 2,
-    "extra_chapter3_claims": 3,
-    "extra_grazing_divergence": 3,
-    "extra_divergence_readings": 3,
-    "extra_ward_in_range": 3,
-    "extra_work_precision": None,
-    "extra_stability_grazing": None,
-}
+#: Category of the artifacts declared with ``chapter=None``: numerics and extensions beyond the thesis.
+NUMERICS = "Beyond the thesis: numerics and extensions"
 
 _NUMBERED = re.compile(r"(fig|table)_(\d+)_(\d+)_")
 
@@ -65,16 +57,14 @@ def thesis_number(name: str) -> str | None:
     return f"{kind} {match[2]}.{match[3]}"
 
 
-def category(name: str) -> str:
-    """The report category of an artifact: its thesis chapter.
+def category(chapter: int | None) -> str:
+    """The report category of an artifact declared with ``chapter`` (its registry decorator).
 
-    >>> category("table_3_2_ward_cmax")
-    'Chapter 3: New simple models for specular materials'
+    >>> category(3), category(None)
+    ('Chapter 3: New simple models for specular materials', 'Beyond the thesis: numerics and extensions')
     """
-    match = _NUMBERED.match(name)
-    chapter = int(match[2]) if match else EXTRA_CHAPTERS.get(name, None)
     if chapter is None:
-        return NUMERICS if name in EXTRA_CHAPTERS else "Beyond the thesis"
+        return NUMERICS
     return CHAPTERS.get(chapter, f"Chapter {chapter}")
 
 
@@ -160,16 +150,52 @@ def summary(comparison: pd.DataFrame | None) -> str:
             f"{len(comparison) - counts.get('reproduces', 0)} differ (each with its reason and evidence).")
 
 
-def context(names: Iterable[str], sources: dict[str, Iterable[str]],
-            comparison_csv: str | os.PathLike) -> dict:
-    """Captions, verdicts and the summary that the report's caption templates read."""
-    path = Path(comparison_csv)
-    comparison = pd.read_csv(path, dtype=str, keep_default_na=False) if path.is_file() else None
-    return {
-        "captions": {n: caption(n) for n in names},
-        "verdicts": {n: verdict(n, comparison, sources) for n in names},
-        "summary": summary(comparison),
-    }
+@dataclasses.dataclass(frozen=True)
+class ReportTexts:
+    """The captions, verdicts and summary the report's caption templates show, read when rendered.
+
+    Built while Snakemake plans (it reads nothing then); the templates call :meth:`caption`,
+    :meth:`verdict` and :meth:`summary` when ``snakemake --report`` renders them.
+
+    Attributes
+    ----------
+    sources : dict
+        For each comparison (``artifact`` column), the artifacts it reads.
+    comparison_csv : str
+        ``results/checks/published_comparison.csv``.
+    captions_dir : str
+        The committed captions, ``workflow/report/captions``.
+    """
+
+    sources: dict
+    comparison_csv: str
+    captions_dir: str = str(CAPTIONS_DIR)
+
+    def caption(self, name: str) -> str:
+        """:func:`caption` of ``name`` (the committed file)."""
+        return caption(name, self.captions_dir)
+
+    def verdict(self, name: str) -> str:
+        """:func:`verdict` of ``name`` against the comparison as it is now."""
+        return verdict(name, _comparison(self.comparison_csv), self.sources)
+
+    def summary(self) -> str:
+        """:func:`summary` of the comparison as it is now."""
+        return summary(_comparison(self.comparison_csv))
+
+
+def _comparison(path: str | os.PathLike) -> pd.DataFrame | None:
+    path = Path(path)
+    if not path.is_file():
+        return None
+    return _read_comparison(str(path.resolve()), path.stat().st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=4)
+def _read_comparison(path: str, mtime_ns: int) -> pd.DataFrame:
+    import pandas as pd
+
+    return pd.read_csv(path, dtype=str, keep_default_na=False)
 
 
 _HTML_STYLE = """

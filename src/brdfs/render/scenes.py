@@ -6,7 +6,8 @@ Material entries (one dict per object):
   metal's measured complex index at the eight wavelengths, at the angle the model declares
   (``fresnel_cosine``: Θ_min for the Phong-type models, θ' of eq. 4.53 for the patch models,
   eq. 4.54); ``pumped: 1`` divides the model by its albedo once (eq. 2.20,
-  :class:`brdfs.physics.models.pumped.Pumped`, its table from :mod:`brdfs.numerics.pumping`);
+  :class:`brdfs.physics.models.pumped.Pumped`, built with its table by the model factory
+  :mod:`brdfs.numerics.tables`);
 * ``{rgb: [r, g, b], a_s: 0.04, n: 169}`` — the plastic of eq. 3.31 (r, g, b channels);
 * ``{diffuse: 0.5}`` — Lambert, flat spectrum;
 * ``{model: generalized_lambertian, d: 0.5}`` — any package model with F = 1 (gray).
@@ -17,9 +18,8 @@ import functools
 
 import numpy as np
 
-from brdfs.numerics import pumping
+from brdfs.numerics import tables
 from brdfs.physics import optical_constants
-from brdfs.physics.models import model as build_model
 from brdfs.render import materials, spectrum
 
 SPECTRAL = len(spectrum.WAVELENGTHS_NM)
@@ -37,14 +37,13 @@ def complex_indices(metal: str) -> np.ndarray:
 def pumped(base, levels: int):
     """``base`` divided ``levels`` times by its albedo (g1, eq. 2.20), from albedo tables."""
     for _ in range(levels):
-        table = pumping.tabulate_albedo(base, target_rtol=PUMPING_TABLE_RTOL, engine_rtol=1e-8)
-        base = pumping.Pumped(base, table, "g1")
+        base = tables.pump(base, "g1", target_rtol=PUMPING_TABLE_RTOL, engine_rtol=1e-8)
     return base
 
 
 def _model(spec: dict):
     params = {k: v for k, v in spec.items() if k not in ("metal", "model", "pumped", "label", "channels")}
-    return pumped(build_model(spec["model"], **params), int(spec.get("pumped", 0)))
+    return pumped(tables.build(spec["model"], **params), int(spec.get("pumped", 0)))
 
 
 def make_material(spec: dict, channels: int = SPECTRAL):
@@ -56,7 +55,7 @@ def make_material(spec: dict, channels: int = SPECTRAL):
     if "rgb" in spec:
         if channels != 3:
             raise ValueError(f"plastic {spec!r}: eq. 3.31 is an r, g, b model, the scene has {channels} channels")
-        model = build_model("phong_cosmin", n=spec["n"])
+        model = tables.build("phong_cosmin", n=spec["n"])
         return materials.plastic(spec["rgb"], spec["a_s"], model, label=label or "plastic")
     if "metal" in spec:
         if channels != SPECTRAL:

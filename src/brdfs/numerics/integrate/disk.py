@@ -72,7 +72,7 @@ def disk_albedo_many(models, theta_deg, rtol=1e-12, atol=1e-16):
         delta = m.delta_albedo(theta_deg[i])          # zero unless the model has a Dirac part
         value[i] += float(delta.value)
         error[i] += float(delta.error)
-    return Estimate(value, error, est.evaluations, est.status)
+    return Estimate(value, error, status=est.status)
 
 
 ROUGH_RTOL = 1e-5

@@ -21,7 +21,12 @@ def register(cls):
 
 
 def model(name: str, **params) -> BRDF:
-    """Build a model from its published name, e.g. ``model("ward", m=0.1)``."""
+    """Build a model from its published name, e.g. ``model("ward", m=0.1)``.
+
+    The physics layer computes no table: a model that needs one (Kulla–Conty's compensated
+    microfacet models, :meth:`BRDF.table_requests`) raises :class:`brdfs.physics.tables.MissingTable`
+    here unless its table is passed; the front door :func:`brdfs.model`
+    (:func:`brdfs.numerics.tables.build`) tabulates it and builds the model with it."""
     try:
         cls = MODELS[name]
     except KeyError:

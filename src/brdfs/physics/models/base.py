@@ -41,7 +41,23 @@ Sampling (for Monte Carlo and rendering): ``sample(L, u) -> (V, weight, pdf)`` a
 the default draws V from the cosine distribution, which every model accepts.
 
 Parameters: ``params`` (the values, as ``data/published_values.csv`` names them) and
-``param_columns()`` (the names, from the dataclass fields).
+``param_columns()`` (the names, from the dataclass fields; tables a model is built with are not
+parameters).
+
+What the model says about itself (class attributes, defaults here), read by sweeps, tests, the
+config schema and the artifacts instead of lists keyed by model name:
+
+* ``param_ranges`` (name -> :class:`Interval`, the ranges ``__post_init__`` accepts) and
+  ``param_choices`` (the values of categorical parameters);
+* ``examples`` (``"typical"`` and ``"narrowest"`` parameters) and :meth:`BRDF.example`;
+* ``reciprocal`` and ``conserves_energy``: the model's claims (a model that declares False says why);
+* ``chapter``: the thesis chapter that defines it (None beyond the thesis);
+* ``accuracy_families``, ``pumping_reducible``, ``half_angle_exponent_factor``, ``corrected_by``,
+  ``constant_is_computed``: what the accuracy map, the pumping tables and the white-furnace
+  comparison need to know of it;
+* ``table_requests(**params)``: the tables (:class:`brdfs.physics.tables.TableRequest`) a model
+  needs, which a factory above the physics layer computes and hands to it when it is built
+  (:func:`brdfs.numerics.tables.build`); the physics layer computes none.
 """
 from __future__ import annotations
 
@@ -342,6 +358,15 @@ class BRDF:
     #: (the swept parameter, fixed parameters); ``config.yaml`` gives each family's values.  A fixed
     #: parameter ``pumping`` (``"g1"``/``"g2"``) maps the model pumped once with that correction.
     accuracy_families: ClassVar[dict[str, tuple[str, dict]]] = {}
+    #: Cosine-lobe models: k with the lobe ≈ cos^{k n} δ in the half-vector angle δ at normal incidence
+    #: (1 for (N·H)^n; 4 for a mirror lobe (R·V)^n, R·V = cos 2δ), the exponent matched to a
+    #: microfacet roughness by Walter et al. 2007, sec. 5.2 (n_Blinn = 2/α² − 2); None otherwise.
+    half_angle_exponent_factor: ClassVar[float | None] = None
+    #: The thesis's new model that corrects this one (chapter 3: divided by max(N·L, N·V)), by name.
+    corrected_by: ClassVar[str | None] = None
+    #: The thesis's constant of this model is computed, C = 1/max a (Table 3.1 for the Blinn models),
+    #: rather than the default of the ``C`` field.
+    constant_is_computed: ClassVar[bool] = False
 
     @classmethod
     def example(cls, kind: str = "typical") -> "BRDF":

@@ -55,6 +55,9 @@ class Blinn(_BlinnFamily):
     # conserves_energy = False: the default C = 1 gives a(0) > 1 for small n (C must be scaled to
     # 1/max a, Table 3.1)
     conserves_energy = False
+    half_angle_exponent_factor = 1.0     # (N·H)^n = cos^n δ
+    corrected_by = "blinn_cosmin"        # eq. 3.34
+    constant_is_computed = True          # C_n = 1/max a (Table 3.1)
     pumping_reducible = True     # a cosine power of N·H without kinks: numerics.pumping.pumped_albedo
     accuracy_families = {"blinn": ("n", {})}
     closed_form_azimuth = (HALF, "nv")
@@ -92,6 +95,7 @@ class BlinnCosmin(_BlinnFamily):
     # conserves_energy = False: with the default C = 1 the albedo exceeds 1 for small n (Table 3.1's
     # C_n = 1/max a is below 1 there)
     conserves_energy = False
+    constant_is_computed = True          # C_n = 1/max a (Table 3.1)
     accuracy_families = {"blinn_cosmin": ("n", {})}
     closed_form_azimuth = (HALF, "nv/max")
     limit_cos_power = 1          # as Blinn, divided by max(N·L, N·V) = cos θ: a → cos θ

@@ -95,6 +95,8 @@ class Phong(_PhongFamily):
     chapter = 2                  # eq. 2.6 (and eq. 3.5)
     param_ranges = {"n": non_negative(), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
+    half_angle_exponent_factor = 4.0     # (R·V)^n = cos^n 2δ ≈ cos^{4n} δ at normal incidence
+    corrected_by = "phong_cosmin"        # eq. 3.10
     conserves_energy = True      # c = (n+2)/2π is the largest energy-conserving constant (eq. 3.6): a ≤ a(0) = 1
     pumping_reducible = True     # a cosine power of R·V without kinks: numerics.pumping.pumped_albedo
     accuracy_families = {"phong": ("n", {}), "pumped_phong_g1": ("n", {"pumping": "g1"}),
