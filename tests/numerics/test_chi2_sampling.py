@@ -247,3 +247,14 @@ def test_a_model_defined_here_is_tested_by_the_artifact_from_its_own_declaration
         assert result.dof >= 15 and result.p_value >= LEVEL and result.weight_error < 1e-12, result
     finally:
         MODELS.pop("test_mirror_lobe")
+
+
+@pytest.mark.parametrize("name, params", [("phong", {"n": 20}), ("patch_basic", {"R": 0.5})])
+def test_the_uniform_reference_strategy_every_model_accepts_passes_chi_square_with_mass_one(name, params):
+    """``"uniform"`` (1/(2π) per solid angle, Monte Carlo albedo's reference sampler) is the base
+    class's, accepted by every model though not among its listed strategies."""
+    brdf = model(name, **params)
+    assert "uniform" not in brdf.strategies
+    result = chi2_test(brdf, 50.0, "uniform", n_samples=10_000, seed=SEED, n_radial=6, n_phi=6, n_pilot=3_000)
+    assert result.pdf_mass == pytest.approx(1.0, abs=1e-6) and result.accepted_fraction == 1.0
+    assert result.p_value >= LEVEL and result.weight_error < 1e-12, result

@@ -214,7 +214,7 @@ def _dblquad(model, theta, rtol, atol, epsrel=None):
 
 
 #: Samplers of the Monte Carlo method that are a model's own strategies (``model.sample``).
-_MODEL_STRATEGIES = {"model": None, "cosine": "cosine", "beckmann_half_vector": "beckmann"}
+_MODEL_STRATEGIES = {"model": None, "cosine": "cosine", "uniform": "uniform", "beckmann_half_vector": "beckmann"}
 
 
 def _draw(sampler, model, L, rng, n):

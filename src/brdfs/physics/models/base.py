@@ -37,8 +37,19 @@ What is known in closed form (``None`` where nothing is):
 * ``limit_albedo_90``: lim_{n→∞} a(90°).
 * ``exact_albedo(theta_deg)``: a(θ) in closed form at the angles where one exists, else NaN.
 
-Sampling (for Monte Carlo and rendering): ``sample(L, u) -> (V, weight, pdf)`` and ``pdf(L, V)``;
-the default draws V from the cosine distribution, which every model accepts.
+Sampling — the one home of the package's samplers; Monte Carlo albedo, the chi-square tests, the
+renderer and Figure 4.9 all draw from it:
+
+* ``sample(L, u, strategy) -> (V, weight, pdf)``, ``sample_direction(L, u, strategy)`` (V alone)
+  and ``pdf(L, V, strategy)``; a model declares ``strategies`` (its own first: the default; then
+  ``"cosine"``, which every model accepts, as it accepts ``"uniform"``), ``sample_dimensions``
+  (numbers per sample, 2 unless listed) and implements ``_sample_direction``/``_pdf`` from the
+  pieces of :mod:`brdfs.physics.sampling`;
+* for its chi-square tests: ``sampling_domain`` (``"sphere"``, or ``"disk"`` for samplers of
+  base-plane points), ``disk_boundaries()`` (where the density jumps), ``chi2_cases`` and
+  ``chi2_example(params)`` (the parameters tested, narrowest first, else the ``examples``);
+* ``fresnel_cosine(L, V)``: the angle at which a metal of the model reads its Fresnel factor
+  (Θ_min of eq. 3.29 by default, θ' of eq. 4.53 for the patch models).
 
 Parameters: ``params`` (the values, as ``data/published_values.csv`` names them) and
 ``param_columns()`` (the names, from the dataclass fields; tables a model is built with are not
@@ -90,6 +101,9 @@ def exact(value) -> Estimate:
     value = float(value)
     return Estimate(value, 4 * np.finfo(float).eps * abs(value))
 
+
+#: The strategy every model accepts besides its own: directions uniform in solid angle, pdf 1/(2π).
+UNIFORM = "uniform"
 
 _COUNTERS: list[list[int]] = []
 
@@ -231,6 +245,8 @@ class BRDF:
     strategies: ClassVar[tuple[str, ...]] = ("cosine",)
     #: Uniform numbers per sample a strategy consumes (2 unless listed).
     sample_dimensions: ClassVar[dict[str, int]] = {}
+    #: Every model also accepts ``"uniform"`` (1/(2π) on the hemisphere, not listed in
+    #: :attr:`strategies`: the reference a Monte Carlo albedo compares the model's samplers with).
     #: The chart on which the sampler's density is smooth, for its chi-square test
     #: (:mod:`brdfs.numerics.chi2`): ``"sphere"`` (directions, polar about the lobe) or ``"disk"``
     #: (points of the base plane about V'_P = −L_P: the projected-disk samplers of chapter 4).
@@ -262,7 +278,7 @@ class BRDF:
 
     def _strategy(self, strategy):
         strategy = self.strategies[0] if strategy is None else strategy
-        if strategy not in self.strategies:
+        if strategy not in self.strategies and strategy != UNIFORM:
             raise ValueError(f"{self.name}: unknown sampling strategy {strategy!r}; choose one of {self.strategies}")
         return strategy
 
@@ -279,6 +295,8 @@ class BRDF:
         if strategy == "cosine":
             nv = V[..., 2]
             return np.where(nv > 0, nv / np.pi, 0.0)
+        if strategy == UNIFORM:
+            return np.where(V[..., 2] > 0, 1 / (2 * np.pi), 0.0)
         L = np.broadcast_to(np.asarray(L, float), V.shape)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             p = self._pdf(L, V, strategy)
@@ -312,6 +330,11 @@ class BRDF:
             r, phi = np.sqrt(u[..., 0]), 2.0 * np.pi * u[..., 1]
             nv = np.sqrt(np.maximum(1.0 - u[..., 0], 0.0))
             return np.stack([r * np.cos(phi), r * np.sin(phi), nv], -1)
+        if strategy == UNIFORM:                      # cos θ_V = u₀: uniform in solid angle
+            cos_v = u[..., 0]
+            sin_v = np.sqrt((1 - cos_v) * (1 + cos_v))
+            phi = 2 * np.pi * u[..., 1]
+            return np.stack([sin_v * np.cos(phi), sin_v * np.sin(phi), cos_v], -1)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             return self._sample_direction(L, u, strategy)
 
