@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import erfc, erfcx, ndtri
 
-from brdfs.physics.models.base import check_positive
+from brdfs.physics.parameters import check_positive
 
 
 def half_vector_tan2(L, V):

@@ -80,6 +80,7 @@ from typing import ClassVar, NamedTuple
 import numpy as np
 
 from brdfs.core.estimate import Estimate
+from brdfs.physics.parameters import check_positive  # noqa: F401  (re-exported to the models)
 from brdfs.physics.lobes import Frame
 from brdfs.physics import fresnel
 
@@ -459,9 +460,3 @@ def positive_power(x, n):
     return np.where(x > 0, np.maximum(x, 0.0) ** n, 0.0)
 
 
-def check_positive(name, value, allow_zero=False):
-    """Reject bad parameters with a message that names them."""
-    value = float(value)
-    if not np.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
-        raise ValueError(f"{name} must be {'non-negative' if allow_zero else 'positive'}, got {value!r}")
-    return value
