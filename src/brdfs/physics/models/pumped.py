@@ -82,6 +82,28 @@ class Pumped(BRDF):
         """The base model's L·H kinks (g depends on N·L and N·V only)."""
         return self.base.lh_levels(nl, cos_delta)
 
+    # the base model's other kinks, unchanged by g (a function of N·L and N·V only)
+    def azimuth_levels(self, nl):
+        return self.base.azimuth_levels(nl)
+
+    def scattering_radius_levels(self):
+        return self.base.scattering_radius_levels()
+
+    def scattering_radius_kinks(self, cos_psi, sin_psi):
+        return self.base.scattering_radius_kinks(cos_psi, sin_psi)
+
+    @property
+    def torrance_sparrow_switches(self):
+        return self.base.torrance_sparrow_switches
+
+    @property
+    def kink_at_normal(self):
+        return self.base.kink_at_normal
+
+    @property
+    def symmetric_about_incidence_plane(self):
+        return self.base.symmetric_about_incidence_plane
+
     @property
     def params(self):
         return self.base.params

@@ -259,14 +259,6 @@ class _SmithMicrofacet(BRDF):
         """Absolute error bound of the E table (interpolation + engine); 0 without compensation."""
         return self.energy_table()[0].error if self.compensation == "kulla_conty" else 0.0
 
-    # --- closed forms ------------------------------------------------------------------------
-    def exact_albedo(self, theta_deg):
-        """GGX, α = 1, F = 1, no compensation, θ = 0: E(1) = 1 − ln 2 (:func:`ggx_alpha1_normal_albedo`)."""
-        theta = np.asarray(theta_deg, float)
-        known = (self.name == "ggx" and self.alpha == 1.0 and self.ior_re is None
-                 and self.compensation == "none")
-        return np.where((theta == 0.0) & known, ggx_alpha1_normal_albedo().value, np.nan)
-
     # --- sampling (visible normals) ------------------------------------------------------------
     def _ms_probability(self, nl):
         """Probability of the cosine lobe in the mixture sampler: 1 − E(μ_L) with compensation, else 0."""
@@ -322,6 +314,12 @@ class GGXMicrofacet(_SmithMicrofacet):
     #: GGX's tails make E − E(0) fall off like a fractional power toward μ = 0 (E(0) = 1 for the
     #: height-correlated G2): edges α·10^-k (k = 1 … 4) and α/3, α, 3α, 10α, geometric toward 0.
     energy_edge_factors = (1e-4, 1e-3, 1e-2, 0.1, 1 / 3, 1.0, 3.0, 10.0)
+
+    def exact_albedo(self, theta_deg):
+        """α = 1, F = 1, no compensation, θ = 0: E(1) = 1 − ln 2 (:func:`ggx_alpha1_normal_albedo`)."""
+        theta = np.asarray(theta_deg, float)
+        known = self.alpha == 1.0 and self.ior_re is None and self.compensation == "none"
+        return np.where((theta == 0.0) & known, ggx_alpha1_normal_albedo().value, np.nan)
 
 
 @dataclass(frozen=True)
