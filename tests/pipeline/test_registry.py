@@ -11,6 +11,7 @@ import pandas as pd
 import pytest
 
 import brdfs.artifacts
+from brdfs.pipeline import declarations
 
 from brdfs.pipeline import registry as artifacts
 from brdfs.pipeline.published import COMPARISON_COLUMNS
@@ -171,29 +172,32 @@ def test_a_decorator_argument_the_scan_cannot_read_is_reported_with_its_file_and
         """))
     monkeypatch.setattr(artifacts, "_module_file", lambda module, real=artifacts._module_file:
                         path if module == "brdfs.artifacts.extra_toy_scan" else real(module))
-    artifacts._scope.cache_clear()
-    (entry,) = artifacts._declarations_in("brdfs.artifacts.extra_toy_scan")
+    declarations._scope.cache_clear()
+    (entry,) = declarations._declarations_in("brdfs.artifacts.extra_toy_scan")
     assert (entry.name, entry.kind, entry.config, entry.chapter, entry.batch, entry.resources["runtime"]) == (
         "extra_toy_scan", "table", ("toy",), 2, "extra", 1)
     assert entry.deps == ("extra_pumping_albedo_phong", "extra_pumping_albedo_blinn", "table_3_1_blinn_constants")
 
     path.write_text(path.read_text().replace("config=(\"toy\",)", "config=sections()"))
-    artifacts._scope.cache_clear()
+    declarations._scope.cache_clear()
     artifacts._parse.cache_clear()
     with pytest.raises(artifacts.DeclarationError, match=r"extra_toy_scan.py:8: cannot read: 'sections\(\)'"):
-        artifacts._declarations_in("brdfs.artifacts.extra_toy_scan")
-    artifacts._scope.cache_clear()
+        declarations._declarations_in("brdfs.artifacts.extra_toy_scan")
+    declarations._scope.cache_clear()
 
 
 def test_thesis_artifacts_default_to_their_numbers_chapter_and_an_extra_must_declare_its_own(empty_registry):
     def compute(cfg, deps):
         return pd.DataFrame({"x": [1]})
 
-    compute.__module__ = "toy_chapter"
+    def extra(cfg, deps):
+        return compute(cfg, deps)
+
+    compute.__module__, extra.__module__ = "toy_figure", "toy_extra"
     artifacts.figure("fig_4_99_toy")(compute)
     assert artifacts.get_artifact("fig_4_99_toy").chapter == 4
     with pytest.raises(artifacts.DeclarationError, match="extra_toy_chapter: declare the report chapter"):
-        artifacts.table("extra_toy_chapter")(compute)
+        artifacts.table("extra_toy_chapter")(extra)
 
 
 def test_a_batch_lists_its_members_after_their_dependencies():

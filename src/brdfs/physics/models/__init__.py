@@ -1,23 +1,28 @@
-"""BRDF models by the names of the published-values file (data/published_values.csv)."""
+"""BRDF models by the names of the published-values file (data/published_values.csv).
+
+Each model module registers its own classes (:func:`register`); this package imports every
+module under it, the thesis's families first (in the order of its chapters, which is the order of
+:data:`MODELS`), then any other module found here — a new model family is one new file.
+"""
 from __future__ import annotations
 
-from brdfs.physics.models.base import BRDF
-from brdfs.physics.models.blinn import Blinn, BlinnCosmin, BlinnOriginal
-from brdfs.physics.models.he_torrance import HeTorrance
-from brdfs.physics.models.microfacet import CookTorrance, Ward, WardCosmin
-from brdfs.physics.models.phong import Phong, PhongCosmin, PhongOriginal, PModel, phong_constant
+import importlib
+import pkgutil
 
-MODELS: dict[str, type[BRDF]] = {
-    cls.name: cls
-    for cls in (Phong, PhongOriginal, PhongCosmin, PModel, Blinn, BlinnOriginal, BlinnCosmin,
-                Ward, WardCosmin, CookTorrance, HeTorrance)
-}
+from brdfs.physics.models.base import BRDF, MODELS, register
+from brdfs.physics.models.phong import phong_constant
+
+#: The thesis's families in chapter order (chapters 2–4), then today's Smith microfacet models.
+_ORDERED = ("phong", "blinn", "microfacet", "he_torrance", "patch", "smith_microfacet")
 
 
-def register(cls):
-    """Add a model class (with a unique ``name``) to :data:`MODELS`; usable as a decorator."""
-    MODELS[cls.name] = cls
-    return cls
+def _import_model_modules():
+    found = sorted(m.name for m in pkgutil.iter_modules(__path__) if m.name != "base")
+    for name in [*_ORDERED, *(m for m in found if m not in _ORDERED)]:
+        importlib.import_module(f"{__name__}.{name}")
+
+
+_import_model_modules()
 
 
 def model(name: str, **params) -> BRDF:
@@ -37,14 +42,12 @@ def model(name: str, **params) -> BRDF:
         raise ValueError(f"bad parameters {params!r} for model {name!r}: {exc}") from None
 
 
-from brdfs.physics.models.patch import GeneralizedLambertian, PatchBasic, PatchElliptical, PatchExponential, PatchMixture  # noqa: E402
+def __getattr__(name):
+    """The model classes by their class names (``from brdfs.physics.models import Phong``)."""
+    for cls in MODELS.values():
+        if cls.__name__ == name:
+            return cls
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-for _patch_model in (PatchBasic, PatchMixture, PatchExponential, PatchElliptical, GeneralizedLambertian):
-    register(_patch_model)
 
 __all__ = ["BRDF", "MODELS", "model", "register", "phong_constant", *[c.__name__ for c in MODELS.values()]]
-
-from brdfs.physics.models.smith_microfacet import BeckmannMicrofacet, GGXMicrofacet  # noqa: E402
-
-for _smith_model in (GGXMicrofacet, BeckmannMicrofacet):
-    register(_smith_model)

@@ -85,6 +85,18 @@ from brdfs.physics.lobes import Frame
 from brdfs.physics import fresnel
 
 
+#: Every model class by its published name (``data/published_values.csv``), in the order the
+#: modules of :mod:`brdfs.physics.models` register them (the thesis's order: chapters 2–4, then
+#: today's Smith microfacet models); a model module registers its own classes with :func:`register`.
+MODELS: dict[str, type] = {}
+
+
+def register(cls):
+    """Add a model class (with a unique ``name``) to :data:`MODELS`; usable as a decorator."""
+    MODELS[cls.name] = cls
+    return cls
+
+
 @dataclass(frozen=True)
 class GrazingLaw:
     """a(θ) ~ constant · (cos θ_L)^(−exponent) as cos θ_L → 0; exponent 0 is a finite limit a(90°)."""

@@ -7,7 +7,7 @@ import numpy as np
 
 from brdfs.physics.geometry import n_dot_h
 from brdfs.physics.lobes import HALF, PowerCosine
-from brdfs.physics.models.base import BRDF, check_positive, non_negative, positive, positive_power
+from brdfs.physics.models.base import BRDF, check_positive, non_negative, positive, positive_power, register
 from brdfs.physics import sampling
 
 
@@ -43,6 +43,7 @@ class _BlinnFamily(BRDF):
         return sampling.power_cosine_pdf(nh, self.n) * jacobian
 
 
+@register
 @dataclass(frozen=True)
 class Blinn(_BlinnFamily):
     """Reciprocal Blinn, f = C (N·H)^n (eq. 1.34 / 2.6 / 3.33)."""
@@ -67,6 +68,7 @@ class Blinn(_BlinnFamily):
         return self.C * positive_power(n_dot_h(L, V), self.n)
 
 
+@register
 @dataclass(frozen=True)
 class BlinnOriginal(_BlinnFamily):
     """Original Blinn, f = C (N·H)^n / cos θ_L (eq. 2.5) — not reciprocal."""
@@ -84,6 +86,7 @@ class BlinnOriginal(_BlinnFamily):
         return self.C * positive_power(n_dot_h(L, V), self.n) / nl
 
 
+@register
 @dataclass(frozen=True)
 class BlinnCosmin(_BlinnFamily):
     """Corrected Blinn, f = C (N·H)^n / max(N·L, N·V) (eq. 3.34)."""

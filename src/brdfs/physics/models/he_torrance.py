@@ -45,7 +45,7 @@ from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import ScatteringLobe
-from brdfs.physics.models.base import BRDF, check_positive, non_negative, positive
+from brdfs.physics.models.base import BRDF, check_positive, non_negative, positive, register
 from brdfs.physics import sampling
 
 TERMS = ("dd", "specular", "total")
@@ -161,6 +161,7 @@ def directional_diffuse(L, V, sigma0, tau, lam, fresnel):
     return common * series, common * tail
 
 
+@register
 @dataclass(frozen=True)
 class HeTorrance(BRDF):
     """He–Torrance BRDF (eq. 69 without the uniform-diffuse term): ``term`` 'dd', 'specular' or 'total'.

@@ -11,7 +11,7 @@ from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.physics.lobes import HALF, MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
 from brdfs.physics.fresnel import unpolarised_reflectance
-from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive
+from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive, register
 from brdfs.physics import sampling
 
 
@@ -61,6 +61,7 @@ class _BeckmannFamily(BRDF):
         return self.distribution.normal_pdf(cos_d) * jacobian
 
 
+@register
 @dataclass(frozen=True)
 class Ward(_BeckmannFamily):
     """Isotropic Ward, f = C/(4π m²) · exp(−tan²δ/m²) / √(N·L N·V) (eq. 2.8 / 3.35)."""
@@ -85,6 +86,7 @@ class Ward(_BeckmannFamily):
         return GrazingLaw(0.5, ward_constant(self.m, self.C), "K U(7/4,1/4,1/m^2) / sqrt(cos)")
 
 
+@register
 @dataclass(frozen=True)
 class WardCosmin(_BeckmannFamily):
     """Corrected Ward, f = C/(4π m²) · exp(−tan²δ/m²) / max(N·L, N·V) (eq. 3.36)."""
@@ -142,6 +144,7 @@ def g_smith_beckmann(nl, nv, m):
 GEOMETRY_FACTORS = ("torrance_sparrow", "smith", "none")
 
 
+@register
 @dataclass(frozen=True)
 class CookTorrance(_BeckmannFamily):
     """Cook–Torrance with F = 1 (eq. 2.9):

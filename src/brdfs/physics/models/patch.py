@@ -17,7 +17,7 @@ from brdfs.physics import patch_geometry as patch
 from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
 from brdfs.physics import fresnel, sampling
-from brdfs.physics.models.base import BRDF, Interval, check_positive, non_negative, positive
+from brdfs.physics.models.base import BRDF, Interval, check_positive, non_negative, positive, register
 
 
 def projected_distance(L, V):
@@ -456,3 +456,9 @@ class PatchElliptical(_OnTheBasePlane, BRDF):
 
     def _pdf(self, L, V, strategy):
         return np.where(self._eval(L, V, L[..., 2], V[..., 2]) > 0, V[..., 2] / self._domain_area(), 0.0)
+
+
+# chapter 4's order: the basic patch model (4.2), the mixtures (4.3: general, exponential), the
+# elliptical patch (4.4) and the generalized Lambertian (4.5)
+for _patch_model in (PatchBasic, PatchMixture, PatchExponential, PatchElliptical, GeneralizedLambertian):
+    register(_patch_model)

@@ -13,7 +13,7 @@ from scipy.special import beta, gammaln
 from brdfs.core.estimate import Estimate
 
 from brdfs.physics.models.base import (BRDF, GrazingLaw, Interval, check_positive, exact, non_negative,
-                                       positive, positive_power)
+                                       positive, positive_power, register)
 from brdfs.physics import sampling
 
 
@@ -86,6 +86,7 @@ class _PhongFamily(BRDF):
         return sampling.power_cosine_pdf(r_dot_v(L, V), self.n)
 
 
+@register
 @dataclass(frozen=True)
 class Phong(_PhongFamily):
     """Reciprocal Phong, f = c (R·V)^n (eq. 2.6 / 3.5), c = (n+2)/2π by default."""
@@ -126,6 +127,7 @@ class Phong(_PhongFamily):
         return Estimate(scale * value, scale * error + 2 * np.finfo(float).eps * abs(scale * value))
 
 
+@register
 @dataclass(frozen=True)
 class PhongOriginal(_PhongFamily):
     """Original Phong, f = c (R·V)^n / cos θ_L (eq. 2.5) — not reciprocal."""
@@ -144,6 +146,7 @@ class PhongOriginal(_PhongFamily):
         return self._lobe_value(L, V) / nl
 
 
+@register
 @dataclass(frozen=True)
 class PhongCosmin(_PhongFamily):
     """The new model, f = c (R·V)^n / max(N·L, N·V) (eq. 3.10)."""
@@ -176,6 +179,7 @@ class PhongCosmin(_PhongFamily):
         return np.where(theta == 90.0, self.C * np.pi / (self.n + 1), np.nan)
 
 
+@register
 @dataclass(frozen=True)
 class PModel(_PhongFamily):
     """p-model, f = c (R·V)^n / max(N·L, N·V)^p, 0 ≤ p ≤ 1 (eq. 3.12)."""

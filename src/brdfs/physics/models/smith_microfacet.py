@@ -39,7 +39,7 @@ from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import MicrofacetLobe
 from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.fresnel import unpolarised_reflectance
-from brdfs.physics.models.base import BRDF, check_positive, exact, non_negative, positive, table_field
+from brdfs.physics.models.base import BRDF, check_positive, exact, non_negative, positive, table_field, register
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
 
 G2_FORMS = ("separable", "height_correlated")
@@ -305,6 +305,7 @@ class _SmithMicrofacet(BRDF):
         return np.where(cosine[..., None], V_ms, V_ss)
 
 
+@register
 @dataclass(frozen=True)
 class GGXMicrofacet(_SmithMicrofacet):
     """GGX (Trowbridge–Reitz) microfacet conductor with Smith's G2 (:class:`brdfs.physics.distributions.GGX`)."""
@@ -322,6 +323,7 @@ class GGXMicrofacet(_SmithMicrofacet):
         return np.where((theta == 0.0) & known, ggx_alpha1_normal_albedo().value, np.nan)
 
 
+@register
 @dataclass(frozen=True)
 class BeckmannMicrofacet(_SmithMicrofacet):
     """Beckmann microfacet conductor with Smith's G2 (:class:`brdfs.physics.distributions.Beckmann`)."""
