@@ -108,8 +108,9 @@ def config_subset(cfg: dict, sections: Iterable[str]) -> dict:
 # --- the source files an artifact depends on ------------------------------------------------------
 
 
+@functools.lru_cache(maxsize=None)
 def _module_file(module: str) -> Path | None:
-    """The source file of a ``brdfs`` module, or None outside the package."""
+    """The source file of a ``brdfs`` module (an absolute, resolved path), or None outside the package."""
     if module != "brdfs" and not module.startswith("brdfs."):
         return None
     base = _PACKAGE_ROOT.joinpath(*module.split(".")[1:])
@@ -124,11 +125,19 @@ def _parse(path: Path) -> ast.Module:
     return ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
 
 
+def _statements(nodes: Iterable[ast.AST]) -> Iterable[ast.AST]:
+    """Every statement of ``nodes`` and of the blocks inside them (functions, classes, if, try, ...)."""
+    for node in nodes:
+        yield node
+        for block in ("body", "orelse", "finalbody", "handlers", "cases"):
+            yield from _statements(getattr(node, block, None) or ())
+
+
 @functools.lru_cache(maxsize=None)
 def _imports_of(path: Path) -> frozenset[Path]:
     """The package source files ``path`` imports directly (absolute ``brdfs`` imports, also inside functions)."""
     found = set()
-    for node in ast.walk(_parse(path)):
+    for node in _statements(_parse(path).body):
         if isinstance(node, ast.Import):
             names = [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
@@ -141,7 +150,7 @@ def _imports_of(path: Path) -> frozenset[Path]:
             for k in range(1, len(parts) + 1):
                 file = _module_file(".".join(parts[:k]))
                 if file is not None:
-                    found.add(file.resolve())
+                    found.add(file)
     return frozenset(found)
 
 
