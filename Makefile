@@ -36,7 +36,7 @@ all: $(STAMP)
 	$(SNAKEMAKE) --profile workflow/profiles/full
 
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n 2
 
 benchmark: $(STAMP)
 	$(BIN)/python benchmarks/bench_tables.py
