@@ -9,7 +9,6 @@ import pandas as pd
 
 from brdfs.pipeline import published
 from brdfs.physics.geometry import direction, light_direction
-from brdfs.numerics.integrate import Estimate, integrate
 
 SECTION = "patch"
 
@@ -17,24 +16,6 @@ SECTION = "patch"
 def tolerances(cfg: dict) -> dict:
     """``rtol``/``atol`` of the config's ``tolerance`` section, as keyword arguments."""
     return {"rtol": cfg["tolerance"]["rtol"], "atol": cfg["tolerance"]["atol"]}
-
-
-def integrate_per_element(fn, limits, tol: dict) -> Estimate:
-    """∫ fn(x, element) dx over one [lo, hi, (kinks)] row of ``limits`` per element."""
-    return integrate(fn, np.asarray(limits, float), **tol)
-
-
-def per_profile(fn, profiles):
-    """An integrand ``(x, element) -> values`` applying ``fn(profile, x_rows)`` profile by profile."""
-
-    def integrand(x, elem):
-        out = np.empty_like(x)
-        for i in np.unique(elem):
-            rows = elem == i
-            out[rows] = fn(profiles[i], x[rows])
-        return out
-
-    return integrand
 
 
 def truncation_reason(printed: str, computed: float) -> dict:

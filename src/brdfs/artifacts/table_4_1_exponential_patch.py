@@ -19,13 +19,7 @@ from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
 from brdfs.pipeline.registry import comparison, get_artifact, table
-from brdfs.artifacts._patch_common import (
-    SECTION,
-    integrate_per_element,
-    per_profile,
-    tolerances,
-    truncation_reason,
-)
+from brdfs.artifacts._patch_common import SECTION, tolerances, truncation_reason
 
 NAME = "table_4_1_exponential_patch"
 ARTIFACT = "patch_exponential"
@@ -43,18 +37,9 @@ def _closed_forms(s: np.ndarray) -> dict[str, np.ndarray]:
 def _integrated(s: np.ndarray, tol: dict) -> dict[str, np.ndarray]:
     """The same three numbers by adaptive integration of ξ and of p(R) (eq. 4.47)."""
     profiles = [patch.ExponentialProfile(v) for v in s]
-    rows = np.arange(s.size)
-
-    def xi_r(r, e):
-        return np.exp(-s[e][:, None] * r) * r
-
-    p = per_profile(lambda profile, R: patch.weight(profile, R, profile.c_max), profiles)
-
-    disk = integrate_per_element(xi_r, np.stack([0 * rows, 1 + 0 * rows], 1), tol)
-    upper = integrate_per_element(p, np.stack([1 + 0 * rows, 2 + 0 * rows], 1), tol)
-    bp = [[0.0, *sorted({1.0, *profiles[i].breakpoints}), 2.0] for i in rows]
-    width = max(map(len, bp))
-    whole = integrate_per_element(p, [b + [np.nan] * (width - len(b)) for b in bp], tol)
+    disk = patch.exponential_disk_integral(s, **tol)
+    upper = patch.weight_integral(profiles, 1.0, 2.0, **tol)
+    whole = patch.weight_integral(profiles, 0.0, 2.0, **tol)
     return {
         "C_max_integrated": (1 / (2 * np.pi * disk.value), disk.error / (2 * np.pi * disk.value**2)),
         "I_12_integrated": (np.pi * upper.value, np.pi * upper.error),

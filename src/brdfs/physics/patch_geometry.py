@@ -252,6 +252,45 @@ def diffuse_weight(profile, C):
     return float(C * np.pi * profile.xi(2.0))
 
 
+
+def _per_profile(fn, profiles):
+    """An integrand ``(x, element) -> values`` applying ``fn(profile, x_rows)`` profile by profile."""
+
+    def integrand(x, elem):
+        out = np.empty_like(x)
+        for i in np.unique(elem):
+            rows = elem == i
+            out[rows] = fn(profiles[i], x[rows])
+        return out
+
+    return integrand
+
+
+def exponential_disk_integral(s, rtol=1e-10, atol=1e-14) -> Estimate:
+    """∫₀¹ ξ(r) r dr = ∫₀¹ e^{−s r} r dr per s, by adaptive quadrature: the normalisation behind
+    eq. 4.45's C_max = 1/(2π ∫₀¹ ξ r dr) (the albedo at normal incidence is 1), integrated."""
+    s = np.asarray(s, float)
+    rows = np.arange(s.size)
+
+    def xi_r(r, e):
+        return np.exp(-s[e][:, None] * r) * r
+
+    return integrate(xi_r, np.stack([0 * rows, 1 + 0 * rows], 1), rtol=rtol, atol=atol)
+
+
+def weight_integral(profiles, lo, hi, rtol=1e-10, atol=1e-14) -> Estimate:
+    """∫_lo^hi p(R) dR (eq. 4.41/4.47) of each profile's weight with its own C_max, by adaptive
+    quadrature split at R = 1 and the profile's breakpoints inside (lo, hi)."""
+    p = _per_profile(lambda profile, R: weight(profile, R, profile.c_max), profiles)
+    if (lo, hi) == (0.0, 2.0):
+        bp = [[0.0, *sorted({1.0, *profile.breakpoints}), 2.0] for profile in profiles]
+        width = max(map(len, bp))
+        limits = [b + [np.nan] * (width - len(b)) for b in bp]
+    else:
+        rows = np.arange(len(profiles))
+        limits = np.stack([lo + 0 * rows, hi + 0 * rows], 1)
+    return integrate(p, np.asarray(limits, float), rtol=rtol, atol=atol)
+
 def _r_breakpoints(profile, d):
     """Per element: 0, the kinks 1 − d, 1, 1 + d of a_R(d) in R, the profile's points, 2."""
     d = np.atleast_1d(np.asarray(d, float))
