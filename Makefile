@@ -1,16 +1,42 @@
 # Entry points (README "Quick start"): `make all` rebuilds every artifact, `make test` runs the tests,
 # `make report` builds results/report.html. The checks of issue #15 (README "Checks"):
 #   make check-reproducible  two clean rebuilds of a few artifacts give byte-identical CSV/PNG files
-#   make check-crash         SIGKILL in the middle of a rule, rerun: completes, reruns only what was cut
+#   make check-crash         SIGKILL `make all TARGETS=...` mid-job, run it again: completes, reruns only what was cut
 #   make check-cluster       a few artifacts through the generic cluster executor (workflow/cluster/)
 #   make report-check        the report in headless Chromium (`make chromium` installs it; not in `all`)
-#   make lint                snakemake --lint
+#   make lint                snakemake --lint; fails on every message but the one README "Lint" explains
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 SNAKEMAKE := $(CURDIR)/$(BIN)/snakemake
 export PYTHONPATH := $(CURDIR)/src
+# A subset of the build: `make all TARGETS="results/tables/table_3_2_ward_cmax.png ..."` (default: everything).
+TARGETS ?=
+
+# Every target that lets Snakemake write in this tree (all, report, clean) runs under an exclusive
+# flock(1) on BUILD_LOCK. The kernel releases it when the last process holding it exits, killed or
+# not, so it can never be stale. While holding it, a Snakemake lock left in .snakemake/locks can
+# only be a killed run's (every writing run of this Makefile holds the flock), and is cleared with
+# `snakemake --unlock`: after a crash (SIGKILL, power loss) `make all` just runs again, and
+# rerun-incomplete (the profiles) reruns the cut jobs. A second build while one runs fails at once
+# with one line (waiting would look like a hang and then only redo or re-check the first build's work).
+# Not covered: a plain `snakemake` (no flock) still running when `make all` starts, whose lock
+# `make all` would take for stale (README "Crashes").
+BUILD_LOCK := .snakemake/make.lock
+BUILD_LOCK_BUSY := 75
+# $(call locked,COMMANDS): run COMMANDS (a shell string without single quotes) holding BUILD_LOCK.
+define locked
+command -v flock >/dev/null || { echo "make $@: needs flock(1) (util-linux)" >&2; exit 1; }; \
+mkdir -p $(dir $(BUILD_LOCK)); \
+flock --nonblock --conflict-exit-code $(BUILD_LOCK_BUSY) $(BUILD_LOCK) sh -ec '$(1)' || { rc=$$?; \
+  if [ $$rc -eq $(BUILD_LOCK_BUSY) ]; then echo "make $@: another build is running (lock held: $(CURDIR)/$(BUILD_LOCK))" >&2; fi; \
+  exit $$rc; }
+endef
+# Inside $(call locked,...) only: clear the lock a killed Snakemake run left behind.
+UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
+  echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
+  out=$$($(SNAKEMAKE) --unlock 2>&1) || { echo "$$out" >&2; exit 1; }; fi
 
 .PHONY: all test venv benchmark clean baseline lock report report-check chromium lint \
         check-reproducible check-crash check-cluster check-slurm-plan checks
@@ -33,9 +59,10 @@ lock: $(STAMP)
 
 # The full build batches cheap artifacts (workflow/profiles/full: --config batches=true).
 all: $(STAMP)
-	$(SNAKEMAKE) --profile workflow/profiles/full
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full $(TARGETS))
 
-test: $(STAMP)
+# Lint first (a few seconds), then the tests.
+test: $(STAMP) lint
 	$(BIN)/python -m pytest -n 2
 
 benchmark: $(STAMP)
@@ -51,7 +78,7 @@ baseline: $(STAMP)
 
 # The self-contained HTML report of the whole build (builds what is missing first).
 report: all
-	$(SNAKEMAKE) --cores 1 --report results/report.html
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --cores 1 --report results/report.html)
 
 # Debian's Chromium, for report-check only (needs root; does nothing when already installed).
 chromium:
@@ -60,13 +87,15 @@ chromium:
 report-check: report chromium
 	$(BIN)/python workflow/scripts/report_check.py results/report.html results/report_check
 
-# Lint; the one remaining message (a conda environment per rule) is explained in the README.
+# Lint (both planning modes): fails on any message but the conda environment per rule, which the
+# README explains (workflow/scripts/lint_check.py).
 lint: $(STAMP)
-	$(SNAKEMAKE) --lint || true
+	$(BIN)/python workflow/scripts/lint_check.py --snakemake $(SNAKEMAKE)
 
 check-reproducible: $(STAMP)
 	SNAKEMAKE=$(SNAKEMAKE) workflow/scripts/check_reproducible.sh
 
+# `make all TARGETS=...` in a copy, SIGKILLed mid-job, then the same `make all` (workflow/scripts/check_crash.sh).
 check-crash: $(STAMP)
 	SNAKEMAKE=$(SNAKEMAKE) workflow/scripts/check_crash.sh
 
@@ -79,5 +108,6 @@ check-slurm-plan: $(STAMP)
 
 checks: check-reproducible check-crash check-cluster check-slurm-plan lint
 
+# Under the build lock (not while a build runs), and keeping the lock file itself.
 clean:
-	rm -rf results .snakemake .cluster-jobs
+	@$(call locked,set -x; rm -rf results .cluster-jobs; find .snakemake -mindepth 1 -maxdepth 1 ! -name $(notdir $(BUILD_LOCK)) -exec rm -rf {} +)

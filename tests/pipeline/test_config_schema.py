@@ -4,6 +4,9 @@ Every malformed configuration must stop with ONE line that names the key and the
 before any rule runs and without writing anything under results/.
 """
 
+import copy
+import functools
+import math
 import os
 import shutil
 import subprocess
@@ -18,18 +21,27 @@ import yaml
 
 from brdfs.physics.models import BRDF, MODELS, register
 from brdfs.physics.models.base import Interval
-from brdfs.pipeline.config import CONFIG_SCHEMA, CONFIG_YAML, ConfigError, load_config, load_schema, validate_config
+from brdfs.pipeline.config import (CONFIG_SCHEMA, CONFIG_YAML, ConfigError, load_config, load_schema, validate_config,
+                                   yaml12_scalar)
 from brdfs.pipeline.io import REPO_ROOT
 
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
+NAN, INF = float("nan"), float("inf")
+
+
+@functools.lru_cache(maxsize=None)
+def _parsed(path: Path) -> dict:
+    return yaml.safe_load(path.read_text())
 
 
 def raw_config() -> dict:
-    return yaml.safe_load(CONFIG_YAML.read_text())
+    """config.yaml as PyYAML reads it (a fresh copy each call)."""
+    return copy.deepcopy(_parsed(CONFIG_YAML))
 
 
 def schema() -> dict:
-    return yaml.safe_load(CONFIG_SCHEMA.read_text())
+    """The schema file as PyYAML reads it (read only: no copy)."""
+    return _parsed(CONFIG_SCHEMA)
 
 
 def set_key(config: dict, path: str, value) -> dict:
@@ -111,11 +123,87 @@ MALFORMED = [
     ("patch.m_clip", 2.0),
     ("grazing.fig_2_1_models.2.G", "beckmann"),
     ("he_torrance.fig_3_3.quantity", "radiance"),
+    # NaN and +-inf, in every kind of numeric field (integer, number, list item, oneOf, model parameter)
+    ("seed", NAN),
+    ("seed", INF),
+    ("tolerance.rtol", NAN),
+    ("tolerance.atol", INF),
+    ("tolerance.rtol", -INF),
+    ("mean_albedo.rtol", NAN),
+    ("pumping.levels", NAN),
+    ("ward_cmax.m.0", NAN),
+    ("blinn_cn.n.1", INF),
+    ("grazing.readings.ward_theta_deg.0", NAN),
+    ("grazing.readings.cook_torrance_theta_deg.1", -INF),
+    ("grazing.fig_2_1_models.0.n", INF),
+    ("metal_reflectance.metals.4.ior_re", NAN),
+    ("patch.m_clip", INF),
+    ("work_precision.cases.0.theta_deg", NAN),
+    ("work_precision.cases.3.m", NAN),
+    ("accuracy_map.reduced.families.cook_torrance_ts.0", INF),
+    # strings that are no YAML 1.2 number where the schema wants one
+    ("tolerance.rtol", "1e-10x"),
+    ("tolerance.atol", "nan"),
+    ("tolerance.rtol", ".nan.0"),
+    ("ward_cmax.m.0", "0.1 "),
+    ("pumping.levels", "true"),
+]
+
+# Strings that YAML 1.2 reads as a number: refused by the number's own range, and the message names
+# the number as read (key, string, the value the message shows).
+MALFORMED_YAML12 = [
+    ("tolerance.rtol", "-1e-10", "tolerance.rtol = -1e-10: must be >= 1e-15"),
+    ("tolerance.rtol", ".nan", "tolerance.rtol = nan: must be a finite number"),
+    ("tolerance.atol", "-.inf", "tolerance.atol = -inf: must be a finite number"),
+    ("ward_cmax.m.0", "+.INF", "ward_cmax.m[0] = inf: must be a finite number"),
+    ("seed", "-5", "seed = -5: must be >= 0"),
+]
+
+# `--config` entries as Snakemake parses and merges them (nested scalars are strings, merged into
+# the file's sections): (entry, the line's start up to and including the value).
+MALFORMED_OVERRIDES = [
+    ("seed=nan", "seed = nan: must be a finite number"),
+    ("seed=inf", "seed = inf: must be a finite number"),
+    ("seed=-inf", "seed = -inf: must be a finite number"),
+    ("tolerance={rtol: .nan}", "tolerance.rtol = nan: must be a finite number"),
+    ("tolerance={atol: .inf}", "tolerance.atol = inf: must be a finite number"),
+    ("tolerance={rtol: -.Inf, atol: 1e-14}", "tolerance.rtol = -inf: must be a finite number"),
+    ("tolerance={rtol: -1e-8}", "tolerance.rtol = -1e-08: must be >= 1e-15"),
+    ("tolerance={rtol: tight}", "tolerance.rtol = 'tight': must be of type number"),
+    ("tolerance={rtol: null}", "tolerance.rtol = 'null': must be of type number"),
+    ("tolerance={rtol: nan}", "tolerance.rtol = 'nan': must be of type number"),
+    ("tolerance={rtol: [1.0e-8]}", "tolerance.rtol = ['1.0e-8']: must be of type number"),
+    ("tolerance={rtol: 1e-8, colour: red}", "tolerance.colour = 'red': unknown key"),
+    ("tolerance={rtol: 1e-8", "tolerance = '{rtol: 1e-8': must be of type object"),
+    ("ward_cmax={m: []}", "ward_cmax.m = []: must not be empty"),
+    ("ward_cmax={m: [0.1, .nan]}", "ward_cmax.m[1] = nan: must be a finite number"),
+    ("ward_cmax={m: [0.1, 0]}", "ward_cmax.m[1] = 0: must be > 0"),
+    ("blinn_cn={n: [2, -8]}", "blinn_cn.n[1] = -8: must be > 0"),
+    ("pumping={levels: 2.5}", "pumping.levels = 2.5: must be of type integer"),
+    ("pumping={levels: true}", "pumping.levels = 'true': must be of type integer"),
+    ("grazing={readings: {ward_theta_deg: [90.5]}}", "grazing.readings.ward_theta_deg[0] = 90.5: must be < 90"),
+    ("grazing={readings: {ward_mm: 0.1}}", "grazing.readings.ward_mm = '0.1': unknown key"),
+    ("patch={m_clip: .inf}", "patch.m_clip = inf: must be a finite number"),
+    ("work_precision={cases: [{label: a, model: phong, n: 10, theta_deg: .nan}]}",
+     "work_precision.cases[0].theta_deg = nan: must be a finite number"),
+    ("work_precision={cases: [{label: a, model: torrance, theta_deg: 45}]}",
+     "work_precision.cases[0].model = 'torrance': must be one of"),
 ]
 
 
-def test_at_least_thirty_malformed_configs_are_tried():
-    assert len(MALFORMED) >= 30
+def override(*entries: str) -> dict:
+    """The shipped config updated by ``--config`` entries, as Snakemake parses and merges them."""
+    from snakemake.cli import parse_config
+    from snakemake.utils import update_config
+
+    config = raw_config()
+    update_config(config, parse_config(list(entries)))
+    return config
+
+
+def test_at_least_sixty_malformed_configs_are_tried():
+    assert len(MALFORMED) + len(MALFORMED_YAML12) + len(MALFORMED_OVERRIDES) >= 60
+    assert sum(isinstance(v, float) and not math.isfinite(v) for _, v in MALFORMED) >= 10
 
 
 def test_the_shipped_config_is_valid_and_defaults_are_filled():
@@ -135,6 +223,53 @@ def test_malformed_config_stops_with_one_line_naming_key_and_value(key, value):
     printed = shown[0] + "".join(f"[{p}]" if p.isdigit() else f".{p}" for p in shown[1:])
     assert "\n" not in message and len(message) < 400, message
     assert f"{printed} = {value!r}" in message, message
+
+
+@pytest.mark.parametrize(("key", "value", "line"), MALFORMED_YAML12, ids=[f"{k}={v!r}" for k, v, _ in MALFORMED_YAML12])
+def test_a_string_read_as_a_yaml_12_number_is_checked_as_that_number(key, value, line):
+    with pytest.raises(ConfigError) as error:
+        validate_config(set_key(raw_config(), key, value))
+    assert str(error.value) == f"Error validating config file: {line}"
+
+
+@pytest.mark.parametrize(("entry", "line"), MALFORMED_OVERRIDES, ids=[e for e, _ in MALFORMED_OVERRIDES])
+def test_a_malformed_command_line_override_stops_with_one_line_naming_key_and_value(entry, line):
+    with pytest.raises(ConfigError) as error:
+        validate_config(override(entry))
+    message = str(error.value)
+    assert "\n" not in message and message.startswith(f"Error validating config file: {line}"), message
+
+
+def test_nested_overrides_are_read_as_yaml_and_merged_into_the_files_sections():
+    config = validate_config(override("tolerance={rtol: 1.0e-8, atol: 1.0e-15}"))
+    assert config["tolerance"] == {"rtol": 1e-8, "atol": 1e-15}
+    # deep merge: the keys not given keep the file's values
+    config = validate_config(override("tolerance={rtol: 1e-8}", "grazing={readings: {ward_theta_deg: [89.9, 8e1]}}"))
+    assert config["tolerance"] == {"rtol": 1e-8, "atol": 1e-14}
+    assert config["grazing"]["readings"]["ward_theta_deg"] == [89.9, 80.0]
+    assert config["grazing"]["readings"]["grids"] == raw_config()["grazing"]["readings"]["grids"]
+    assert config["seed"] == raw_config()["seed"]
+    # integers, booleans and strings as the schema wants them; a list replaces the file's list
+    config = validate_config(override("seed=7", "pumping={levels: 3}", "work_precision={cases: "
+                                      "[{label: '1e-10', model: blinn_cosmin, n: 2, theta_deg: max}, "
+                                      "{label: b, model: ward, m: 1e-1, theta_deg: 60}]}"))
+    assert config["seed"] == 7 and config["pumping"]["levels"] == 3 and type(config["pumping"]["levels"]) is int
+    assert config["work_precision"]["cases"] == [
+        {"label": "1e-10", "model": "blinn_cosmin", "n": 2, "theta_deg": "max"},
+        {"label": "b", "model": "ward", "m": 0.1, "theta_deg": 60},
+    ]
+
+
+def test_yaml_12_numbers_in_the_config_file_are_numbers(tmp_path):
+    text = CONFIG_YAML.read_text().replace("rtol: 1.0e-10", "rtol: 1e-10").replace("atol: 1.0e-14", "atol: 1E-14")
+    assert yaml.safe_load(text)["tolerance"] == {"rtol": "1e-10", "atol": "1E-14"}   # PyYAML: YAML 1.1 strings
+    (tmp_path / "config.yaml").write_text(text)
+    config = load_config(tmp_path / "config.yaml")
+    assert config["tolerance"] == {"rtol": 1e-10, "atol": 1e-14} and type(config["tolerance"]["rtol"]) is float
+    assert config == load_config()
+    for text, value in [("1e-10", 1e-10), ("-2.5E+3", -2500.0), (".5", 0.5), ("1.", 1.0), ("0x1f", 31), ("0o17", 15),
+                        ("+.inf", INF), ("true", True), ("~", None), ("1e", "1e"), ("max", "max"), ("1_000", "1_000")]:
+        assert yaml12_scalar(text) == value and type(yaml12_scalar(text)) is type(value), text
 
 
 def test_a_missing_required_key_is_named():
@@ -241,10 +376,12 @@ def test_the_accuracy_map_families_are_the_models_declared_families():
     assert set(families["properties"]) == declared
 
 
-def dry_run(tmp_path: Path, *config_args: str) -> subprocess.CompletedProcess:
-    """`snakemake -n --config ...` in a copy of the workflow."""
+def dry_run(tmp_path: Path, *config_args: str, edit=None) -> subprocess.CompletedProcess:
+    """`snakemake -n --config ...` in a copy of the workflow (its config.yaml through ``edit``)."""
     for name in ("Snakefile", "workflow", "config.yaml"):
         (shutil.copytree if (REPO_ROOT / name).is_dir() else shutil.copy)(REPO_ROOT / name, tmp_path / name)
+    if edit is not None:
+        (tmp_path / "config.yaml").write_text(edit((tmp_path / "config.yaml").read_text()))
     for name in ("src", "data"):
         (tmp_path / name).symlink_to(REPO_ROOT / name)
     env = {**os.environ, "PATH": f"{SNAKEMAKE.parent}{os.pathsep}{os.environ.get('PATH', '')}"}
@@ -253,10 +390,14 @@ def dry_run(tmp_path: Path, *config_args: str) -> subprocess.CompletedProcess:
 
 
 def test_dry_run_of_the_valid_config_plans_every_rule(tmp_path):
-    run = dry_run(tmp_path)
-    assert run.returncode == 0, run.stderr
+    """Also with `1e-10` (YAML 1.2) in config.yaml and nested `--config` values (deep-merged)."""
+    run = dry_run(tmp_path, "tolerance={atol: 1e-15}", "ward_cmax={m: [0.4, 1e-1]}",
+                  edit=lambda text: text.replace("rtol: 1.0e-10", "rtol: 1e-10"))
+    assert "rtol: 1e-10" in (tmp_path / "config.yaml").read_text()
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
     assert "results/checks/published/metal_a0.csv" in run.stdout and "merge_comparison" in run.stdout
     assert "results/figures/fig_2_1_albedo_classical.png" in run.stdout
+    assert "results/tables/table_3_2_ward_cmax.png" in run.stdout
     assert not (tmp_path / "results").exists()
 
 
@@ -266,6 +407,7 @@ def test_dry_run_of_the_valid_config_plans_every_rule(tmp_path):
         ("tolerance=-1", "Error validating config file: tolerance = -1: must be of type object"),
         ("seed=-5", "Error validating config file: seed = -5: must be >= 0"),
         ("colour=red", "Error validating config file: colour = 'red': unknown key"),
+        ("tolerance={rtol: .nan}", "Error validating config file: tolerance.rtol = nan: must be a finite number"),
     ],
 )
 def test_snakemake_stops_on_a_malformed_command_line_config(tmp_path, argument, line):

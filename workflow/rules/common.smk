@@ -18,8 +18,11 @@ from brdfs.pipeline.config import ConfigError, validate_config
 BATCHED = str(config.pop("batches", False)).lower() in ("true", "1", "yes")
 
 # The schema (workflow/schemas/config.schema.yaml) is applied, with its defaults, to the
-# config as Snakemake sees it (config.yaml updated by --config/--configfile), before any rule
-# is planned. A bad value stops the run with one line naming the key and the value.
+# config as Snakemake sees it (config.yaml deep-merged with --config/--configfile), before any
+# rule is planned. It first reads, in place, every string where the schema wants a number as YAML
+# 1.2 does (`1e-10` from config.yaml; every scalar of a nested --config value, which Snakemake
+# leaves a string), and refuses NaN and +-inf in every numeric field. A bad value stops the run
+# with one line naming the key and the value.
 try:
     validate_config(config)
 except ConfigError as error:

@@ -8,12 +8,19 @@ model names; beside every ``model`` key, each registered model's parameters with
 and choices; the accuracy map's families), so that a model registered with
 :func:`brdfs.physics.models.register`, also one defined in a test, needs no edit of the schema. A bad
 configuration raises :class:`ConfigError`, whose message is one line naming the key and its
-value (``workflow/rules/common.smk`` prints it and stops before any rule runs).
+value (``workflow/rules/common.smk`` prints it and stops before any rule runs). Before that, a string
+where the schema wants a number is read as YAML 1.2 reads it (``1e-10``, which PyYAML leaves a
+string; every scalar of a nested ``--config`` value, which Snakemake leaves a string), and NaN and
++-inf are refused in every numeric field.
 """
 
 from __future__ import annotations
 
+import copy
+import functools
+import math
 import os
+import re
 
 import jsonschema
 import yaml
@@ -24,17 +31,116 @@ CONFIG_YAML = REPO_ROOT / "config.yaml"
 CONFIG_SCHEMA = REPO_ROOT / "workflow" / "schemas" / "config.schema.yaml"
 
 
+NOT_FINITE = "must be a finite number"
+
+
 def _validator_filling_defaults(schema: dict) -> jsonschema.protocols.Validator:
+    """The schema's validator, filling defaults (the jsonschema FAQ recipe Snakemake uses), and
+    refusing NaN and +-inf wherever the schema wants a number or an integer."""
     base = jsonschema.Draft202012Validator
     validate_properties = base.VALIDATORS["properties"]
+    validate_type = base.VALIDATORS["type"]
 
     def set_defaults(validator, properties, instance, subschema):
-        for name, property_schema in properties.items():
+        for name, property_schema in properties.items() if isinstance(instance, dict) else ():
             if "default" in property_schema:
                 instance.setdefault(name, property_schema["default"])
         yield from validate_properties(validator, properties, instance, subschema)
 
-    return jsonschema.validators.extend(base, {"properties": set_defaults})(schema)
+    def finite_type(validator, types, instance, subschema):
+        numeric = {"number", "integer"} & set([types] if isinstance(types, str) else types)
+        if numeric and isinstance(instance, float) and not math.isfinite(instance):
+            yield jsonschema.ValidationError(NOT_FINITE, validator="finite", validator_value=True)
+            return
+        yield from validate_type(validator, types, instance, subschema)
+
+    return jsonschema.validators.extend(base, {"properties": set_defaults, "type": finite_type})(schema)
+
+
+# --- strings that are YAML 1.2 scalars -----------------------------------------------------------
+# PyYAML (Snakemake's `configfile:`, yaml.safe_load) follows YAML 1.1, which reads `1e-10` as a
+# string; `--config` values nested in a mapping or list are parsed by Snakemake with YAML's
+# BaseLoader, every scalar a string (`tolerance={rtol: 1.0e-8}` gives {"rtol": "1.0e-8"}), and
+# merged by it into the file's sections (a deep merge: the keys not given keep the file's values).
+# Where the schema wants a number, an integer, a boolean or null and finds a string, the string is
+# read as YAML 1.2 (core schema) reads it, in place, before the validation proper
+# (:func:`_read_yaml12_strings`): the one place such strings become values. A string the schema
+# wants as a string (a label, `max`) stays a string.
+
+_YAML12 = [  # (regex, conversion): the plain scalars of the YAML 1.2 core schema
+    (r"null|Null|NULL|~", lambda s: None),
+    (r"true|True|TRUE", lambda s: True),
+    (r"false|False|FALSE", lambda s: False),
+    (r"[-+]?[0-9]+", int),
+    (r"0o[0-7]+", lambda s: int(s[2:], 8)),
+    (r"0x[0-9a-fA-F]+", lambda s: int(s[2:], 16)),
+    (r"[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?", float),
+    (r"[-+]?(\.inf|\.Inf|\.INF)", lambda s: float(s.replace(".", "", 1))),
+    (r"\.nan|\.NaN|\.NAN", lambda s: math.nan),
+]
+_YAML12 = [(re.compile(pattern), convert) for pattern, convert in _YAML12]
+
+
+def yaml12_scalar(text: str):
+    """``text`` as a plain YAML 1.2 scalar: None, a bool, an int, a float, or ``text`` itself."""
+    for pattern, convert in _YAML12:
+        if pattern.fullmatch(text):
+            return convert(text)
+    return text
+
+
+def _is_of(value, kind: str) -> bool:
+    if kind == "null":
+        return value is None
+    if kind == "boolean":
+        return isinstance(value, bool)
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    return kind in ("number", "integer")   # an integer field's 2.5 is reported as the number it is
+
+
+def _type_errors(errors):
+    for error in errors:
+        if error.validator == "type":
+            yield error
+        yield from _type_errors(error.context or ())
+
+
+def _read_yaml12_strings(validator, config: dict) -> list:
+    """Replace, in ``config``, every string where the schema wants a number, an integer, a boolean
+    or null by its YAML 1.2 reading, if that reading is of a wanted type (also inside ``oneOf``).
+    Returns the validation errors that remain (in jsonschema's order; none: valid)."""
+    for _ in range(100):   # each pass reads every string the previous passes exposed
+        changed = False
+        errors = list(validator.iter_errors(config))
+        for error in _type_errors(errors):
+            path = list(error.absolute_path)
+            if not isinstance(error.instance, str) or not path:
+                continue
+            wanted = [error.validator_value] if isinstance(error.validator_value, str) else error.validator_value
+            value = yaml12_scalar(error.instance)
+            if value is error.instance or not any(_is_of(value, kind) for kind in wanted):
+                continue
+            node = config
+            for part in path[:-1]:
+                node = node[part]
+            if node[path[-1]] is error.instance:
+                node[path[-1]] = value
+                changed = True
+        if not changed:
+            return errors
+    return errors
+
+
+def _first_non_finite(node, path=()):
+    """The path and value of the first NaN or +-inf anywhere in ``node``, or None."""
+    if isinstance(node, float) and not math.isfinite(node):
+        return path, node
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, value in items:
+        if (found := _first_non_finite(value, (*path, key))) is not None:
+            return found
+    return None
 
 
 class ConfigError(ValueError):
@@ -156,14 +262,25 @@ def load_schema(schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
     """The config schema, with what it takes from the model classes filled in (:func:`_fill_from_models`)."""
     from brdfs.physics.models import MODELS
 
-    with open(schema_path, encoding="utf-8") as stream:
-        schema = yaml.safe_load(stream)
+    path = os.fspath(schema_path)
+    schema = copy.deepcopy(_read_schema(path, os.stat(path).st_mtime_ns))
     _fill_from_models(schema, MODELS)
     return schema
 
 
+@functools.lru_cache(maxsize=8)
+def _read_schema(path: str, mtime_ns: int) -> dict:
+    """The schema file as parsed (cached while the file is unchanged; callers copy it)."""
+    with open(path, encoding="utf-8") as stream:
+        return yaml.safe_load(stream)
+
+
 def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
     """Validate ``config`` in place, filling the schema's defaults.
+
+    Strings where the schema wants a number (``1e-10`` from PyYAML, every scalar of a nested
+    ``--config`` value) are first read as YAML 1.2 reads them; NaN and +-inf are refused in every
+    numeric field.
 
     Raises
     ------
@@ -173,10 +290,12 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
     schema = load_schema(schema_path)
     if not isinstance(config, dict):
         raise ConfigError(f"Error validating config file: (top level) = {_short(config)}: must be a mapping")
-    try:
-        _validator_filling_defaults(schema).validate(config)
-    except jsonschema.ValidationError as error:
-        raise ConfigError(describe_error(error)) from error
+    errors = _read_yaml12_strings(_validator_filling_defaults(schema), config)
+    if errors:
+        raise ConfigError(describe_error(errors[0])) from errors[0]
+    # Every number the schema types is finite (above); this holds any other NaN or inf too.
+    if (found := _first_non_finite(config)) is not None:
+        raise ConfigError(f"Error validating config file: {_key(found[0])} = {_short(found[1])}: {NOT_FINITE}")
     return config
 
 

@@ -90,8 +90,30 @@ class DeclarationError(ValueError):
     """A decorator line the registry cannot read without importing its module, or a bad declaration."""
 
 
-def config_subset(cfg: dict, sections: Iterable[str]) -> dict:
-    """The sections of ``cfg`` an artifact reads, plus :data:`COMMON_SECTIONS`.
+def _canonical(value):
+    """``value`` with every mapping's keys sorted, recursively (lists keep their order)."""
+    if isinstance(value, dict):
+        return {key: _canonical(value[key]) for key in sorted(value, key=repr)}
+    if isinstance(value, list):
+        return [_canonical(v) for v in value]
+    return value
+
+
+class ConfigSubset(dict):
+    """The config sections of a rule's ``params``: a dict in the file's key order (what an artifact
+    iterates), whose ``repr`` sorts the keys of every mapping in it. Snakemake records and compares
+    a rule's params by their ``repr`` (``snakemake.persistence``), so the same configuration written
+    in another key order plans no job; the job's script unpickles this class with the order intact."""
+
+    def __repr__(self) -> str:
+        return repr(_canonical(dict(self)))
+
+    __str__ = __repr__
+
+
+def config_subset(cfg: dict, sections: Iterable[str]) -> ConfigSubset:
+    """The sections of ``cfg`` an artifact reads, plus :data:`COMMON_SECTIONS`, in a
+    :class:`ConfigSubset` (its repr does not depend on the order of keys).
 
     Raises
     ------
@@ -102,7 +124,7 @@ def config_subset(cfg: dict, sections: Iterable[str]) -> dict:
     missing = [s for s in wanted if s not in cfg]
     if missing:
         raise KeyError(f"config.yaml lacks the sections {missing}")
-    return {s: cfg[s] for s in wanted}
+    return ConfigSubset((s, cfg[s]) for s in wanted)
 
 
 # --- the source files an artifact depends on ------------------------------------------------------
