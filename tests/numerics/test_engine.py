@@ -12,7 +12,8 @@ from brdfs import albedo_table, model
 from brdfs import albedo
 from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
 from brdfs.numerics.integrate.disk import disk_albedo, disk_albedo_many
-from brdfs.numerics.quantities import grazing_albedo_new_model, max_albedo, mean_albedo, mean_albedo_nested, phong_mean_albedo
+from brdfs.numerics.quantities import max_albedo, mean_albedo, mean_albedo_nested
+from brdfs.physics.models.phong import new_model_grazing_albedo as grazing_albedo_new_model, phong_mean_albedo
 
 
 def assert_honest(est_value, est_error, truth, rel_floor=1e-13):

@@ -176,16 +176,20 @@ def _directions(rng, n, grazing=True):
 SEEDS = st.integers(0, 2 ** 32 - 1)
 
 
+def _drawn_model_and_directions(name, data, seed, n=256):
+    """A model at drawn parameters (its constant C too) and ``n`` random pairs (L, V)."""
+    cls = MODELS[name]
+    params = data.draw(params_of(cls, with_constant=True).map(lambda p: _plain(cls, p)), label="params")
+    rng = np.random.default_rng(seed)
+    return params, build(name, params), _directions(rng, n), _directions(rng, n)
+
+
 # --- finite, non-negative, reciprocal ---------------------------------------------------------------
 @pytest.mark.parametrize("name", NAMES)
 @_settings("finite")
 @given(data=st.data(), seed=SEEDS)
 def test_every_model_is_finite_and_non_negative_over_its_ranges(name, data, seed):
-    cls = MODELS[name]
-    params = data.draw(params_of(cls, with_constant=True).map(lambda p: _plain(cls, p)), label="params")
-    f = build(name, params)
-    rng = np.random.default_rng(seed)
-    L, V = _directions(rng, 256), _directions(rng, 256)
+    params, f, L, V = _drawn_model_and_directions(name, data, seed)
     V[:8] = L[:8]                                          # the mirror/retro peaks of the lobes
     V[8:16] = L[8:16] * [-1, -1, 1]
     values = f(L, V)
@@ -197,18 +201,13 @@ def test_every_model_is_finite_and_non_negative_over_its_ranges(name, data, seed
 @_settings("reciprocal")
 @given(data=st.data(), seed=SEEDS)
 def test_every_model_that_claims_reciprocity_is_reciprocal(name, data, seed):
-    cls = MODELS[name]
-    params = data.draw(params_of(cls, with_constant=True).map(lambda p: _plain(cls, p)), label="params")
-    f = build(name, params)
-    rng = np.random.default_rng(seed)
-    L, V = _directions(rng, 256), _directions(rng, 256)
+    params, f, L, V = _drawn_model_and_directions(name, data, seed)
     forward, backward = f(L, V), f(V, L)
     # rounding: 1e-12 relative, and 1e-12 of the batch's largest value absolute (the Fresnel factor of
     # n = 1 is 0 up to cancellation, ~1e-33, in L·H and V·H rounded differently); plus a series' truncation
     reference = f
     if getattr(f, "ior_re", None) is not None:              # F rounds to ~1e-16 of the F = 1 value
-        reference = dataclasses.replace(f, ior_re=None, ior_im=dataclasses.fields(f)[[g.name for g in
-                                        dataclasses.fields(f)].index("ior_im")].default)
+        reference = dataclasses.replace(f, ior_re=None, ior_im=type(f).__dataclass_fields__["ior_im"].default)
     scale = max(float(np.max(reference(L, V))), float(np.max(reference(V, L))))
     allowed = (1e-12 * np.maximum(abs(forward), abs(backward)) + 1e-12 * scale
                + f.truncation_error(L, V) + f.truncation_error(V, L))

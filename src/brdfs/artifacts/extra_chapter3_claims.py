@@ -11,7 +11,8 @@ from brdfs.pipeline import published
 from brdfs.numerics.albedo import albedo
 from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.physics.models import model
-from brdfs.numerics.quantities import grazing_albedo_new_model, limit_albedo_90, max_albedo
+from brdfs.numerics.quantities import limit_albedo_90, max_albedo
+from brdfs.physics.models.phong import new_model_grazing_albedo as grazing_albedo_new_model
 
 NAME = "extra_chapter3_claims"
 CONSTANTS = "table_3_1_blinn_constants"

@@ -73,8 +73,7 @@ class NodeValues(NamedTuple):
 
     ``high`` its accurate value, ``low`` its Gauss value (the outer rule compares the two), and
     ``extra_err`` an absolute error already known (or ``None``).  The other kind of integrand, a
-    plain function, returns its values at the nodes as one array.  A bare 3-tuple is read as
-    ``NodeValues(*tuple)``.
+    plain function, returns its values at the nodes as one array.
     """
 
     high: np.ndarray
@@ -84,8 +83,8 @@ class NodeValues(NamedTuple):
 
 def node_values(out) -> NodeValues:
     """An integrand's return, either kind, as :class:`NodeValues` (a plain array: high = low, no known error)."""
-    if isinstance(out, tuple):
-        return NodeValues(*out)
+    if isinstance(out, NodeValues):
+        return out
     return NodeValues(out, out, None)
 
 

@@ -218,23 +218,18 @@ _MODEL_STRATEGIES = {"model": None, "cosine": "cosine", "uniform": "uniform", "b
 
 
 def _draw(sampler, model, L, rng, n):
-    """Weights f cos θ_V / p(V) of ``n`` directions V drawn by ``sampler``: uniform on the
-    hemisphere, or a strategy of the model's own sampler (its default for ``model``)."""
-    if sampler in _MODEL_STRATEGIES:
+    """Weights f cos θ_V / p(V) of ``n`` directions V drawn by ``sampler``: a strategy of the model's
+    own :meth:`~brdfs.physics.models.base.BRDF.sample` (``uniform`` and ``cosine`` are every model's;
+    ``model`` is its default)."""
+    try:
         strategy = _MODEL_STRATEGIES[sampler]
-        if sampler == "model":
-            u = rng.random((n, model.sample_dimension()))
-        else:                                    # two streams, as the readings have always drawn them
-            u = np.stack([rng.random(n), rng.random(n)], -1)
-        return model.sample(L, u, strategy)[1]
-    if sampler != "uniform":
-        raise ValueError(f"unknown sampler {sampler!r}; choose uniform, {', '.join(_MODEL_STRATEGIES)}")
-    u = np.stack([rng.random(n), rng.random(n)], -1)
-    cos_v = u[:, 0]
-    sin_v = np.sqrt((1 - cos_v) * (1 + cos_v))
-    phi = 2 * np.pi * u[:, 1]
-    V = np.stack([sin_v * np.cos(phi), sin_v * np.sin(phi), cos_v], -1)
-    return model(L, V) * cos_v / (1 / (2 * np.pi))
+    except KeyError:
+        raise ValueError(f"unknown sampler {sampler!r}; choose one of {', '.join(_MODEL_STRATEGIES)}") from None
+    if sampler == "model":
+        u = rng.random((n, model.sample_dimension()))
+    else:                                    # two streams, as the readings have always drawn them
+        u = np.stack([rng.random(n), rng.random(n)], -1)
+    return model.sample(L, u, strategy)[1]
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import chi2 as chi2_distribution
 
-from brdfs.core.gauss_kronrod import integrate
+from brdfs.core.gauss_kronrod import NodeValues, integrate
 from brdfs.physics.geometry import light_direction
 
 #: Cells expecting fewer samples are pooled (Mitsuba's and pbrt's ``min_exp_frequency``).
@@ -204,7 +204,7 @@ def cell_probabilities(model, L, strategy, chart, rtol=1e-7, atol=1e-11):
             return model.pdf(L, V, strategy) * jac
 
         est = integrate(inner, bp, rtol=rtol, atol=atol * 1e-2)
-        return est.value.reshape(m), est.value.reshape(m), est.error.reshape(m)
+        return NodeValues(est.value.reshape(m), est.value.reshape(m), est.error.reshape(m))
 
     bp = np.sort(np.stack(radial_bp, 1), axis=1)
     est = integrate(outer, bp, rtol=rtol, atol=atol)

@@ -36,7 +36,7 @@ import pandas as pd
 from numpy.polynomial import chebyshev as cheb
 
 from brdfs.numerics.albedo import albedo
-from brdfs.core.gauss_kronrod import integrate
+from brdfs.core.gauss_kronrod import NodeValues, integrate
 from brdfs.physics.lobes import MIRROR, PowerCosine
 from brdfs.physics import tables as physics_tables
 from brdfs.physics.models.pumped import CORRECTIONS, Pumped
@@ -161,7 +161,7 @@ def pumped_albedo(model, x, rtol=1e-10, atol=1e-14):
         k = kernel(mu_v, elem)
         weight = 2.0 * mu_v * pumping_factor(model, mu_l[elem, None], mu_v)
         value = weight * k.value.reshape(mu_v.shape)
-        return value, value, weight * k.error.reshape(mu_v.shape)
+        return NodeValues(value, value, weight * k.error.reshape(mu_v.shape))
 
     return integrate(outer, bp, rtol=rtol, atol=atol)
 

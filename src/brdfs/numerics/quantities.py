@@ -10,8 +10,6 @@ from brdfs.numerics.integrate.mean import mean_albedo_lobe
 from brdfs.physics.lobes import PowerCosine
 from brdfs.physics.models import MODELS
 # the closed forms live on the models (re-exported here for their callers)
-from brdfs.physics.models.phong import new_model_grazing_albedo as grazing_albedo_new_model  # noqa: F401
-from brdfs.physics.models.phong import phong_mean_albedo  # noqa: F401
 
 _GOLD = (np.sqrt(5.0) - 1.0) / 2.0
 

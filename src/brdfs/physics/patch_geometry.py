@@ -20,7 +20,7 @@ import numpy as np
 from scipy.special import gammainc
 
 from brdfs.physics.geometry import sin_incidence
-from brdfs.core.gauss_kronrod import Estimate, integrate
+from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 
 _EPS = np.finfo(float).eps
 #: Relative rounding bound of the closed forms of this module (sums of non-negative terms,
@@ -310,7 +310,7 @@ def _mixture_integral(profile, C, per_element, d, rtol, atol):
     def integrand(x, elem):
         g = per_element(x, elem)
         p = weight(profile, x, C)
-        return p * g.value, p * g.value, p * g.error
+        return NodeValues(p * g.value, p * g.value, p * g.error)
 
     bp = _r_breakpoints(profile, d)
     p_diffuse = diffuse_weight(profile, C)
