@@ -7,7 +7,7 @@ from brdfs import albedo, model
 from brdfs.artifacts.table_3_1_blinn_constants import blinn_normal_incidence_albedo
 from brdfs.physics.models.microfacet import ward_cosmin_limit
 from brdfs.numerics.integrate.disk import disk_albedo_many
-from brdfs.numerics.quantities import grazing_albedo_new_model
+from brdfs.physics.models.phong import new_model_grazing_albedo as grazing_albedo_new_model
 
 def phong_n1_albedo(theta_deg):
     """Reciprocal Phong, n = 1, c = 3/(2π): a = c ∫ (R·V)⁺ (N·V)⁺ dω = ((π − θ) cos θ + sin θ)/π
