@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import IntegrationWarning, dblquad
 
+from brdfs.numerics.arguments import check_albedo_call
 from brdfs.numerics.integrate import azimuthal
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
@@ -318,6 +319,7 @@ def albedo(model, theta_deg, method="engine", *, rtol=None, atol=None, **options
     >>> round(float(est.value[0]), 9), [str(s) for s in est.status]
     (1.0, ['converged', 'converged'])
     """
+    check_albedo_call(model, theta_deg, method, rtol, atol, options)
     try:
         run = ALBEDO_METHODS[method]
     except KeyError:

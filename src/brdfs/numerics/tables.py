@@ -16,6 +16,7 @@ the request, a value), and handed to the model:
 """
 from __future__ import annotations
 
+from brdfs.numerics.arguments import check_model_call
 from brdfs.numerics.pumping import tabulate_albedo
 from brdfs.physics.models import MODELS
 from brdfs.physics.models import model as plain_model
@@ -50,6 +51,7 @@ def build(name: str, **params):
     ...     "compensation": "kulla_conty", "ior_re": None, "ior_im": 0.0}
     True
     """
+    check_model_call(name, params)
     cls = MODELS.get(name)
     requests = cls.table_requests(**params) if cls is not None else {}
     tables = {field: tabulate(request) for field, request in requests.items() if params.get(field) is None}
