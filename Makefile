@@ -11,6 +11,9 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 SNAKEMAKE := $(CURDIR)/$(BIN)/snakemake
 export PYTHONPATH := $(CURDIR)/src
+# Mitsuba's llvm_* variants load Debian's libLLVM 19 from here (`make llvm` installs it); expanded
+# when a recipe runs, so it sees a library `make llvm` installed earlier in the same make.
+export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM-19.so /usr/lib/llvm-19/lib/libLLVM.so))
 # A subset of the build: `make all TARGETS="results/tables/table_3_2_ward_cmax.png ..."` (default: everything).
 TARGETS ?=
 
@@ -38,31 +41,46 @@ UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
   out=$$($(SNAKEMAKE) --unlock 2>&1) || { echo "$$out" >&2; exit 1; }; fi
 
-.PHONY: all test venv benchmark clean baseline lock report report-check chromium lint \
-        check-reproducible check-crash check-cluster check-slurm-plan checks
+.PHONY: all test venv llvm benchmark clean baseline lock report report-check chromium lint \
+        check-reproducible check-crash check-cluster check-slurm-plan check-wheel checks
 
-# Exact versions of every (transitive) dependency from requirements.lock, then the package itself.
+# Exact versions and hashes of every (transitive) dependency of the pipeline, cluster, render, docs
+# and test extras from requirements.lock, then the package itself (its core needs only numpy, scipy).
 $(STAMP): requirements.lock pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
-	$(BIN)/pip install --quiet -r requirements.lock
+	$(BIN)/pip install --quiet --require-hashes -r requirements.lock
 	$(BIN)/pip install --quiet -e . --no-deps
 	touch $(STAMP)
 
 venv: $(STAMP)
 
-# Regenerate requirements.lock after changing the dependencies in pyproject.toml.
+# Debian's libllvm19 for Mitsuba's llvm variants (idempotent; as root it apt-get installs it,
+# elsewhere it prints the one command to run). `all` and `test` call it.
+llvm:
+	@workflow/scripts/ensure_llvm.sh
+
+LOCK_EXTRAS := --extra pipeline --extra cluster --extra render --extra docs --extra test
+# Regenerate requirements.lock after changing the dependencies in pyproject.toml (keeps every
+# existing pin; `--upgrade` is yours to add).
 lock: $(STAMP)
 	$(BIN)/pip install --quiet pip-tools==7.6.2
-	$(BIN)/pip-compile --quiet --extra test --strip-extras --no-emit-index-url --no-emit-find-links \
-	    --output-file requirements.lock pyproject.toml
+	$(BIN)/pip-compile --quiet $(LOCK_EXTRAS) --strip-extras --generate-hashes --no-emit-index-url \
+	    --no-emit-find-links --output-file requirements.lock pyproject.toml
+
+# The package as a user installs it: a wheel, in fresh virtual environments with only its required
+# dependencies (numpy, scipy), computes every model's albedo there and imports none of the extras;
+# once with the newest numpy/scipy on this Python, once at the lower bounds on Python 3.10
+# (requires-python). Not part of `make test` (it downloads and builds; about a minute).
+check-wheel: $(STAMP)
+	PYTHON=$(PYTHON) workflow/scripts/check_wheel.sh
 
 # The full build batches cheap artifacts (workflow/profiles/full: --config batches=true).
-all: $(STAMP)
+all: llvm $(STAMP)
 	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full $(TARGETS))
 
 # Lint first (a few seconds), then the tests.
-test: $(STAMP) lint
+test: llvm $(STAMP) lint
 	$(BIN)/python -m pytest -n 2
 
 benchmark: $(STAMP)
@@ -106,7 +124,7 @@ check-cluster: $(STAMP)
 check-slurm-plan: $(STAMP)
 	$(SNAKEMAKE) -n --profile workflow/profiles/slurm > /dev/null && echo "slurm profile: dry run plans"
 
-checks: check-reproducible check-crash check-cluster check-slurm-plan lint
+checks: check-reproducible check-crash check-cluster check-slurm-plan check-wheel lint
 
 # Under the build lock (not while a build runs), and keeping the lock file itself.
 clean:

@@ -32,10 +32,9 @@ lobe is shared by all levels.  This cut the two pumping tables from 75 s (Phong)
 from __future__ import annotations
 
 import numpy as np
-import pandas as pd
 from numpy.polynomial import chebyshev as cheb
 
-from brdfs.numerics.albedo import albedo
+from brdfs.numerics.albedo import albedo_pairs
 from brdfs.core.gauss_kronrod import NodeValues, integrate
 from brdfs.physics.lobes import MIRROR, PowerCosine
 from brdfs.physics import tables as physics_tables
@@ -58,6 +57,7 @@ class AlbedoTable(physics_tables.AlbedoTable):
 
     def to_frame(self):
         """Tidy rows: one per node (piece, x, albedo), the error bounds repeated."""
+        import pandas as pd  # the pipeline's extra; albedo() and the models need only numpy and scipy
         pieces, degree = self.values.shape[0], self.values.shape[1] - 1
         s = lobatto_points(degree)
         rows = []
@@ -85,7 +85,8 @@ def _engine(model, x, rtol):
     if root.pumping_reducible and isinstance(root.lobe, PowerCosine):
         return pumped_albedo(model, x, rtol=rtol)
     theta = np.degrees(np.arccos(np.clip(x, 0.0, 1.0)))
-    return albedo(model, theta, rtol=rtol)
+    # f as evaluated (its own ε is carried by model_rtol), by the engine, as it always was
+    return albedo_pairs([model] * theta.size, theta, rtol=rtol)
 
 
 def _chain(model):
@@ -225,9 +226,7 @@ def kink_edges(table, correction):
 
 def model_rtol(model):
     """ε of a model: 0 for an original model, else from the table of the level below (module doc)."""
-    if not isinstance(model, Pumped):
-        return 0.0
-    return (1.0 + model.table.model_rtol) / (1.0 - model.table.rtol) - 1.0
+    return model.evaluation_rtol
 
 
 def pumped_models(base, tables, correction):
@@ -244,6 +243,7 @@ def sequence_frame(base, levels, target_rtol=1e-9, engine_rtol=1e-11):
     Level 0 (``pumping = 'none'``) is tabulated once and shared by both sequences.
     Columns: ``pumping, level`` and those of :meth:`AlbedoTable.to_frame`.
     """
+    import pandas as pd  # the pipeline's extra (see AlbedoTable.to_frame)
     first = tabulate_albedo(base, target_rtol=target_rtol, engine_rtol=engine_rtol)
     frames = [first.to_frame().assign(pumping="none", level=0)]
     for correction in CORRECTIONS:

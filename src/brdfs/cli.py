@@ -1,0 +1,304 @@
+"""The ``brdfs`` command line: the package's front doors from a shell.
+
+::
+
+    brdfs models                                  # names, parameters, ranges, strategies
+    brdfs albedo phong --param n=20 --theta 0:90:15
+    brdfs albedo ggx --param alpha=0.3 --theta 60 --json
+    brdfs chi2 phong_cosmin --param n=128 --theta 30,80
+    brdfs compare                                 # printed numbers that reproduce / differ, by chapter
+
+``--theta`` takes one angle, a comma-separated list, or ``start:stop:step`` with the stop included.
+Every error (an unknown model or method, a bad parameter, option or angle) prints the usage line
+and one ``error:`` line naming the argument and its value, and exits with status 2.  The
+computations are :func:`brdfs.albedo` (one call per angle, so that ``evaluations`` is the angle's
+own cost), :func:`brdfs.numerics.chi2.chi2_test` and the pipeline's
+``results/checks/published_comparison.csv``; only the standard library and the package's core
+(numpy, scipy) are imported.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import inspect
+import json
+import math
+import re
+import sys
+import warnings
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+EXIT_USAGE = 2
+_NUMBER = re.compile(r"^[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?$|^[+-]?(inf|nan)$", re.IGNORECASE)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with every sub-command's errors as ``usage`` + one ``error:`` line, status 2."""
+
+
+def _parse_value(text: str):
+    """``20`` -> 20, ``1e-3`` -> 0.001, ``none`` -> None, ``true``/``false`` -> bool, else the text."""
+    lowered = text.strip().lower()
+    if re.fullmatch(r"[+-]?\d+", lowered):
+        return int(lowered)
+    if _NUMBER.match(lowered):
+        return float(lowered)
+    return {"none": None, "true": True, "false": False}.get(lowered, text.strip())
+
+
+def _key_values(pairs, what: str) -> dict:
+    """``["n=20", "G=smith"]`` -> ``{"n": 20.0, "G": "smith"}``; ``what`` names the option in errors."""
+    out = {}
+    for pair in pairs or ():
+        key, sep, value = pair.partition("=")
+        if not sep or not key.strip():
+            raise argparse.ArgumentTypeError(f"{what} {pair!r}: expected KEY=VALUE")
+        out[key.strip()] = _parse_value(value)
+    return out
+
+
+def parse_theta(spec: str) -> np.ndarray:
+    """Angles in degrees: ``"60"``, ``"0,30,60"`` or ``"0:90:5"`` (start:stop:step, stop included).
+
+    >>> parse_theta("0:90:30").tolist(), parse_theta("10,20").tolist()
+    ([0.0, 30.0, 60.0, 90.0], [10.0, 20.0])
+    """
+    text = spec.strip()
+    try:
+        if ":" in text:
+            start, stop, step = (float(p) for p in text.split(":"))
+            if not (math.isfinite(start) and math.isfinite(stop) and math.isfinite(step)) or step <= 0 or stop < start:
+                raise ValueError
+            count = int(math.floor((stop - start) / step + 1e-9)) + 1
+            return start + step * np.arange(count)
+        values = [float(p) for p in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"--theta {spec!r}: expected an angle, a list a,b,c or start:stop:step (step > 0, stop >= start)") from None
+    return np.array(values)
+
+
+# --- brdfs models ------------------------------------------------------------------------------
+
+def _interval_text(interval) -> str:
+    lo = "(" if interval.lo_open else "["
+    hi = ")" if interval.hi_open or math.isinf(interval.hi) else "]"
+    return f"{lo}{interval.lo:g}, {interval.hi:g}{hi}"
+
+
+def _model_rows():
+    from brdfs.physics.models import MODELS
+    rows = []
+    for name, cls in MODELS.items():
+        ranges = {k: _interval_text(v) for k, v in cls.param_ranges.items()}
+        choices = {k: list(v) for k, v in getattr(cls, "param_choices", {}).items()}
+        rows.append({"model": name, "chapter": str(cls.chapter), "parameters": {**ranges, **choices},
+                     "typical": cls.examples.get("typical", {}), "strategies": list(cls.strategies)})
+    return rows
+
+
+def _models(args) -> int:
+    rows = _model_rows()
+    if args.json:
+        print(json.dumps(rows, indent=1, default=str))
+        return 0
+    for row in rows:
+        params = ", ".join(f"{k} in {v}" if isinstance(v, str) else f"{k} in {{{', '.join(map(str, v))}}}"
+                           for k, v in row["parameters"].items())
+        example = " ".join(f"{k}={v}" for k, v in row["typical"].items())
+        print(f"{row['model']:<24} {params or '(no parameters)'}")
+        print(f"{'':<24} e.g. --param {example or '(none)'}; samplers: {', '.join(row['strategies'])}")
+    return 0
+
+
+# --- brdfs albedo ------------------------------------------------------------------------------
+
+def _albedo_rows(model, theta, method, rtol, atol, options):
+    import brdfs
+    rows = []
+    for t in theta:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            est = brdfs.albedo(model, float(t), method=method, rtol=rtol, atol=atol, **options)
+        route = getattr(est, "route", None)
+        row = {"theta_deg": float(t), "value": float(est.value), "error": float(est.error),
+               "evaluations": int(est.evaluations), "status": str(np.asarray(est.status).item())}
+        if route is not None:
+            row["route"] = str(np.asarray(route).item()) if np.ndim(route) == 0 or np.size(route) == 1 else str(route)
+        for w in caught:
+            print(f"brdfs: warning at theta = {t:g} deg: {w.message}", file=sys.stderr)
+        rows.append(row)
+    return rows
+
+
+def _albedo(args) -> int:
+    import brdfs
+    model = brdfs.model(args.model, **args.param)
+    rows = _albedo_rows(model, args.theta, args.method, args.rtol, args.atol, args.option)
+    if args.json:
+        print(json.dumps(rows, indent=1))
+    elif args.csv:
+        writer = csv.DictWriter(sys.stdout, fieldnames=list(rows[0]), lineterminator="\n")
+        writer.writeheader()
+        writer.writerows({k: repr(v) if isinstance(v, float) else v for k, v in r.items()} for r in rows)
+    else:
+        extra = ["route"] if "route" in rows[0] else []
+        print(f"{'theta_deg':>10} {'value':>20} {'error':>10} {'evaluations':>11} {'status':<16}"
+              + "".join(f" {k}" for k in extra))
+        for r in rows:
+            print(f"{r['theta_deg']:>10.6g} {r['value']:>20.15g} {r['error']:>10.2e} {r['evaluations']:>11d} "
+                  f"{r['status']:<16}" + "".join(f" {r[k]}" for k in extra))
+    return 0
+
+
+# --- brdfs chi2 --------------------------------------------------------------------------------
+
+def _chi2(args) -> int:
+    import brdfs
+    from brdfs.numerics.chi2 import chi2_test
+    model = brdfs.model(args.model, **args.param)
+    strategy = args.strategy or model.strategies[0]
+    if strategy not in model.strategies:
+        raise argparse.ArgumentTypeError(
+            f"--strategy {strategy!r}: {args.model} samples by one of {list(model.strategies)}")
+    rows = []
+    for t in args.theta:
+        r = chi2_test(model, float(t), strategy=strategy, n_samples=args.samples, seed=args.seed)
+        rows.append({"theta_deg": float(t), "strategy": strategy, "statistic": r.statistic, "dof": r.dof,
+                     "p_value": r.p_value, "pdf_mass": r.pdf_mass, "accepted_fraction": r.accepted_fraction,
+                     "weight_error": r.weight_error, "n_samples": r.n_samples,
+                     "passes": bool(r.p_value > args.significance)})
+    if args.json:
+        print(json.dumps(rows, indent=1))
+    else:
+        print(f"{'theta_deg':>10} {'strategy':<18} {'chi2':>10} {'dof':>5} {'p_value':>9} {'pdf_mass':>9} "
+              f"{'accepted':>9} verdict")
+        for r in rows:
+            print(f"{r['theta_deg']:>10.6g} {r['strategy']:<18} {r['statistic']:>10.2f} {r['dof']:>5d} "
+                  f"{r['p_value']:>9.3g} {r['pdf_mass']:>9.6f} {r['accepted_fraction']:>9.4f} "
+                  f"{'passes' if r['passes'] else 'FAILS'} (significance {args.significance:g})")
+    return 0 if all(r["passes"] for r in rows) else 1
+
+
+# --- brdfs compare -----------------------------------------------------------------------------
+
+def _chapter(source: str) -> str:
+    m = re.search(r"(\d+)(?:\.\d+)*", source or "")
+    return f"chapter {m.group(1)}" if m else "other"
+
+
+def _compare(args) -> int:
+    path = Path(args.results) / "checks" / "published_comparison.csv"
+    if not path.is_file():
+        raise argparse.ArgumentTypeError(f"--results {args.results!r}: no {path} (build it: make all)")
+    with path.open(newline="") as f:
+        rows = list(csv.DictReader(f))
+    by_chapter: dict[str, Counter] = {}
+    for r in rows:
+        by_chapter.setdefault(_chapter(r["source"]), Counter())[r["verdict"]] += 1
+    total = Counter(r["verdict"] for r in rows)
+    if args.json:
+        print(json.dumps({"total": dict(total), "chapters": {k: dict(v) for k, v in sorted(by_chapter.items())},
+                          "differing": [{k: r[k] for k in ("artifact", "source", "model", "param", "param_value",
+                                                           "quantity", "published", "computed", "reason")}
+                                        for r in rows if r["verdict"] != "reproduces"]}, indent=1))
+        return 0
+    print(f"{len(rows)} printed numbers: " + ", ".join(f"{n} {v}" for v, n in total.most_common()))
+    for chapter, counts in sorted(by_chapter.items()):
+        print(f"  {chapter:<10} " + ", ".join(f"{n} {v}" for v, n in counts.most_common()))
+    if args.differing:
+        for r in rows:
+            if r["verdict"] != "reproduces":
+                print(f"  {r['source']}: {r['quantity']} ({r['model']} {r['param']}={r['param_value']}) printed "
+                      f"{r['published']}, computed {float(r['computed']):.6g} -- {r['reason']}")
+    return 0
+
+
+# --- the parser --------------------------------------------------------------------------------
+
+def _common_model_args(p):
+    p.add_argument("model", help="a model name (`brdfs models` lists them)")
+    p.add_argument("--param", "-p", action="append", metavar="KEY=VALUE", default=[],
+                   help="a model parameter, repeatable (e.g. --param n=20 --param G=smith)")
+    p.add_argument("--theta", "-t", type=parse_theta, required=True, metavar="SPEC",
+                   help="incidence angles in degrees: 60, a list 0,30,60, or start:stop:step (stop included)")
+    p.add_argument("--json", action="store_true", help="print a JSON list, one object per angle")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from brdfs.numerics.albedo import ALBEDO_METHODS
+    parser = _Parser(prog="brdfs", description="Albedos, samplers and the thesis comparison of the brdfs package.")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
+
+    p = sub.add_parser("models", help="list the models: names, parameters and their ranges, samplers")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(run=_models)
+
+    p = sub.add_parser("albedo", help="directional albedo a(theta) with its error estimate",
+                       description="Directional albedo a(theta) = integral of f cos theta_V (eq. 1.18) by "
+                                   "brdfs.albedo, one call per angle: value, error, evaluations, status.")
+    _common_model_args(p)
+    methods = sorted(ALBEDO_METHODS)
+    p.add_argument("--method", "-m", default=_default_method(), choices=methods, metavar="METHOD",
+                   help=f"one of {', '.join(methods)} (default: %(default)s)")
+    p.add_argument("--rtol", type=float, default=None, help="relative tolerance (default 1e-10)")
+    p.add_argument("--atol", type=float, default=None, help="absolute tolerance (default 1e-14)")
+    p.add_argument("--option", "-o", action="append", metavar="KEY=VALUE", default=[],
+                   help="a method option, repeatable (e.g. --method monte_carlo --option n_samples=1e5)")
+    p.add_argument("--csv", action="store_true", help="print CSV")
+    p.set_defaults(run=_albedo)
+
+    p = sub.add_parser("chi2", help="chi-square test of a model's sampler against its pdf",
+                       description="Pearson chi-square test of model.sample against model.pdf "
+                                   "(brdfs.numerics.chi2.chi2_test); exit status 1 when a test fails.")
+    _common_model_args(p)
+    p.add_argument("--strategy", "-s", default=None, help="the sampler (default: the model's own first strategy)")
+    p.add_argument("--samples", "-n", type=_positive_int, default=100_000, help="samples per angle (default %(default)s)")
+    p.add_argument("--seed", type=int, default=0, help="random seed (default %(default)s)")
+    p.add_argument("--significance", type=float, default=0.01, help="significance level (default %(default)s)")
+    p.set_defaults(run=_chi2)
+
+    p = sub.add_parser("compare", help="how many printed numbers reproduce, by chapter (from a build)")
+    p.add_argument("--results", default="results", help="the build's results directory (default: %(default)s)")
+    p.add_argument("--differing", action="store_true", help="list every number that differs, with its reason")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(run=_compare)
+    return parser
+
+
+def _default_method() -> str:
+    from brdfs.numerics.albedo import albedo
+    return inspect.signature(albedo).parameters["method"].default
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(float(text))
+        if value > 0 and value == float(text):
+            return value
+    except ValueError:
+        pass
+    raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        if hasattr(args, "param"):
+            args.param = _key_values(args.param, "--param")
+        if hasattr(args, "option"):
+            args.option = _key_values(args.option, "--option")
+        return args.run(args)
+    except (argparse.ArgumentTypeError, ValueError, TypeError) as err:
+        message = str(err).splitlines()[0] if str(err) else type(err).__name__
+        sub = {"albedo": "albedo", "chi2": "chi2", "models": "models", "compare": "compare"}[args.command]
+        parser._subparsers._group_actions[0].choices[sub].error(message)
+    return EXIT_USAGE
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
