@@ -38,6 +38,7 @@ import numpy as np
 from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import MicrofacetLobe
 from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
+from brdfs.physics.sampling import REJECTED
 from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.models.base import BRDF, check_positive, exact, non_negative, positive, table_field, register
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
@@ -189,6 +190,13 @@ class _SmithMicrofacet(BRDF):
             return 1.0 / (4.0 * (nl * nv + nv * lam(nl) + nl * lam(nv)))
         return 1.0 / (4.0 * (nl + lam(nl)) * (nv + lam(nv)))
 
+    def half_vector_factors(self):
+        """F = 1 and no compensation: f = D(H) · G2/(4 N·L N·V), the masking a function of the polar
+        angles only (:mod:`brdfs.numerics.integrate.polar`).  F(L·H) or f_ms break the form: None."""
+        if self.ior_re is not None or self.compensation != "none":
+            return None
+        return self.distribution, self.g2_over_4_nl_nv
+
     def masking_shadowing(self, nl, nv):
         """Smith's G2(L, V) (separable G1 G1 or height-correlated 1/(1 + Λ_L + Λ_V)); 0 at the horizon."""
         lam = self.distribution.smith_lambda
@@ -200,7 +208,7 @@ class _SmithMicrofacet(BRDF):
     def single_scattering(self, L, V, nl, nv):
         """f_ss = F(L·H) D(H) G2 / (4 N·L N·V)."""
         tan2, cos_d = half_vector_tan2(L, V)
-        d = self.distribution.D(cos_d)
+        d = self.distribution.D(cos_d, tan2)
         if self.ior_re is None:
             return d * self.g2_over_4_nl_nv(nl, nv)
         h = np.asarray(L, float) + np.asarray(V, float)
@@ -300,6 +308,8 @@ class _SmithMicrofacet(BRDF):
             u_ms = np.where(cosine, u0 / p_ms, 0.5)
         H = self.distribution.sample_visible_normal(L, np.clip(u_ss, 0.0, 1.0), u1)
         V_ss = 2.0 * np.sum(L * H, axis=-1, keepdims=True) * H - L
+        # a visible normal may reflect L below the horizon: that sample is rejected (BRDF.sample's marker)
+        V_ss = np.where(V_ss[..., 2:] > 0, V_ss, REJECTED)
         r, phi = np.sqrt(u_ms), 2.0 * np.pi * u1
         V_ms = np.stack([r * np.cos(phi), r * np.sin(phi), np.sqrt(np.maximum(1.0 - u_ms, 0.0))], -1)
         return np.where(cosine[..., None], V_ms, V_ss)
