@@ -16,9 +16,14 @@ _HOMES = {
     "Estimate": "brdfs.core.estimate",
     "model": "brdfs.numerics.tables",     # builds the tables a model needs (brdfs.physics.models.model: none)
     "MODELS": "brdfs.physics.models",
+    "ALBEDO_METHODS": "brdfs.numerics.albedo",
+    "NotConvergedWarning": "brdfs.numerics.albedo",
+    "NotConvergedError": "brdfs.numerics.albedo",
+    "ArgumentError": "brdfs.numerics.arguments",
 }
 
-__all__ = ["albedo", "albedo_table", "model", "MODELS", "Estimate"]
+__all__ = ["albedo", "albedo_table", "model", "MODELS", "Estimate", "ALBEDO_METHODS", "NotConvergedWarning",
+           "NotConvergedError", "ArgumentError"]
 
 
 def __getattr__(name):

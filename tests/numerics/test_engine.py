@@ -139,11 +139,11 @@ def test_max_albedo_finds_an_interior_maximum():
 @pytest.mark.parametrize("call, match", [
     (lambda: model("phongg", n=1), "phongg"),
     (lambda: model("phong", n=-2), "-2"),
-    (lambda: model("ward", m=0.0), "m must be positive"),
+    (lambda: model("ward", m=0.0), r"m = 0.0: must be > 0"),
     (lambda: model("cook_torrance", m=0.1, G="torrance"), "torrance"),
     (lambda: albedo(model("phong", n=1), [95.0]), "95"),
     # no lobe and no albedo route of its own, or not symmetric about the plane of incidence: the disk
-    (lambda: albedo(model("patch_elliptical", b=0.5, ratio=0.5), [30.0]), "patch_elliptical.*method='disk'"),
+    (lambda: albedo(model("patch_elliptical", b=0.5, ratio=0.5), [30.0], "engine"), "patch_elliptical.*method='disk'"),
 ])
 def test_bad_input_is_named(call, match):
     with pytest.raises(ValueError, match=match):

@@ -105,6 +105,8 @@ def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then
     assert report.returncode == 0, report.stderr[-3000:]
     html = (tmp_path / "report.html").read_text(encoding="utf-8")
     assert "Table 1.2" in html and "Figure 5.1" in html and "not built yet" in html
+    # A job's parameters show its config sections' names and digest, not the sections (no config dump).
+    assert "seed,tolerance,metal_reflectance@" in html and "'lambda_nm': 578" not in html
 
     # The same configuration with its keys sorted (top level and nested) plans no job: params are
     # compared by a repr that sorts every mapping (registry.ConfigSubset).
@@ -117,4 +119,11 @@ def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then
     sorted_keys = snakemake(tmp_path, "-n", *TARGETS)
     assert sorted_keys.returncode == 0, sorted_keys.stderr[-3000:]
     assert "Nothing to be done" in sorted_keys.stdout + sorted_keys.stderr, sorted_keys.stdout[-3000:]
+
+    # A changed value in the section one target reads reruns that target alone (its digest changed).
+    rewritten["metal_reflectance"]["metals"][4]["ior_im"] = 4.85
+    config_yaml.write_text(yaml.safe_dump(rewritten, sort_keys=True))
+    changed = snakemake(tmp_path, "-n", *TARGETS)
+    assert changed.returncode == 0, changed.stderr[-3000:]
+    assert planned_jobs(changed) == {"artifact": 1} and "table_1_2_metal_reflectance" in changed.stdout, changed.stdout
 

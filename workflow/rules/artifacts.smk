@@ -1,6 +1,7 @@
 # The rules of every registered table and figure: its CSV and PNG from its module's compute()
 # and plot(). Inputs are the CSVs of its declared deps and the package files its module imports;
-# params are the config sections it reads. Each PNG goes into the HTML report under the thesis
+# params name the config sections it reads, with a digest of their values (registry.config_digest: it
+# reruns on a changed value, not on reordered keys; the job reads the sections from `config`). Each PNG goes into the HTML report under the thesis
 # chapter its decorator declares, with its caption (brdfs.pipeline.report).
 #
 # `artifact` is ONE rule for every registered table, figure and check: one job per artifact. In
@@ -26,7 +27,7 @@ rule artifact:
         ),
     params:
         artifacts=lambda wc: [wc.name],
-        config=lambda wc: registry.config_subset(config, ARTIFACTS[wc.name].config),
+        config=lambda wc: registry.config_digest(config, ARTIFACTS[wc.name].config),
     wildcard_constraints:
         kind="tables|figures|checks",
         name=wildcard_choice(SOLO),
@@ -54,7 +55,7 @@ for _batch, _members in BATCHES.items():
             [path for a in _members for path in (a.csv, a.png)],
         params:
             artifacts=[a.name for a in _members],
-            config=registry.config_subset(config, sorted({s for a in _members for s in a.config})),
+            config=registry.config_digest(config, sorted({s for a in _members for s in a.config})),
         threads: max(a.resources["threads"] for a in _members)
         resources:
             mem_mb=max(a.resources["mem_mb"] for a in _members),

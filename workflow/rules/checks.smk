@@ -12,7 +12,7 @@ rule check:
         FRAGMENTS,
     params:
         comparisons=list(COMPARISONS),
-        config=registry.config_subset(config, sorted({s for c in COMPARISONS.values() for s in c.config})),
+        config=registry.config_digest(config, sorted({s for c in COMPARISONS.values() for s in c.config})),
     resources:
         mem_mb=1000,
         runtime=5,

@@ -17,7 +17,7 @@ with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
         artifact = registry.get_artifact(name)
         csv, png = outputs[2 * k], outputs[2 * k + 1]
         io.step(log, f"compute {name}")
-        df = artifact.compute(snakemake.params.config, tables)  # noqa: F821
+        df = artifact.compute(snakemake.config, tables)  # noqa: F821 (params.config is only a digest)
         io.step(log, f"write {csv} and plot {png}")
         artifact.write(df, csv, png)
         tables[name] = io.read_csv(csv)

@@ -1,13 +1,26 @@
-"""Shared parts of the rendered figures (2.8, 3.8–3.13, 4.11, 4.16–4.18): settings, panels, plots.
+"""Shared parts of the rendered figures (2.8, 3.8–3.13, 4.9, 4.11, 4.16–4.18): presets, panels, plots.
 
 A figure is a list of panels; a panel is a scene (objects with materials from the config section
-``renders``), point lights, an optional homogeneous daylight S and a camera. ``compute`` renders
-every panel and returns one row per (panel, object) with the scene's parameters and the mean
-luminance Y of the object's pixels with its Monte Carlo standard error; the display images (8-bit
-sRGB) ride along in ``df.attrs["images"]`` to ``plot``, which lays them out. All panels of a
-figure share one display scale (from the reference objects of its first panel, section 3.6), so
-brightness differences between panels (pumping, Fig. 2.8) stay visible, and all panels use the
-same random numbers (common random numbers), so such differences are not Monte Carlo noise.
+``renders``, geometry of :mod:`brdfs.render.mitsuba.scenes`), point lights (small spherical
+emitters), an optional constant daylight S and a camera. Mitsuba renders each panel with the
+package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.variant``.
+
+* **Preset** (``renders.preset``: ``preview`` or ``final``): the smallest panel size, samples per
+  pixel and the number of independently seeded passes they are split into (≥ 8; the noise figures
+  of :mod:`brdfs.render.mitsuba.metrics` are taken over them). A panel is at least ``min_width``
+  columns and ``min_height`` rows, at its aspect ratio; its PNG shows it at native resolution.
+* **Colour** (section 3.8): a spectral panel carries the eight wavelengths of
+  :data:`brdfs.render.spectrum.WAVELENGTHS_NM` (the metals' measured n, k there), three to a pass of
+  the RGB variant (each RGB channel is one wavelength: 405/455/505, 555/605/655, 705/755 nm), with the
+  same seeds in every pass; the eight channels then go to XYZ and sRGB through colour-science
+  (:mod:`brdfs.render.spectrum`). An ``rgb`` panel (eq. 3.31) is one pass per seed.
+* **Rows**: one per (panel, object): the mean luminance Y of the object's pixels and its standard
+  error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
+  ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset`` and ``variant``. The
+  display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
+
+All panels of a figure share one display scale (from the reference objects of its first panel,
+section 3.6) unless a figure asks otherwise, and the same seeds (common random numbers).
 """
 from __future__ import annotations
 
@@ -16,51 +29,198 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from brdfs.render import scenes, shapes, spectrum, tracer
-from brdfs.pipeline import plotting
+from brdfs.render import spectrum
+from brdfs.render.mitsuba import metrics
+from brdfs.render.mitsuba import scenes as msc
 
 SECTION = "renders"
+PRESETS = ("preview", "final")
+SPECTRAL = len(spectrum.WAVELENGTHS_NM)
+#: The wavelengths (indices into WAVELENGTHS_NM) carried by the three RGB passes of a spectral panel.
+WAVELENGTH_PASSES = ((0, 1, 2), (3, 4, 5), (6, 7, 7))
+#: Material keys that are not model parameters.
+MATERIAL_KEYS = ("metal", "model", "pumped", "label", "diffuse", "rgb", "a_s", "strategy", "count")
 
 
 @dataclass
 class Panel:
     title: str
-    objects: list            # (label, shape, material spec)
+    objects: list            # (label, shape parts, material spec)
     lights: list             # (position, relative intensity)
-    camera: dict
+    camera: dict             # eye, target, fov_deg
     sky: bool = True
-    channels: int = scenes.SPECTRAL
-    background: float | None = None
+    channels: str = "spectral"         # or "rgb" (eq. 3.31)
+    background: float | None = None    # radiance camera rays see where they miss (None: the sky)
     reference: tuple = ("floor",)
-    aspect: float = 4.0 / 3.0          # width / height; the pixel count stays width × height of the settings
+    aspect: float = 4.0 / 3.0          # width / height
+    max_depth: int = -1                # -1: paths end by Russian roulette; 1: direct lighting only
+    point_lights: bool = False         # delta point emitters, one render per light, summed (noise-free direct)
+    spp: int | None = None             # samples per pixel of a noise-free panel (else the preset's)
     extra: dict = field(default_factory=dict)
 
 
 def settings(cfg: dict) -> dict:
-    """Width, height, spp and depth of the selected quality (``renders.quality``)."""
+    """The preset's settings (``renders.preset``) with the variant: min_width, min_height, spp, passes."""
     section = cfg[SECTION]
-    quality = section["quality"]
-    if quality not in ("draft", "high"):
-        raise ValueError(f"renders.quality must be 'draft' or 'high', got {quality!r}")
-    return {"quality": quality, **section[quality]}
+    preset = section["preset"]
+    if preset not in PRESETS:
+        raise ValueError(f"renders.preset = {preset!r}: must be one of {PRESETS}")
+    setup = {"preset": preset, "variant": section["variant"], **section[preset]}
+    if setup["passes"] < metrics.MIN_PASSES or setup["spp"] % setup["passes"]:
+        raise ValueError(f"renders.{preset}: spp = {setup['spp']} must be a multiple of passes = "
+                         f"{setup['passes']} >= {metrics.MIN_PASSES}")
+    return setup
 
 
-def _scene(panel: Panel, cfg: dict):
+def panel_size(setup: dict, aspect: float) -> tuple[int, int]:
+    """(width, height) at ``aspect``, at least min_width × min_height."""
+    height = max(setup["min_height"], int(np.ceil(setup["min_width"] / aspect)))
+    return int(round(height * aspect)), int(height)
+
+
+# --- materials -> BSDF dictionaries ---------------------------------------------------------------
+
+def _texture(values):
+    return {"type": "srgb", "color": [float(v) for v in values], "unbounded": True}
+
+
+def _metal_constants(metal: str, channels):
+    """(eta, k) of ``metal`` at the wavelengths ``channels`` (indices), from the measured data."""
+    from brdfs.physics import optical_constants
+
+    wavelengths = spectrum.WAVELENGTHS_NM[list(channels)]
+    ior = np.asarray(optical_constants.complex_index(metal, wavelengths), complex)
+    return ior.real, np.abs(ior.imag)
+
+
+def bsdf(spec: dict, channels=None) -> dict:
+    """The plugin dictionary of a config material entry (see :mod:`brdfs.render.scenes`) for the
+    wavelengths ``channels`` (indices, spectral) or r, g, b (``None``)."""
+    spec = dict(spec)
+    params = {k: float(v) for k, v in spec.items() if k not in MATERIAL_KEYS}
+    if "diffuse" in spec:
+        return {"type": "brdfs_lambert", "reflectance": _texture([spec["diffuse"]] * 3)}
+    if "rgb" in spec:          # eq. 3.31: ρ_d/π (r, g, b) + a_s · the new model, Fresnel 1
+        if channels is not None:
+            raise ValueError(f"plastic {spec!r}: eq. 3.31 is an r, g, b model; the panel is spectral")
+        return {"type": "brdfs_phong_cosmin", "n": float(spec["n"]), "specular": _texture([spec["a_s"]] * 3),
+                "diffuse_reflectance": _texture(spec["rgb"])}
+    if "model" not in spec:
+        raise ValueError(f"material entry {spec!r} has none of the keys diffuse, rgb, metal, model")
+    out = {"type": f"brdfs_{spec['model']}", **params}
+    if int(spec.get("pumped", 0)):
+        out["pumping"] = "g1"
+    if "strategy" in spec:
+        out["strategy"] = spec["strategy"]
+    if spec.get("count"):
+        out["count"] = True           # the patch plugins count samples, tries and evaluations
+    if "metal" in spec:
+        if channels is None:
+            raise ValueError(f"metal {spec!r}: metals are rendered at the {SPECTRAL} wavelengths")
+        eta, k = _metal_constants(spec["metal"], channels)
+        out["eta"], out["k"] = _texture(eta), _texture(k)
+    return out
+
+
+# --- rendering -------------------------------------------------------------------------------------
+
+def _mitsuba(variant: str):
+    from brdfs.render.mitsuba import integrator, register_plugins, use_variant
+
+    mi = use_variant(variant)
+    register_plugins()
+    integrator.register()
+    return mi
+
+
+def _scene(panel: Panel, cfg: dict, channels):
     section = cfg[SECTION]
-    objects = []
-    for label, shape, spec in panel.objects:
-        material = scenes.make_material({**spec, "label": label}, panel.channels)
-        objects.append(tracer.SceneObject(shape, material, label))
-    lights = [tracer.PointLight(tuple(pos), np.full(panel.channels, section["light_intensity"] * scale))
-              for pos, scale in panel.lights]
-    sky = np.full(panel.channels, float(section["sky_radiance"])) if panel.sky else None
-    background = None if panel.background is None else np.full(panel.channels, panel.background)
-    return tracer.Scene(objects, lights, sky=sky, background=background)
+    objects = tuple(msc.SceneObject(label, parts, bsdf(spec, channels)) for label, parts, spec in panel.objects)
+    lights = tuple(msc.Light(tuple(pos), section["light_intensity"] * scale) for pos, scale in panel.lights)
+    sky = float(section["sky_radiance"]) if panel.sky else None
+    return msc.Scene(objects, lights, sky=sky, background_visible=panel.background is None,
+                     point_lights=panel.point_lights)
+
+
+def _integrator(panel: Panel, count: bool = False) -> dict:
+    out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count)}
+    if panel.background is not None:
+        out.update(hide_emitters=True, background=float(panel.background))
+    return out
+
+
+@dataclass(frozen=True)
+class RenderedPanel:
+    """Per-pass channel images (P, H, W, C), the ID buffer (H, W) and {id: label}; with counting,
+    the rays and the plugins' (samples, tries, evaluations) of one wavelength pass set (all seeds)."""
+
+    passes: np.ndarray
+    ids: np.ndarray
+    labels: dict
+    spp: int
+    costs: dict = field(default_factory=dict)
+    rays: int | None = None
+    cos_v: np.ndarray | None = None
+
+    @property
+    def radiance(self):
+        return self.passes.mean(axis=0)
+
+    def luminance_passes(self, channels: int):
+        return self.passes @ spectrum.luminance_weights(channels)
+
+
+def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, count: bool = False) -> RenderedPanel:
+    """Render ``panel``: ``passes`` seeds × (three wavelength passes or one rgb pass)."""
+    mi = _mitsuba(setup["variant"])
+    cam = panel.camera
+    camera = msc.Camera(tuple(cam["eye"]), tuple(cam["target"]), width, height, cam.get("fov_deg", 30.0))
+    groups = WAVELENGTH_PASSES if panel.channels == "spectral" else (None,)
+    channels = SPECTRAL if panel.channels == "spectral" else 3
+    passes = setup["passes"]
+    total_spp = setup["spp"] if panel.spp is None else panel.spp
+    spp = max(total_spp // passes, 1)
+    out = np.zeros((passes, height, width, channels))
+    ids, labels, costs, rays, cos_v = None, None, {}, None, None
+    # point lights: one scene per light (an emitter sample then picks no light at random)
+    light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
+    for group in groups:
+        for lights in light_sets:
+            part = Panel(**{**panel.__dict__, "lights": lights})
+            scene = msc.load(_scene(part, cfg, group), camera, _integrator(panel, count))
+            for p in range(passes):
+                image = np.asarray(mi.render(scene, spp=spp, seed=pass_seed(cfg["seed"], p)))
+                if group is None:
+                    out[p] += image[..., :3]
+                else:
+                    for c, wavelength in enumerate(group[:len(set(group))]):
+                        out[p, ..., wavelength] += image[..., c]
+                if ids is None:
+                    ids, labels, cos_v = image[..., 3].astype(float), msc.object_labels(scene), image[..., 4]
+        costs = _plugin_costs(scene)
+        if count:
+            rays = int(np.asarray(scene.integrator().rays)[0])
+    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v)
+
+
+def pass_seed(seed: int, p: int) -> int:
+    """Mitsuba's 32-bit seed of pass ``p`` (the same in every wavelength pass and panel)."""
+    return (int(seed) * 1009 + p) % 2 ** 32
+
+
+def _plugin_costs(scene) -> dict:
+    """{label: (samples, tries, evaluations)} of the plugins that count (``count = True``)."""
+    out = {}
+    for shape in scene.shapes():
+        b = shape.bsdf()
+        if getattr(b, "count", False):
+            out[b.id()] = tuple(int(v) for v in np.asarray(b.costs))
+    return out
 
 
 def _describe(spec: dict) -> dict:
     """Material columns of a row (docs/contract.md names): model, metal, parameters, pumping."""
-    keys = ("metal", "model", "n", "s", "b", "ratio", "d", "a_s", "diffuse")
+    keys = ("metal", "model", "n", "s", "b", "ratio", "d", "a_s", "diffuse", "strategy")
     out = {k: spec.get(k) for k in keys}
     if "rgb" in spec:          # eq. 3.31: Lambert r, g, b + a_s · phong_cosmin
         out["model"] = "phong_cosmin"
@@ -72,63 +232,102 @@ def _describe(spec: dict) -> dict:
     return out
 
 
-def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool = True) -> pd.DataFrame:
+def _count_columns(rendered: RenderedPanel, label: str, count: bool) -> dict:
+    if not count:
+        return {}
+    samples, tries, evaluations = rendered.costs.get(label, (np.nan, np.nan, np.nan))
+    return {"rays": rendered.rays, "plugin_samples": samples, "plugin_tries": tries,
+            "plugin_evaluations": evaluations}
+
+
+def object_rows(rendered: RenderedPanel, channels: int) -> list[dict]:
+    """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes."""
+    y = rendered.luminance_passes(channels)
+    rows = []
+    for k, label in sorted(rendered.labels.items()):
+        sel = rendered.ids == k
+        if label == "light" or not sel.any():
+            continue
+        per_pass = y[:, sel].mean(axis=1)
+        rows.append({"object": label, "pixels": int(sel.sum()), "luminance": float(per_pass.mean()),
+                     "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size))})
+    return rows
+
+
+def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool = True,
+                   post=None, count: bool = False) -> pd.DataFrame:
     """Render ``panels``; rows per (panel, object), display images in ``df.attrs``.
 
     ``shared_scale``: one display scale for all panels (from the first panel's reference objects),
-    else one per panel.
+    else one per panel. ``post(panel, rendered) -> RenderedPanel`` may add a noise-free term (3.8).
+    ``count``: columns ``rays`` (the panel's) and ``plugin_samples``, ``plugin_tries``,
+    ``plugin_evaluations`` (per object whose plugin counts), for one wavelength pass set.
     """
     setup = settings(cfg)
     rows, images, scale = [], [], None
     for k, panel in enumerate(panels):
-        scene = _scene(panel, cfg)
-        cam = panel.camera
-        pixels = setup["width"] * setup["height"]
-        height = int(round(np.sqrt(pixels / panel.aspect)))
-        width = int(round(height * panel.aspect))
-        camera = tracer.Camera(tuple(cam["eye"]), tuple(cam["target"]), width, height, cam.get("fov_deg", 30.0))
-        direct_only = not panel.sky
-        image = tracer.render(scene, camera, spp=1 if direct_only else setup["spp"],
-                              depth=1 if direct_only else setup["depth"], seed=cfg["seed"],   # common random numbers: panels differ by their materials only
-                              stat_weights=spectrum.luminance_weights(panel.channels))
-        rgb = spectrum.linear_rgb(image.radiance)
+        width, height = panel_size(setup, panel.aspect)
+        rendered = render_panel(panel, cfg, setup, width, height, count)
+        if post is not None:
+            rendered = post(panel, rendered)
+        channels = SPECTRAL if panel.channels == "spectral" else 3
+        rgb = spectrum.linear_rgb(rendered.radiance)
         if scale is None or not shared_scale:
-            labels = [o.label for o in scene.objects]
-            mask = np.isin(image.index, [labels.index(r) for r in panel.reference if r in labels])
-            scale = spectrum.display_scale(rgb, mask)
+            ref = [i for i, label in rendered.labels.items() if label in panel.reference]
+            scale = spectrum.display_scale(rgb, np.isin(rendered.ids, ref))
         images.append((panel.title, spectrum.to_display(rgb, scale)))
+        noise = metrics.noise_figures(rendered.luminance_passes(channels), rendered.ids)
         specs = {label: spec for label, _, spec in panel.objects}
-        for row in tracer.object_statistics(image, scene):
+        for row in object_rows(rendered, channels):
             rows.append({"figure": name, "panel": k, "panel_title": panel.title, **row,
                          **_describe(specs.get(row["object"], {})),
-                         "width": width, "height": height,
-                         "spp": 1 if direct_only else setup["spp"], "depth": 1 if direct_only else setup["depth"],
-                         "quality": setup["quality"], "point_lights": len(panel.lights),
+                         "width": width, "height": height, "spp": rendered.spp, "passes": setup["passes"],
+                         "max_depth": panel.max_depth, "preset": setup["preset"], "variant": setup["variant"],
+                         "point_lights": len(panel.lights),
                          "sky_radiance": cfg[SECTION]["sky_radiance"] if panel.sky else 0.0,
-                         "display_scale": scale, **panel.extra})
-    df = pd.DataFrame(rows).rename(columns={"radiance": "luminance", "radiance_err": "luminance_err"})
+                         "p95_relative_se": noise.p95_relative_se, "fireflies": noise.fireflies,
+                         "object_pixels": noise.object_pixels, "display_scale": scale, **panel.extra,
+                         **_count_columns(rendered, row["object"], count)})
+    df = pd.DataFrame(rows)
     df.attrs["images"] = images
     return df
 
 
+# --- the PNG at native resolution ---------------------------------------------------------------------
+
+TITLE_PX = 22
+GAP_PX = 8
+
+
 def plot_panels(df: pd.DataFrame, path, title: str, columns: int | None = None) -> None:
-    """The panels in a grid (``columns`` per row), each with its title; no axes."""
+    """The panels in a grid (``columns`` per row), each at its native resolution (one render pixel is
+    one PNG pixel: the images are placed with ``figimage``, never resampled), each under its title."""
+    import matplotlib
     import matplotlib.pyplot as plt
+
+    from brdfs.pipeline import plotting
 
     images = df.attrs.get("images")
     if not images:
         raise ValueError(f"{path}: no rendered images passed from compute (df.attrs['images'])")
     columns = columns or len(images)
     rows = -(-len(images) // columns)
-    h, w = images[0][1].shape[:2]
-    fig, axes = plt.subplots(rows, columns, figsize=(3.2 * columns, 3.2 * rows * h / w + 0.5), squeeze=False)
-    for ax in axes.ravel():
-        ax.axis("off")
-    for ax, (panel_title, img) in zip(axes.ravel(), images):
-        ax.imshow(img, interpolation="nearest")
-        ax.set_title(panel_title, fontsize=8)
-    fig.suptitle(title, fontsize=9)
-    plotting.savefig(fig, path)
+    cell_w = max(img.shape[1] for _, img in images) + GAP_PX
+    cell_h = max(img.shape[0] for _, img in images) + TITLE_PX
+    width, height = columns * cell_w + GAP_PX, rows * cell_h + TITLE_PX + GAP_PX
+    dpi = plotting.DPI
+    fig = plt.figure(figsize=(width / dpi, height / dpi), dpi=dpi)
+    fig.text(0.5, 1.0 - 4.0 / height, title, ha="center", va="top", fontsize=9)
+    for k, (panel_title, img) in enumerate(images):
+        r, c = divmod(k, columns)
+        x0 = GAP_PX + c * cell_w
+        top = TITLE_PX + r * cell_h + TITLE_PX          # pixels from the top to the image's top
+        fig.figimage(img, xo=x0, yo=height - top - img.shape[0], origin="upper", resize=False)
+        fig.text((x0 + img.shape[1] / 2) / width, 1.0 - (top - 4) / height, panel_title,
+                 ha="center", va="bottom", fontsize=7)
+    with matplotlib.rc_context({"savefig.bbox": None}):
+        fig.savefig(path, format="png", dpi=dpi, metadata={"Software": None})
+    plt.close(fig)
 
 
 # --- geometry shared by the scenes -----------------------------------------------------------------
@@ -139,18 +338,16 @@ def row(count, half_width):
 
 
 def floor(size=4.0):
-    return shapes.Rectangle((0.0, 0.0, 0.0), (size, size))
+    return msc.floor(size)
 
 
 def sphere(x, y, r):
-    return shapes.Sphere((x, y, r), r)
+    return msc.sphere((x, y, r), r)
 
 
 def tank(x, y, scale=1.0):
-    """The 'tank' substitute: a box hull with a cylinder turret (two shapes)."""
-    hull = shapes.Box((x, y, 0.35 * scale), (0.9 * scale, 0.55 * scale, 0.35 * scale))
-    turret = shapes.Cylinder((x, y, 0.7 * scale), 0.35 * scale, 0.3 * scale)
-    return hull, turret
+    """The tank: box hull, capped cylinder turret, barrel (:func:`brdfs.render.mitsuba.scenes.tank`)."""
+    return msc.tank(x, y, scale)
 
 
 THREE_LIGHTS = [((-4.0, -5.0, 6.0), 1.0), ((5.0, -3.0, 5.0), 0.6), ((0.0, 4.0, 7.0), 0.5)]

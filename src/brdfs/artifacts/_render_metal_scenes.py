@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from brdfs.artifacts import _render_figures as rf
-from brdfs.render import shapes
+from brdfs.render.mitsuba import scenes as msc
 
 
 def _params(entry):
@@ -24,13 +24,11 @@ def tank_and_spheres(cfg, entries, model, title, base=None):
     section = cfg[rf.SECTION]
     tank, spheres = entries[0], entries[1:]
     plate = {"diffuse": section["diffuse_reflectance"]} if base is None else _metal(base, model)
-    hull, turret = rf.tank(0.0, 1.2)
-    objects = [("floor", rf.floor(), plate),
-               ("tank hull", hull, _metal(tank, model)), ("tank turret", turret, _metal(tank, model))]
+    objects = [("floor", rf.floor(), plate), ("tank", rf.tank(0.0, 1.2), _metal(tank, model))]
     for k, (x, entry) in enumerate(zip(rf.row(len(spheres), 2.1), spheres)):
         objects.append((f"sphere {k + 1} {entry['metal']}", rf.sphere(x, -1.4, 0.55), _metal(entry, model)))
     return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA, aspect=1.6,
-                     reference=("floor",) if base is None else ("tank hull",))]
+                     reference=("floor",) if base is None else ("tank",))]
 
 
 def row_of_objects(cfg, entries, title, shapes_of, model="phong_cosmin"):
@@ -41,18 +39,20 @@ def row_of_objects(cfg, entries, title, shapes_of, model="phong_cosmin"):
     return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA)]
 
 
-def three_spheres():
-    """Three spheres in a row, the middle one a little behind (it mirrors the other two)."""
-    return [("sphere", rf.sphere(-1.9, -0.6, 0.8)), ("sphere", rf.sphere(0.0, 0.4, 0.9)),
-            ("sphere", rf.sphere(1.9, -0.6, 0.8))]
+def three_teapots():
+    """Three teapots in a row, the middle one a little behind (it mirrors the other two);
+    :func:`brdfs.render.mitsuba.scenes.teapot` (a stand-in until the tessellated teapot lands)."""
+    return [("teapot", msc.teapot(-1.9, -0.6, 1.0)), ("teapot", msc.teapot(0.0, 0.4, 1.1)),
+            ("teapot", msc.teapot(1.9, -0.6, 1.0))]
 
 
 def mirror_scene(cfg, entries, title):
-    """Fig. 3.11: a large gold sphere ('Beethoven'), a copper sphere and a copper box ('pyramid')
-    on a near-mirror silver plate."""
+    """Fig. 3.11: a gold bust (the stated substitute for Beethoven's head, :func:`~brdfs.render.mitsuba.scenes.head`),
+    a copper sphere and a copper pyramid on a near-mirror silver plate, all in frame."""
     head, ball, pyramid, plate = entries
     objects = [("floor (mirror)", rf.floor(), _metal(plate)),
-               ("head", rf.sphere(0.0, 0.6, 1.1), _metal(head)),
+               ("head", msc.head(0.0, 0.6, 1.0), _metal(head)),
                ("sphere", rf.sphere(-2.0, -0.9, 0.6), _metal(ball)),
-               ("box", shapes.Box((2.0, -0.8, 0.5), (0.5, 0.5, 0.5)), _metal(pyramid))]
-    return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA, reference=("head",))]
+               ("pyramid", msc.pyramid((2.0, -0.8, 0.0), 0.6, 1.1), _metal(pyramid))]
+    camera = {"eye": (0.0, -8.0, 3.4), "target": (0.0, 0.0, 0.7), "fov_deg": 34.0}
+    return [rf.Panel(title, objects, rf.THREE_LIGHTS, camera, reference=("head",), aspect=1.6)]

@@ -73,7 +73,8 @@ def work_precision(sec: dict, seed: int) -> pd.DataFrame:
     """One row per (case, method, sampler, setting): value, reported error, true error, evaluations."""
     rows = []
     for label, brdf, theta, (ref, ref_err, ref_kind), method, sampler, setting, options in planned_runs(sec, seed):
-        est = albedo(brdf, theta, method, **options)
+        # coarse settings miss the tolerance on purpose: the status column records it, no warning
+        est = albedo(brdf, theta, method, warn=False, **options)
         value, err = float(est.value), float(est.error)
         rows.append({"case": label, "model": brdf.name, "theta_deg": theta, "method": method,
                      "sampler": sampler, "setting": float(setting), "evaluations": int(est.evaluations),

@@ -21,10 +21,8 @@ def panels(cfg: dict) -> list:
     for pumped, row in ((0, "reciprocal Phong"), (1, "pumped once (g1)")):
         for n in p["n"]:
             spec = {"model": "phong", "n": n, "pumped": pumped}
-            hull, turret = rf.tank(0.0, 1.2)
             objects = [("floor", rf.floor(), {"diffuse": section["diffuse_reflectance"]}),
-                       ("tank hull", hull, {**spec, "metal": p["tank"]}),
-                       ("tank turret", turret, {**spec, "metal": p["tank"]})]
+                       ("tank", rf.tank(0.0, 1.2), {**spec, "metal": p["tank"]})]
             for x, metal in zip(rf.row(len(p["spheres"]), 2.1), p["spheres"]):
                 objects.append((f"{metal} sphere", rf.sphere(x, -1.4, 0.55), {**spec, "metal": metal}))
             out.append(rf.Panel(f"{row}, n = {n:g}", objects, rf.TWO_LIGHTS, rf.STREET_CAMERA,

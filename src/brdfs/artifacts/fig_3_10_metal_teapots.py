@@ -13,7 +13,7 @@ NAME = "fig_3_10_metal_teapots"
 
 def panels(cfg: dict) -> list:
     s = cfg[rf.SECTION]
-    return ms.row_of_objects(cfg, s['new_model_metals']['fig_3_10'], ms.describe(s['new_model_metals']['fig_3_10']), ms.three_spheres())
+    return ms.row_of_objects(cfg, s['new_model_metals']['fig_3_10'], ms.describe(s['new_model_metals']['fig_3_10']), ms.three_teapots())
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapters_2_3")

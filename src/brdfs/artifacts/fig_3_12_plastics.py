@@ -20,7 +20,7 @@ def panels(cfg: dict) -> list:
     for x, spec in zip(rf.row(len(spheres), 2.1), spheres):
         objects.append((f"sphere a_s={spec['a_s']:g} n={spec['n']:g}", rf.sphere(x, -0.6, 0.6), dict(spec)))
     title = "(a_s, n) = " + ", ".join(f"({s['a_s']:g}, {s['n']:g})" for s in spheres)
-    return [rf.Panel(title, objects, rf.TWO_LIGHTS, rf.STREET_CAMERA, channels=3, aspect=1.6)]
+    return [rf.Panel(title, objects, rf.TWO_LIGHTS, rf.STREET_CAMERA, channels="rgb", aspect=1.6)]
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 2}, batch="renders_chapters_2_3")

@@ -8,7 +8,7 @@ from __future__ import annotations
 import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
-from brdfs.render import shapes
+from brdfs.render.mitsuba import scenes as msc
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_3_13_ceramics"
@@ -18,10 +18,9 @@ def panels(cfg: dict) -> list:
     c = cfg[rf.SECTION]["ceramics"]
     objects = [("floor", rf.floor(), dict(c["plate"]))]
     for k, (x, spec) in enumerate(zip(rf.row(len(c["objects"]), 1.3), c["objects"])):
-        objects.append((f"pot {k + 1} body n={spec['n']:g}", shapes.Sphere((x, 0.0, 1.05), 0.85), dict(spec)))
-        objects.append((f"pot {k + 1} foot n={spec['n']:g}", shapes.Cylinder((x, 0.0, 0.0), 0.45, 0.3), dict(spec)))
+        objects.append((f"teapot {k + 1} n={spec['n']:g}", msc.teapot(x, 0.0, 1.0), dict(spec)))
     title = "ceramics, n = " + ", ".join(f"{s['n']:g}" for s in c["objects"])
-    return [rf.Panel(title, objects, rf.TWO_LIGHTS, rf.STREET_CAMERA, channels=3)]
+    return [rf.Panel(title, objects, rf.TWO_LIGHTS, rf.STREET_CAMERA, channels="rgb")]
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 2}, batch="renders_chapters_2_3")

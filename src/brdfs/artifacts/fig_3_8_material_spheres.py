@@ -1,15 +1,31 @@
 """Figure 3.8: the material editor — a diffuse gray reference sphere and golden spheres n = 2, 8, 16.
 
-Spheres of the new model for metals (eq. 3.29, gold's measured complex index at eight
-wavelengths) beside a Lambert gray sphere, under two point lights and homogeneous daylight
-(section 3.6, eq. 3.32); the display scale puts the gray sphere's median at 0.5 (section 3.6).
+Rendered the way the thesis's material editor did it (section 3.6): direct light from two point
+lights (delta emitters, each rendered alone: no light sampling, so no noise but the pixel jitter's)
+plus the daylight term S·a(θ_V) (eq. 3.32) read from the tabulated albedo of each sphere's material
+(gold: eq. 3.29 at the eight wavelengths, :func:`brdfs.numerics.albedo.albedo_table`; gray: ρ) at the
+pixel's cos θ_V (the integrator's ``cos_v`` AOV). The display scale puts the gray sphere's median at
+0.5 (section 3.6).
 """
 from __future__ import annotations
 
+import dataclasses
+
+import numpy as np
 import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
+from brdfs.numerics.albedo import albedo_table
+from brdfs.physics import optical_constants
+from brdfs.physics.models.metal import PhongCosminMetal
 from brdfs.pipeline.registry import figure
+from brdfs.render import spectrum
+
+#: θ_V grid of the editor's albedo tables (interpolated linearly in cos θ_V) and their accuracy.
+TABLE_COS = np.linspace(0.0, 1.0, 33)
+TABLE_RTOL = 1e-5
+#: Samples per pixel of the noise-free editor image (one per pass: they only antialias the edges).
+EDITOR_SPP = 8
 
 NAME = "fig_3_8_material_spheres"
 
@@ -22,12 +38,40 @@ def panels(cfg: dict) -> list:
                         {"metal": "gold", "model": "phong_cosmin", "n": n}))
     camera = {"eye": (0.0, -14.0, 1.0), "target": (0.0, 0.0, 1.0), "fov_deg": 12.0}
     return [rf.Panel("gray (Lambert) and gold n = " + ", ".join(f"{n:g}" for n in section["material_spheres"]["gold_n"]),
-                     objects, rf.TWO_LIGHTS, camera, background=0.08, reference=("gray",), aspect=3.0)]
+                     objects, rf.TWO_LIGHTS, camera, sky=False, background=0.08, reference=("gray",), aspect=3.0,
+                     max_depth=1, point_lights=True, spp=EDITOR_SPP)]
+
+
+def albedo_spectrum(spec: dict, cos_v: np.ndarray) -> np.ndarray:
+    """a(θ_V) per wavelength (…, 8) of a material entry at ``cos_v``, from its table on TABLE_COS."""
+    if "diffuse" in spec:
+        return np.full(cos_v.shape + (rf.SPECTRAL,), float(spec["diffuse"]))
+    theta = np.degrees(np.arccos(np.clip(TABLE_COS, 1e-6, 1.0)))
+    eta = optical_constants.complex_index(spec["metal"], spectrum.WAVELENGTHS_NM)
+    models = [PhongCosminMetal(float(spec["n"]), ior_re=float(e.real), ior_im=float(abs(e.imag))) for e in eta]
+    table = albedo_table(models, theta, rtol=TABLE_RTOL, atol=0.0).value          # (8, len(TABLE_COS))
+    return np.stack([np.interp(cos_v, TABLE_COS, row) for row in table], axis=-1)
+
+
+def with_daylight(cfg: dict):
+    """The ``post`` hook: add S·a(θ_V) to every pass (the same noise-free term in each)."""
+    sky = float(cfg[rf.SECTION]["sky_radiance"])
+
+    def post(panel, rendered):
+        specs = {label: spec for label, _, spec in panel.objects}
+        ambient = np.zeros(rendered.passes.shape[1:])
+        for k, label in rendered.labels.items():
+            sel = rendered.ids == k
+            if label in specs and sel.any():
+                ambient[sel] = sky * albedo_spectrum(specs[label], rendered.cos_v[sel])
+        return dataclasses.replace(rendered, passes=rendered.passes + ambient)
+
+    return post
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 2}, batch="renders_chapters_2_3")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    return rf.compute_panels(cfg, NAME, panels(cfg))
+    return rf.compute_panels(cfg, NAME, panels(cfg), post=with_daylight(cfg))
 
 
 def plot(df: pd.DataFrame, path) -> None:

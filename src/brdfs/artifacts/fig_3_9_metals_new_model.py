@@ -5,7 +5,6 @@ import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
-from brdfs.render import shapes  # noqa: F401  (scene shapes)
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_3_9_metals_new_model"

@@ -5,7 +5,7 @@ import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
-from brdfs.render import shapes  # noqa: F401  (scene shapes)
+from brdfs.render.mitsuba import scenes as msc
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_17_patch_shapes"
@@ -13,7 +13,7 @@ NAME = "fig_4_17_patch_shapes"
 
 def panels(cfg: dict) -> list:
     s = cfg[rf.SECTION]
-    return ms.row_of_objects(cfg, s['patch_exponential']['fig_4_17'], 'cube, cylinder, sphere: ' + ms.describe(s['patch_exponential']['fig_4_17'], 'patch_exponential'), [('cube', shapes.Box((-2.0, -0.3, 0.6), (0.6, 0.6, 0.6))), ('cylinder', shapes.Cylinder((0.0, 0.5, 0.0), 0.6, 1.3)), ('sphere', rf.sphere(2.0, -0.3, 0.7))], model='patch_exponential')
+    return ms.row_of_objects(cfg, s['patch_exponential']['fig_4_17'], 'cube, cylinder, sphere: ' + ms.describe(s['patch_exponential']['fig_4_17'], 'patch_exponential'), [('cube', msc.box((-2.0, -0.3, 0.6), (0.6, 0.6, 0.6))), ('cylinder', msc.capped_cylinder((0.0, 0.5, 0.0), 0.6, 1.3)), ('sphere', rf.sphere(2.0, -0.3, 0.7))], model='patch_exponential')
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapter_4")

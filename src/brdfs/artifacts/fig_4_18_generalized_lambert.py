@@ -2,8 +2,9 @@
 
 f = C min(ξ(m), ξ(m_clip)) (eqs. 4.58/4.59, C = 1/max albedo); gray; top: one point light at the
 eye (d = 1 shows the 'full moon', a disk of almost constant radiance); bottom: two point lights.
-Each panel has its own display scale (the light at the eye is farther away).
-Direct lighting needs no sampling: each pixel is f I cos θ_L / r² at its centre (no noise).
+Each panel has its own display scale (the light at the eye is farther away). Direct lighting
+(``max_depth = 1``: one scattering event), jittered pixel samples (box filter), a dim gray background
+(not a light) against which the unlit halves show.
 """
 from __future__ import annotations
 
@@ -14,6 +15,10 @@ from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_18_generalized_lambert"
 CAMERA = {"eye": (0.0, -12.0, 0.8), "target": (0.0, 0.0, 0.8), "fov_deg": 14.0}
+#: The light "at the eye": just above the camera (the spherical emitter must not enclose it).
+LIGHT_AT_EYE = (0.0, -12.0, 1.2)
+#: Radiance of the background camera rays see (not a light): the unlit halves stand out against it.
+BACKGROUND = 0.02
 
 
 def panels(cfg: dict) -> list:
@@ -22,11 +27,11 @@ def panels(cfg: dict) -> list:
     for x, d in zip(rf.row(len(ds), 3.3), ds):
         objects.append((f"d={d:g}", rf.sphere(x, 0.0, 1.0), {"model": "generalized_lambertian", "d": d}))
     labels = tuple(label for label, _, _ in objects)
-    light_at_eye = [(CAMERA["eye"], 1.0)]
-    return [rf.Panel("point light at the eye", objects, light_at_eye, CAMERA, sky=False, channels=3,
-                     background=0.0, reference=labels, aspect=3.0),
-            rf.Panel("two point lights", objects, rf.TWO_LIGHTS, CAMERA, sky=False, channels=3,
-                     background=0.0, reference=labels, aspect=3.0)]
+    light_at_eye = [(LIGHT_AT_EYE, 1.0)]
+    return [rf.Panel("point light at the eye", objects, light_at_eye, CAMERA, sky=False, channels="rgb",
+                     background=BACKGROUND, reference=labels, aspect=3.0, max_depth=1),
+            rf.Panel("two point lights", objects, rf.TWO_LIGHTS, CAMERA, sky=False, channels="rgb",
+                     background=BACKGROUND, reference=labels, aspect=3.0, max_depth=1)]
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 1}, batch="renders_chapter_4")

@@ -3,9 +3,11 @@
 :func:`albedo` answers every albedo question of the package with the method asked for, in the
 colour-science manner (one function per method and a table of them, :data:`ALBEDO_METHODS`):
 
+* ``auto`` — the default: the engine, then the disk for the values where the engine did not
+  converge (the better of the two answers, by reported error, is kept);
 * ``engine`` — the lobe-following adaptive Gauss–Kronrod of :mod:`brdfs.numerics.integrate`
-  (the default, and the only method that meets 1e-10 everywhere), one-dimensional where the
-  azimuthal integral has a closed form (:mod:`brdfs.numerics.integrate.azimuthal`);
+  (the only method that meets 1e-10 nearly everywhere), one-dimensional where the azimuthal integral
+  has a closed form (:mod:`brdfs.numerics.integrate.azimuthal`);
 * ``engine_2d`` — the engine always in two dimensions; ``azimuthal`` — only the 1-D route;
 * ``disk`` — the independent projected-disk integration (:mod:`brdfs.numerics.integrate.disk`);
 * ``product_grid`` — an N × N Gauss–Legendre grid in (cos θ_V, φ_V), error |Q_N − Q_{N/2}|;
@@ -16,34 +18,79 @@ colour-science manner (one function per method and a table of them, :data:`ALBED
   ``model`` for the model's own :meth:`~brdfs.physics.models.base.BRDF.sample`); error = standard error.
 
 Every method returns an :class:`Estimate` with ``value`` and ``error`` shaped like ``theta_deg``,
-its cost in BRDF evaluations (an integer: nodes of a closed-form inner integral count as such) and a
-``status`` per value (``converged`` when the error meets the tolerance asked for).  A method's own
-``evaluations`` counts what the front door cannot see (the closed-form kernel's nodes; 0 for a method
-that only evaluates the BRDF), to which :func:`albedo` adds the BRDF values it counts.
+its cost in BRDF evaluations (an integer: nodes of a closed-form inner integral count as such), a
+``status`` per value and a ``route`` per value.  A method's own ``evaluations`` counts what the front
+door cannot see (the closed-form kernel's nodes; 0 for a method that only evaluates the BRDF), to
+which :func:`albedo` adds the BRDF values it counts.
+
+Statuses (:mod:`brdfs.core.estimate`): ``converged`` (error ≤ max(rtol |a|, atol)); ``diverged``
+(the integral is infinite: value +inf, error 0, an exact answer); ``budget_exhausted`` (the run
+stopped on its budget of rounds, intervals or samples while it could still refine); ``stalled``
+(no refinement could reduce the error further).  Whenever a value is ``budget_exhausted`` or
+``stalled``, :func:`albedo` warns (:class:`NotConvergedWarning`), or raises
+(:class:`NotConvergedError`) with ``strict=True``; the error it reports is still an honest bound.
+
+Routes: ``engine/azimuthal`` (the 1-D closed-form-azimuth route), ``engine/hemisphere`` (2-D around R
+or N), ``engine/scattering`` (2-D in the scattering-vector frame), ``engine/own`` (the model's own
+``albedo_estimate``), ``disk``, ``product_grid``, ``midpoint_grid``, ``dblquad``, ``monte_carlo``;
+``declared`` for a value the model's declaration gives (+inf where it ``diverges_at_grazing``); a
+suffix ``:grazing_limit`` where, at exactly 90°, the model's ``grazing_limit_model()`` was integrated.
+
+The ends, decided by what the model declares (never by its name), for every method: at exactly
+θ = 90° a model that ``diverges_at_grazing`` has albedo +inf (status ``diverged``), and a model whose
+BRDF is singular at N·L = 0 has the albedo of its ``grazing_limit_model()`` (the limit a(θ), θ → 90°).
+A model evaluated from tables (a pumped model) adds its ``evaluation_rtol`` × |a| to every error:
+the distance of the model evaluated to the exact model it stands for.
 
 The route of the engine is read from what the model declares, never from its name or type: its
 own ``albedo_estimate`` (None: it has none), its ``closed_form_azimuth``, and its lobe's
 :class:`~brdfs.physics.lobes.Frame`.
+
+:func:`albedo_table` and :func:`albedo_pairs` are the engine's batch doors for the package's own
+derived quantities: they integrate f as evaluated, with none of the above (no ends, no model error,
+no warnings): read their ``status``.
 """
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Annotated
 
 import numpy as np
 from scipy.integrate import IntegrationWarning, dblquad
 
-from brdfs.numerics.arguments import check_albedo_call
-from brdfs.numerics.integrate import azimuthal
+from brdfs.numerics.arguments import Above, AtLeast, OneOf, check_albedo_call
+from brdfs.numerics.integrate import azimuthal, polar
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
+from brdfs.core.estimate import DIVERGED, STALLED
 from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import albedo_scattering
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.lobes import SCATTERING
 from brdfs.physics.models.base import counting_evaluations
+
+
+class NotConvergedWarning(RuntimeWarning):
+    """Some values of an :func:`albedo` call missed the tolerance asked for (status
+    ``budget_exhausted`` or ``stalled``); their reported errors are still honest bounds."""
+
+
+class NotConvergedError(RuntimeError):
+    """:func:`albedo` with ``strict=True``: some values missed the tolerance.  ``estimate`` holds
+    the whole answer (values, honest errors, statuses, routes)."""
+
+    def __init__(self, message, estimate):
+        super().__init__(message)
+        self.estimate = estimate
+
+
+class EngineCannotIntegrate(ValueError):
+    """The engine cannot integrate this model (no lobe and no route of its own, or not symmetric
+    about the plane of incidence); ``auto`` then takes the disk for every value."""
+
 
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-14
@@ -73,23 +120,29 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
     own = _own_routes(models, theta, rtol, atol, value, error, status)
     lobeless = [m for m, o in zip(models, own) if not o and m.lobe is None]
     if lobeless:
-        raise ValueError(f"{lobeless[0].name!r} declares neither a lobe nor its own albedo route; "
-                         "use method='disk'")
+        raise EngineCannotIntegrate(f"{lobeless[0].name!r} declares neither a lobe nor its own albedo route; "
+                                    "use method='disk' (or 'auto')")
     asymmetric = [m for m, o in zip(models, own) if not o and not m.symmetric_about_incidence_plane]
     if asymmetric:                  # the engine integrates φ over [0, π] and doubles it
-        raise ValueError(f"{asymmetric[0].name!r} is not symmetric about the plane of incidence, which the "
-                         "engine assumes; use method='disk'")
+        raise EngineCannotIntegrate(f"{asymmetric[0].name!r} is not symmetric about the plane of incidence, "
+                                    "which the engine assumes; use method='disk' (or 'auto')")
     kirchhoff = np.array([not o and m.lobe.frame is SCATTERING for m, o in zip(models, own)], bool)
     one_d = np.array([closed_form_azimuth and azimuthal.supports(m) for m in models], bool) & ~kirchhoff & ~own
-    schemes = ((one_d, azimuthal.albedo_many), (kirchhoff, albedo_scattering),
-               (~kirchhoff & ~one_d & ~own, albedo_many))
+    # --- issue 24 (E3): f = D(H) S(N·L, N·V) integrates in θ_V with the azimuth in closed form
+    in_polar = np.array([closed_form_azimuth and polar.supports(m) for m in models], bool) & ~kirchhoff & ~own & ~one_d
+    one_d = one_d | in_polar
+    # ---
+    schemes = ((one_d & ~in_polar, azimuthal.albedo_many, "azimuthal"), (in_polar, polar.albedo_many, "polar"),
+               (kirchhoff, albedo_scattering, "scattering"), (~kirchhoff & ~one_d & ~own, albedo_many, "hemisphere"))
+    route = np.where(own, "engine/own", "engine/hemisphere").astype(object)
     closed_form_nodes = 0          # the 1-D route evaluates a closed form, not the BRDF: count its nodes
-    for chosen, scheme in schemes:
+    for chosen, scheme, name in schemes:
         if chosen.any():
             est = scheme([m for m, c in zip(models, chosen) if c], theta[chosen], rtol=rtol, atol=atol)
             value[chosen], error[chosen] = est.value, est.error
             status[chosen] = est.status
-            if scheme is azimuthal.albedo_many:
+            route[chosen] = f"engine/{name}"
+            if scheme is azimuthal.albedo_many or scheme is polar.albedo_many:
                 closed_form_nodes += est.evaluations
     # Within ~1e-4 of grazing the 1-D route of max(N·L, N·V) models loses ε / cos θ to rounding and
     # can stop short of the tolerance: those elements are integrated in two dimensions instead.
@@ -99,11 +152,12 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
         better = est.error < error[short]
         rows = np.flatnonzero(short)[better]
         value[rows], error[rows], status[rows] = est.value[better], est.error[better], est.status[better]
+        route[rows] = "engine/hemisphere"
     for rows in indices_by_model(models):
         delta = models[rows[0]].delta_albedo(theta[rows])
         value[rows] += delta.value
         error[rows] += delta.error
-    return Estimate(value, error, closed_form_nodes, status.astype(str))
+    return Estimate(value, error, closed_form_nodes, status.astype(str), route.astype(str))
 
 
 def _own_routes(models, theta, rtol, atol, value, error, status):
@@ -151,13 +205,39 @@ def _per_angle(one):
         error = np.array([p[1] for p in pairs], float)
         return Estimate(value, error, 0, _status(value, error, rtol, atol))
     method.__doc__ = one.__doc__
+    method.__wrapped__ = one             # its options are one's (brdfs.numerics.arguments reads them)
     return method
 
 
 def _disk(model, theta, rtol, atol):
-    """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`)."""
+    """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`);
+    a value short of its tolerance keeps the driver's reason (``stalled`` or ``budget_exhausted``)."""
     est = disk_albedo_many([model] * theta.size, theta, rtol=rtol, atol=atol)
-    return Estimate(est.value, est.error, 0, _status(est.value, est.error, rtol, atol))
+    met = _status(est.value, est.error, rtol, atol) == CONVERGED
+    reason = np.where(np.asarray(est.status) == CONVERGED, STALLED, np.asarray(est.status, str))
+    return Estimate(est.value, est.error, 0, np.where(met, CONVERGED, reason), np.full(theta.size, "disk"))
+
+
+def _auto(model, theta, rtol, atol):
+    """The engine, then the disk for the values the engine left short of the tolerance (or for all,
+    where the engine cannot integrate the model); each value keeps the answer with the smaller
+    reported error, and its route says which."""
+    try:
+        first = _engine(model, theta, rtol, atol)
+    except EngineCannotIntegrate:
+        return _disk(model, theta, rtol, atol)
+    short = np.asarray(first.status) != CONVERGED
+    if not short.any():
+        return first
+    second = _disk(model, theta[short], rtol, atol)
+    value, error = np.array(first.value, float), np.array(first.error, float)
+    status, route = np.array(first.status, object), np.array(first.route, object)
+    engine_error = np.where(np.isfinite(error[short]), error[short], np.inf)
+    better = (second.error < engine_error) | ((second.status == CONVERGED) & ~np.isfinite(value[short]))
+    rows = np.flatnonzero(short)[better]
+    value[rows], error[rows] = second.value[better], second.error[better]
+    status[rows], route[rows] = second.status[better], "disk"
+    return Estimate(value, error, first.evaluations + second.evaluations, status.astype(str), route.astype(str))
 
 
 def _grid_sum(model, theta, n):
@@ -172,14 +252,15 @@ def _grid_sum(model, theta, n):
 
 
 @_per_angle
-def _product_grid(model, theta, rtol, atol, n=64):
+def _product_grid(model, theta, rtol, atol, n: Annotated[int, AtLeast(2)] = 64):
     """N × N Gauss–Legendre in (u = cos θ_V, φ_V ∈ [0, π]), doubled by symmetry; error |Q_N − Q_{N/2}|."""
     value = _grid_sum(model, theta, n)
     return value, abs(value - _grid_sum(model, theta, n // 2)) if n >= 2 else np.inf
 
 
 @_per_angle
-def _midpoint_grid(model, theta, rtol, atol, n_theta=90, n_phi=360):
+def _midpoint_grid(model, theta, rtol, atol, n_theta: Annotated[int, AtLeast(1)] = 90,
+                   n_phi: Annotated[int, AtLeast(1)] = 360):
     """Midpoint rule on n_θ × n_φ cells of (θ_V, φ_V): Σ f cos θ_V sin θ_V Δθ Δφ; a rounding bound as error."""
     L = light_direction(theta)
     d_theta, d_phi = 0.5 * np.pi / n_theta, 2 * np.pi / n_phi
@@ -199,7 +280,7 @@ def _midpoint_grid(model, theta, rtol, atol, n_theta=90, n_phi=360):
 
 
 @_per_angle
-def _dblquad(model, theta, rtol, atol, epsrel=None):
+def _dblquad(model, theta, rtol, atol, epsrel: Annotated[float | None, Above(0.0)] = None):
     """``scipy.integrate.dblquad`` over θ_V ∈ [0, π/2], φ_V ∈ [0, π] (doubled by symmetry)."""
     L = light_direction(theta)
 
@@ -260,7 +341,9 @@ def _chunks(n, size=250_000):
     return [size] * (n // size) + ([n % size] if n % size else [])
 
 
-def _monte_carlo(model, theta, rtol, atol, n_samples=100_000, sampler="cosine", seed=0):
+def _monte_carlo(model, theta, rtol, atol, n_samples: Annotated[int, AtLeast(2)] = 100_000,
+                 sampler: Annotated[str, OneOf(_MODEL_STRATEGIES)] = "cosine",
+                 seed: Annotated[int | Sequence[int], AtLeast(0)] = 0):
     """Monte Carlo with ``n_samples`` per angle, the k-th angle seeded by ``[*seed, k]``;
     error = standard error (one standard deviation)."""
     root = [int(s) for s in np.atleast_1d(seed)]
@@ -273,6 +356,7 @@ def _monte_carlo(model, theta, rtol, atol, n_samples=100_000, sampler="cosine", 
 
 #: The albedo methods by name: ``method(model, theta (1-D), rtol, atol, **options) -> Estimate``.
 ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
+    "auto": _auto,
     "engine": _engine,
     "engine_2d": _engine_2d,
     "azimuthal": _azimuthal,
@@ -286,28 +370,52 @@ ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
 
 # --- the front door --------------------------------------------------------------------------
 
-def albedo(model, theta_deg, method="engine", *, rtol=None, atol=None, **options) -> Estimate:
+def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=False, warn=True,
+           **options) -> Estimate:
     """a(θ) = ∫ f(L, V) cos θ_V dω_V  (eq. 1.18) by ``method`` (:data:`ALBEDO_METHODS`), vectorised
     over ``theta_deg``.
 
     Parameters
     ----------
     model : BRDF
+        A model object (``brdfs.model("phong", n=20)``), not its name.
     theta_deg : float or array
         Incidence angles in [0°, 90°].
     method : str
-        A key of :data:`ALBEDO_METHODS`.
+        A key of :data:`ALBEDO_METHODS`; ``"auto"`` (the engine, then the disk where the engine did
+        not converge) by default.
     rtol, atol : float
-        Target error max(rtol |a|, atol) (defaults :data:`DEFAULT_RTOL`, :data:`DEFAULT_ATOL`).
+        Target error max(rtol |a|, atol) (defaults :data:`DEFAULT_RTOL`, :data:`DEFAULT_ATOL`),
+        both finite and > 0.
+    strict : bool
+        Raise :class:`NotConvergedError` (which holds the estimate) instead of warning when a value
+        misses the tolerance.
+    warn : bool
+        Warn (:class:`NotConvergedWarning`) when a value misses the tolerance; False for callers
+        that push a method past its limits on purpose and read ``status`` themselves.
     **options
         The method's own settings (``n`` for ``product_grid``, ``n_samples``, ``sampler`` and
-        ``seed`` for ``monte_carlo``, ...).
+        ``seed`` for ``monte_carlo``, ...); the valid ones are the method's keyword parameters.
 
     Returns
     -------
     Estimate
-        ``value``, ``error`` and ``status`` shaped like ``theta_deg``, and ``evaluations``, the
-        number of BRDF values computed.
+        ``value``, ``error``, ``status`` and ``route`` shaped like ``theta_deg``, and
+        ``evaluations``, the number of BRDF values computed.  At exactly 90° a model that
+        ``diverges_at_grazing`` gives +inf, error 0, status ``diverged`` (no warning: an exact
+        answer), and a model with a ``grazing_limit_model()`` gives that limit's albedo.
+
+    Raises
+    ------
+    brdfs.ArgumentError
+        A bad argument, before any work (one line naming the argument and its value).
+    NotConvergedError
+        With ``strict=True``, when a value is ``budget_exhausted`` or ``stalled``.
+
+    Warns
+    -----
+    NotConvergedWarning
+        When a value is ``budget_exhausted`` or ``stalled`` (unless ``strict`` or ``warn=False``).
 
     Examples
     --------
@@ -316,22 +424,74 @@ def albedo(model, theta_deg, method="engine", *, rtol=None, atol=None, **options
     The reciprocal Phong with c = (n+2)/2π reflects everything at normal incidence (eq. 3.6):
 
     >>> est = albedo(model("phong", n=20), [0.0, 45.0])
-    >>> round(float(est.value[0]), 9), [str(s) for s in est.status]
-    (1.0, ['converged', 'converged'])
+    >>> round(float(est.value[0]), 9), [str(s) for s in est.status], [str(r) for r in est.route]
+    (1.0, ['converged', 'converged'], ['engine/azimuthal', 'engine/azimuthal'])
+
+    Ward's albedo diverges at grazing incidence (sec. 2.2.1):
+
+    >>> est = albedo(model("ward", m=0.1), 90.0)
+    >>> float(est.value), float(est.error), str(est.status), str(est.route)
+    (inf, 0.0, 'diverged', 'declared')
     """
-    check_albedo_call(model, theta_deg, method, rtol, atol, options)
-    try:
-        run = ALBEDO_METHODS[method]
-    except KeyError:
-        raise ValueError(f"unknown albedo method {method!r}; choose one of {sorted(ALBEDO_METHODS)}") from None
-    theta = _check_angles(theta_deg)
+    check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=strict, warn=warn)
+    run = ALBEDO_METHODS[method]
+    theta = np.asarray(theta_deg, float)
     rtol = DEFAULT_RTOL if rtol is None else rtol
     atol = DEFAULT_ATOL if atol is None else atol
     with counting_evaluations() as count:
-        est = run(model, theta.ravel(), rtol, atol, **options)
+        est = _at_the_ends(run, model, theta.ravel(), rtol, atol, options, method)
     shape = theta.shape
-    cost = count[0] + est.evaluations
-    return Estimate(est.value.reshape(shape), est.error.reshape(shape), cost, est.status.reshape(shape))
+    est = Estimate(est.value.reshape(shape), est.error.reshape(shape), count[0] + est.evaluations,
+                   est.status.reshape(shape), est.route.reshape(shape))
+    _report_not_converged(est, model, theta, method, rtol, atol, strict, warn)
+    return est
+
+
+def _at_the_ends(run, model, theta, rtol, atol, options, method) -> Estimate:
+    """``run`` on the 1-D angles ``theta``, with the meaning the model declares at exactly 90°:
+    +inf (``diverged``) where it ``diverges_at_grazing``, the albedo of its ``grazing_limit_model()``
+    where that is another integrand; plus its ``evaluation_rtol`` × |a| in every error."""
+    at_90 = theta == 90.0
+    diverged = at_90 & bool(model.diverges_at_grazing)
+    limit = model.grazing_limit_model() if at_90.any() and not diverged.any() else model
+    by_limit = at_90 & ~diverged & (limit is not model)
+    value, error = np.full(theta.size, np.inf), np.zeros(theta.size)
+    status, route = np.full(theta.size, DIVERGED, object), np.full(theta.size, "declared", object)
+    evaluations = 0
+    for rows, integrand, suffix in ((~diverged & ~by_limit, model, ""), (by_limit, limit, ":grazing_limit")):
+        if not rows.any():
+            continue
+        est = run(integrand, theta[rows], rtol, atol, **options)
+        value[rows], error[rows], status[rows] = est.value, est.error, est.status
+        routes = np.full(int(rows.sum()), method) if est.route is None else np.asarray(est.route, str)
+        route[rows] = np.char.add(routes.astype(str), suffix)
+        evaluations += est.evaluations
+    finite = np.isfinite(value)
+    error[finite] += model.evaluation_rtol * np.abs(value[finite])
+    return Estimate(value, error, evaluations, status.astype(str), route.astype(str))
+
+
+def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
+    """Warn (or, ``strict``, raise) when a value is neither ``converged`` nor ``diverged``: how many,
+    the worst reported error against the tolerance asked for, and what to try."""
+    status = np.asarray(est.status)
+    short = (status != CONVERGED) & (status != DIVERGED)
+    if not short.any() or not (strict or warn):
+        return
+    value, error = np.asarray(est.value, float), np.asarray(est.error, float)
+    target = np.maximum(rtol * np.abs(value), atol)
+    ratio = np.where(np.isfinite(error), error / np.where(target > 0, target, np.inf), np.inf)
+    worst = np.flatnonzero(short)[np.argmax(np.where(short, ratio, -1.0)[short])]
+    kinds = ", ".join(f"{int((status == k).sum())} {k}" for k in (BUDGET_EXHAUSTED, STALLED) if (status == k).any())
+    message = (f"albedo of {model.name!r} by method {method!r}: {int(short.sum())} of {status.size} values "
+               f"did not converge ({kinds}); worst at theta = {float(np.ravel(theta)[worst]):.10g} deg: "
+               f"reported error {float(error.ravel()[worst]):.3g} against the {float(target.ravel()[worst]):.3g} "
+               f"asked for (rtol={rtol:g}, atol={atol:g}); the errors reported are honest bounds. Try "
+               + ("method='disk', " if method != "disk" else "method='engine', ")
+               + "a looser rtol, or read Estimate.status and Estimate.error (strict=True raises; warn=False is quiet)")
+    if strict:
+        raise NotConvergedError(message, est)
+    warnings.warn(message, NotConvergedWarning, stacklevel=3)
 
 
 def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:

@@ -88,7 +88,7 @@ def unpolarised_reflectance(cos_theta: ArrayLike, ior_re: ArrayLike, ior_im: Arr
     complex index the reflectances are their squared moduli ``|r|^2``. With
     ``eta = n + i k`` (the sign of ``k`` does not change ``|r|^2``) and
     ``w = eta cos(theta_t) = sqrt(eta^2 - sin^2 theta)`` (the principal root,
-    the transmitted wave decaying into the metal), the standard form [2]_, [3]_ is::
+    the transmitted wave decaying into the metal), the standard form (the module's references 2 and 3) is::
 
         r_perp = (cos theta - w) / (cos theta + w)                 # eq. 1.41
         r_par  = (eta^2 cos theta - w) / (eta^2 cos theta + w)     # eq. 1.42

@@ -40,11 +40,14 @@ class Lens(NamedTuple):
         Half the angle the chord subtends at Q, likewise.
     area : ndarray
         Area(C(Q, R)) = (α − cos α sin α) + R² (β − cos β sin β)  (eq. 4.9).
+    area_error : ndarray
+        Bound on the rounding error of ``area`` for exact d and R (:func:`_lens_rounding`).
     """
 
     alpha: np.ndarray
     beta: np.ndarray
     area: np.ndarray
+    area_error: np.ndarray
 
 
 def _segment(t):
@@ -85,7 +88,8 @@ def circle_intersection(d, R):
     Returns
     -------
     Lens
-        Angles and area (relative rounding error below :data:`CLOSED_FORM_RTOL`).
+        Angles, area and a bound on the area's rounding (:func:`_lens_rounding`), which grows
+        with the cancellation in 1 + d² − R² of nearly tangent circles.
 
     Examples
     --------
@@ -97,13 +101,41 @@ def circle_intersection(d, R):
     """
     d, R = np.broadcast_arrays(np.asarray(d, float), np.asarray(R, float))
     four_delta = _four_triangle_area(1.0, R, d)
-    alpha = np.arctan2(four_delta, 1.0 + (d - R) * (d + R))
-    beta = np.arctan2(four_delta, d * d + (R - 1.0) * (R + 1.0))
+    # 1 + d² − R² as d² + (1 − R)(1 + R): 1 − R is exact near R = 1 (Sterbenz), and
+    # 1.0 + (d − R)(d + R) lost all of d² ≈ 3e-16 at d = sin 1e-6°, R = 1 (a 1.5e-9 error).
+    x_alpha = d * d + (1.0 - R) * (1.0 + R)
+    x_beta = d * d + (R - 1.0) * (R + 1.0)
+    alpha = np.arctan2(four_delta, x_alpha)
+    beta = np.arctan2(four_delta, x_beta)
     nested = d <= np.abs(1.0 - R)
     apart = d >= 1.0 + R
     alpha = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, 0.0, np.pi), alpha))
     beta = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, np.pi, 0.0), beta))
-    return Lens(alpha, beta, _segment(alpha) + R * R * _segment(beta))
+    area = _segment(alpha) + R * R * _segment(beta)
+    lens_x = d * d + np.abs(1.0 - R) * (1.0 + R)
+    error = np.where(apart | nested, _EPS * area,
+                     _lens_rounding(alpha, beta, R, four_delta, x_alpha, x_beta, lens_x, area))
+    return Lens(alpha, beta, area, error)
+
+
+def _angle_rounding(y, x, x_abs):
+    """Bound on the error of atan2(y, x) when y carries 16 ε relative (Kahan's Heron formula) and
+    x = d² ± (1 − R)(1 + R) carries 4 ε · x_abs (x_abs the sum of its terms' absolute values):
+    |δ atan2| ≤ (|x| |δy| + |y| |δx|)/(x² + y²), plus atan2's own rounding.  The ratio
+    x_abs / |x| is the condition number of the cancellation in x, which no rewriting removes."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        spread = (np.abs(x) * 16 * _EPS * y + y * 4 * _EPS * x_abs) / (x * x + y * y)
+    return np.where(np.isfinite(spread), spread, 0.0) + _EPS * np.abs(np.arctan2(y, x))
+
+
+def _lens_rounding(alpha, beta, R, y, x_alpha, x_beta, x_abs, area):
+    """Bound on the rounding of eq. 4.9's area for exact d and R: the angles' errors times
+    d(t − sin t cos t)/dt = 2 sin²t, the segments' own rounding (t − sin t cos t is formed as
+    (x − sin x)/2, x = 2t, with an absolute error of a few ε t), and the final sum."""
+    d_alpha = _angle_rounding(y, x_alpha, x_abs)
+    d_beta = _angle_rounding(y, x_beta, x_abs)
+    propagated = 2 * np.sin(alpha) ** 2 * d_alpha + 2 * R * R * np.sin(beta) ** 2 * d_beta
+    return propagated + 4 * _EPS * (alpha + R * R * beta) + 2 * _EPS * area
 
 
 def basic_constant(R):
@@ -349,9 +381,16 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14):
 
 
 def basic_albedo_at(d, R):
-    """a_R at |L'_P| = d (eq. 4.8), as an :class:`Estimate` (R > 0)."""
-    value = circle_intersection(d, R).area * basic_constant(R)
-    return Estimate(value, CLOSED_FORM_RTOL * value)
+    """a_R at |L'_P| = d (eq. 4.8), as an :class:`Estimate` (R > 0).
+
+    The error is the lens's rounding bound (:attr:`Lens.area_error`, which grows with the
+    cancellation in 1 + d² − R² where the circles are nearly tangent), plus d's own relative
+    rounding ε (d = sin θ) times |∂ area/∂d| = 2 sin α (the chord), plus c(R)'s rounding."""
+    lens = circle_intersection(d, R)
+    c = basic_constant(R)
+    value = lens.area * c
+    from_d = 2.0 * np.abs(np.sin(lens.alpha)) * _EPS * np.asarray(d, float)
+    return Estimate(value, c * (lens.area_error + from_d) + 3 * _EPS * value)
 
 
 def mixture_mean_albedo(profile, C=None, rtol=1e-10, atol=1e-14):

@@ -110,14 +110,11 @@ def verdict(name: str, comparison: pd.DataFrame | None, sources: dict[str, Itera
     sources : dict
         For each comparison (``artifact`` column), the artifacts it reads.
     """
+    from brdfs.pipeline.recomputed import rows_of   # it imports this module's categories
+
     if comparison is None:
         return "*Verdict: results/checks/published_comparison.csv is not built yet.*"
-    number = thesis_number(name)
-    pattern = re.compile(re.escape(number) + r"\b") if number else None
-    rows = comparison[
-        comparison["artifact"].map(lambda a: name in sources.get(a, ()))
-        | comparison["source"].map(lambda s: bool(pattern and pattern.search(str(s))))
-    ]
+    rows = rows_of(name, comparison, sources)
     if rows.empty:
         return ("**Against the print:** the thesis prints no number for this artifact "
                 "(no row in published_comparison.csv); the comparison is by eye, see above.")
@@ -150,6 +147,53 @@ def summary(comparison: pd.DataFrame | None) -> str:
             f"{len(comparison) - counts.get('reproduces', 0)} differ (each with its reason and evidence).")
 
 
+def _link(text: str, target: str, targets: set[str]) -> str:
+    """An RST reference to the report's result ``target`` (the file name), or plain text if absent."""
+    return f"`{_clean(text, 80)} <{target}_>`_" if target in targets else _clean(text, 80)
+
+
+def landing(table: pd.DataFrame | None, chapters: pd.DataFrame | None, targets: set[str]) -> str:
+    """The landing table as RST: per chapter its count of printed numbers that reproduce and differ,
+    then each artifact with printed numbers (linked to its figure and its HTML table in the report),
+    then the chapter's other artifacts, linked.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame or None
+        ``results/report/landing.csv`` (None when not built yet).
+    chapters : pandas.DataFrame or None
+        ``results/report/chapters.csv``: each category's count, every printed number once.
+    targets : set of str
+        The file names of the report's results (what an RST reference can link to).
+    """
+    if table is None or chapters is None:
+        return "*The landing table (results/report/landing.csv, rule report_pages) is not built yet.*"
+    lines = []
+    for _, chapter in chapters.iterrows():
+        members = table[table["category"] == chapter["category"]]
+        if members.empty:
+            continue
+        lines += [f"**{_clean(chapter['category'], 100)}.** {chapter['printed']} printed numbers: "
+                  f"{chapter['reproduce']} reproduce, {chapter['differ']} differ.", ""]
+        compared = members[members["printed"].astype(int) > 0]
+        if len(compared):
+            lines += [".. list-table::", "   :header-rows: 1", "",
+                      "   * - artifact", "     - printed numbers", "     - reproduce", "     - differ",
+                      "     - printed beside ours"]
+            for _, row in compared.iterrows():
+                page = f"{row['artifact']}.html"
+                lines += [f"   * - {_link(row['thesis'] or row['artifact'], Path(row['png']).name, targets)}",
+                          f"     - {row['printed']}", f"     - {row['reproduce']}", f"     - {row['differ']}",
+                          f"     - {_link('HTML table', page, targets) if page in targets else '(figure)'}"]
+            lines.append("")
+        others = members[members["printed"].astype(int) == 0]
+        if len(others):
+            links = ", ".join(_link(r["thesis"] or r["artifact"], Path(r["png"]).name, targets)
+                              for _, r in others.iterrows())
+            lines += [f"Without printed numbers: {links}.", ""]
+    return "\n".join(lines) + "\n"
+
+
 @dataclasses.dataclass(frozen=True)
 class ReportTexts:
     """The captions, verdicts and summary the report's caption templates show, read when rendered.
@@ -165,11 +209,16 @@ class ReportTexts:
         ``results/checks/published_comparison.csv``.
     captions_dir : str
         The committed captions, ``workflow/report/captions``.
+    landing_csv, chapters_csv : str
+        ``results/report/landing.csv`` and ``chapters.csv``, the landing table the rule
+        ``report_pages`` writes (per artifact, per chapter).
     """
 
     sources: dict
     comparison_csv: str
     captions_dir: str = str(CAPTIONS_DIR)
+    landing_csv: str = "results/report/landing.csv"
+    chapters_csv: str = "results/report/chapters.csv"
 
     def caption(self, name: str) -> str:
         """:func:`caption` of ``name`` (the committed file)."""
@@ -182,6 +231,10 @@ class ReportTexts:
     def summary(self) -> str:
         """:func:`summary` of the comparison as it is now."""
         return summary(_comparison(self.comparison_csv))
+
+    def landing(self, files: Iterable = ()) -> str:
+        """:func:`landing` of the landing table as it is now, linking the report's ``files``."""
+        return landing(_comparison(self.landing_csv), _comparison(self.chapters_csv), {f.target for f in files})
 
 
 def _comparison(path: str | os.PathLike) -> pd.DataFrame | None:

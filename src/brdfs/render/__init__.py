@@ -5,6 +5,11 @@
 :mod:`~brdfs.render.tracer` (direct lighting and paths), :mod:`~brdfs.render.spectrum`
 (eight wavelengths -> XYZ -> sRGB) and :mod:`~brdfs.render.scenes` (materials from config).
 
+Mitsuba 3: :mod:`brdfs.render.mitsuba` (imports no Mitsuba until asked) gives the models as Dr.Jit BSDF
+plugins a user's own scene can load: ``from brdfs.render.mitsuba import use_variant, register_plugins``;
+``use_variant("llvm_ad_rgb"); register_plugins()``; then ``mi.load_dict({"type": "brdfs_phong_cosmin",
+"n": 20})``.  The names are listed in :mod:`brdfs.render.mitsuba.plugins`.
+
 Renderer decision (issue #17), by measurement (``benchmarks/render_mitsuba_vs_numpy.py``): one
 scene — a new-model sphere (phong_cosmin, n = 20) on a diffuse floor, one point light, 160 × 120 —
 rendered (a) direct only, 1 sample per pixel, (b) with daylight, paths of depth 3, 16 per pixel:

@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
+from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model
 from brdfs.numerics.integrate.hemisphere import level_azimuth, level_cos, radial_breakpoints_many
 from brdfs.numerics.integrate.mean import positive_part_azimuth
@@ -110,7 +110,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
             value[rows], rounding[rows] = _radial_integrand(models[k], t[rows], mu[e, None], st[e, None])
         return NodeValues(value, value, rounding)
 
-    return integrate(integrand, bp, rtol=rtol, atol=atol)
+    return integrate(integrand, bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)
 
 
 def _radial_integrand(model, t, mu, st):

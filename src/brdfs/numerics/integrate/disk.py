@@ -125,7 +125,10 @@ def _psi_breakpoints(model, mu, st, full):
     rays tangent to the model's N·V level circles (and to the circle |p| = sin θ)."""
     top = 2 * np.pi if full else np.pi
     pts = [np.linspace(0.0, top, (2 if full else 1) * _PIECES + 1)]
-    offsets = mu * 10.0 ** np.arange(-3, 4)
+    # every decade from μ·10⁻³ up to 1/2: beyond the tangent ray the rays shorten like μ²/(ψ − π/2)
+    # and their integrals fall like (ψ − π/2)⁻² from μ on, which one piece [π/2 + 10³μ, 3π/8]
+    # missed at 90° − 1e-9 (Cook–Torrance, m = 0.005: 2.9e-11 of the albedo in its first 1e-7)
+    offsets = mu * 10.0 ** np.arange(-3, 4 + max(0, int(np.ceil(-np.log10(max(mu, 1e-300))))))
     offsets = offsets[(offsets > 0) & (offsets < 0.5)]
     for centre in ((np.pi / 2, 3 * np.pi / 2) if full else (np.pi / 2,)):
         pts.append(centre - offsets)
@@ -149,8 +152,66 @@ def _psi_breakpoints(model, mu, st, full):
             pts.append([a, top - a] if full else [a])
     for phi in _half_plane_azimuths(model, mu, full):   # the ray from c to where φ_V = φ₀ meets the rim
         pts.append([np.mod(np.arctan2(np.sin(phi), np.cos(phi) + st), 2 * np.pi)])
+    pts.append(_kink_events(model, mu, st, top))
     out = np.unique(np.concatenate([np.atleast_1d(np.asarray(p, float)) for p in pts]))
     return out[(out >= 0) & (out <= top)]
+
+
+#: ψ-scan of :func:`_kink_events`: uniform points on [0, top], and points graded toward the
+#: tangent ray ψ = π/2 (3π/2) from μ·10⁻³ to 1/2 on either side.
+_PSI_SCAN = 512
+_PSI_GRADED = 96
+
+
+def _kink_events(model, mu, st, top):
+    """The rays ψ where the declared radial kinks change how they cut the rays: a kink enters or
+    leaves the ray (its curve meets the rim, touches a ray, or passes through c) or two kinks
+    cross (curves that meet: eq. 2.10's two switches and N·V = N·L meet where its three terms are
+    equal).  The ray integral, smooth in ψ elsewhere, has a kink, a square-root point or a jump in
+    its curvature there.  Found by a scan and bisection, for every kink the model declares (the
+    closed-form tangent rays above cover the N·V circles only).  Cook–Torrance with eq. 2.10,
+    m = 1, 85°: the ray through that triple point (ψ = 1.4832) and the ray where the shadowing
+    switch leaves the disk (ψ = 1.5203) were missing, 1.2e-9 off at a reported 3.4e-11."""
+    offsets = np.geomspace(max(mu, 1e-300) * 1e-3, 0.5, _PSI_GRADED)
+    centres = (np.pi / 2, 3 * np.pi / 2) if top > np.pi else (np.pi / 2,)
+    scan = np.concatenate([np.linspace(0.0, top, _PSI_SCAN + 1)] + [c + s * offsets for c in centres for s in (-1, 1)])
+    scan = np.unique(scan[(scan >= 0) & (scan <= top)])
+    radii = _kinks_inside(model, mu, st, scan)                     # (k, n), NaN outside the ray
+    inside = np.isfinite(radii)
+    events = [_bisect(model, mu, st, scan, np.nonzero(inside[k, :-1] != inside[k, 1:])[0],
+                      lambda r, k=k: np.isfinite(r[k])) for k in range(radii.shape[0])]
+    rho = ray_length(mu, st, np.cos(scan))
+    for i in range(radii.shape[0]):
+        for j in range(i + 1, radii.shape[0]):
+            gap = radii[i] - radii[j]
+            apart = np.abs(gap) > 64 * _EPS * rho                  # duplicates and rounding ties are no crossing
+            where = np.nonzero(apart[:-1] & apart[1:] & (np.sign(gap[:-1]) != np.sign(gap[1:])))[0]
+            events.append(_bisect(model, mu, st, scan, where, lambda r, i=i, j=j: r[i] > r[j]))
+    return np.concatenate(events) if events else np.empty(0)
+
+
+def _bisect(model, mu, st, scan, where, predicate):
+    """ψ in (scan[w], scan[w + 1]) for each w in ``where`` where ``predicate(kink radii)`` flips."""
+    if where.size == 0:
+        return np.empty(0)
+    a, b = scan[where], scan[where + 1]
+    left = predicate(_kinks_inside(model, mu, st, a))
+    for _ in range(52):
+        mid = 0.5 * (a + b)
+        same = predicate(_kinks_inside(model, mu, st, mid)) == left
+        a, b = np.where(same, mid, a), np.where(same, b, mid)
+    return 0.5 * (a + b)
+
+
+def _kinks_inside(model, mu, st, psi):
+    """The declared radial kinks along the rays at ``psi``, shape (kinks, rays), NaN where a kink does
+    not lie inside its ray (0 < r, inside the rim)."""
+    cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+    rho = ray_length(mu, st, cos_psi)
+    mu_a, st_a = np.full(psi.shape, mu), np.full(psi.shape, st)
+    with np.errstate(invalid="ignore"):
+        return np.stack([np.where((r > 0) & (gap > 0), r, np.nan)
+                         for r, gap in _radial_kinks(model, mu_a, st_a, cos_psi, sin_psi, rho)])
 
 
 def _constant_radii(model):
@@ -189,10 +250,10 @@ def _rays(models, index, elem, psi, mu, st, rtol, atol):
     cols += [_x_of(10.0 ** -k * np.ones_like(psi)) for k in range(1, depth + 1)]
     for k in np.unique(index[elem]):
         rows = index[elem] == k
-        for r in _radial_kinks(models[k], mu[rows], st[rows], cos_psi[rows], sin_psi[rows], rho[rows]):
+        for r, gap in _radial_kinks(models[k], mu[rows], st[rows], cos_psi[rows], sin_psi[rows], rho[rows]):
             col = np.full(psi.shape, np.nan)
             with np.errstate(invalid="ignore", divide="ignore"):
-                col[rows] = np.where((r > 0) & (r < rho[rows]), _x_of(r / rho[rows]), np.nan)
+                col[rows] = np.where((r > 0) & (gap > 0), _x_of_gap(gap / rho[rows]), np.nan)
             cols.append(col)
     bp = np.sort(np.stack(cols, -1), axis=-1)
 
@@ -217,7 +278,7 @@ def _rays(models, index, elem, psi, mu, st, rtol, atol):
             # rounding noise of f: a quarter of its change when V_x moves by 2 ulp (V_x carries ½ ulp;
             # near grazing L + V cancels in x), summed without cancellation: a bound, not a guess
             V[..., 0] += 2 * np.spacing(V[..., 0])
-            noise = 0.25 * np.abs(models[k](L, V) - f) + 4 * _EPS * np.abs(f)
+            noise = 0.25 * np.abs(models[k](L, V) - f) + _rounding_ulps(models[k]) * _EPS * np.abs(f)
             jac = r * 4 * p * w2[rows] * w[rows]          # r dr/dx
             high[rows] = np.where(f == 0, 0.0, f * jac)
             rounding[rows] = np.where(np.isfinite(noise), noise * jac, 0.0)
@@ -226,9 +287,22 @@ def _rays(models, index, elem, psi, mu, st, rtol, atol):
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=256)
 
 
+def _rounding_ulps(model):
+    """Relative rounding of f in ulps beyond what a move of V_x shows: the lobe's declared rounding
+    (cos^n β carries n ulps of cos β, which here is R·V from the rounded V: Phong-type lobes of
+    n = 1e4 at normal incidence were 1.1e-12 off, a bias, at a reported 7.7e-13), at least 4."""
+    return max(4.0, float(model.lobe.rounding)) if model.lobe is not None else 4.0
+
+
 def _x_of(frac):
     """x with r/ρ = 1 − (1 − x)⁴ = ``frac``."""
     return -np.expm1(0.25 * np.log1p(-frac))
+
+
+def _x_of_gap(gap):
+    """x with (ρ − r)/ρ = (1 − x)⁴ = ``gap``: a kink next to the rim keeps its place in x, where
+    r/ρ rounds to 1 (N·V = N·L at 90° − 1e-9 lies 1e-22 inside the rim, at 1 − x ≈ 4e-6)."""
+    return -np.expm1(0.25 * np.log(gap))
 
 
 def _decades(mu):
@@ -239,18 +313,37 @@ def _decades(mu):
 
 
 def _radial_kinks(model, mu, st, cos_psi, sin_psi, rho):
-    """Radii along the rays where the model's integrand has a kink or a jump (arrays, NaN = none)."""
+    """Where the model's integrand has a kink or a jump along the rays: a list of pairs (r, ρ − r)
+    of arrays (NaN = none), the distance to the rim free of cancellation where it is known."""
     a = st * cos_psi                    # c·u = −a: |p|² = sin²θ − 2 a r + r²
-    out = []
     levels = [np.broadcast_to(c, mu.shape) for c in model.nv_levels(mu)] + [mu]
     frame = _frame(model)
     if frame is SCATTERING:
         levels += [np.full(mu.shape, c) for c in model.lobe.nv_levels()]
-    for c in levels:                    # |p|² = 1 − c²: r² − 2 a r + sin²θ − 1 + c² = 0
-        disc = a * a + (1 - st) * (1 + st) - c * c
-        with np.errstate(invalid="ignore"):
-            root = np.sqrt(disc)
-        out += [a - root, a + root]
+    # ρ = a + √(a² + μ²); the level circle |p|² = 1 − c² is crossed at r = a ± √(a² + μ² − c²), the
+    # smaller root from the product of the two, (c − μ)(c + μ) (exactly 0 for N·V = N·L, whose circle
+    # passes through c), and ρ − r = c² / (√(a² + μ²) + √(a² + μ² − c²)) at the outer crossing: no
+    # cancellation near c nor near the rim
+    out = []
+    reach = np.sqrt(a * a + mu * mu)
+    for c in levels:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            root = np.sqrt(a * a + mu * mu - c * c)
+            product = (c - mu) * (c + mu)
+            outer = np.where(a >= 0, a + root, product / (a - root))
+            inner = np.where(a >= 0, product / (a + root), a - root)
+        out += [(inner, reach + root), (outer, c * c / (reach + root))]
+    # elsewhere ρ − r by subtraction: a kink within rounding of the rim (the cut R·V = 0 at normal
+    # incidence is the rim itself) is not a kink of the ray integral
+    for r in _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame):
+        gap = rho - r
+        out.append((r, np.where(gap > 4 * _EPS * rho, gap, 0.0)))
+    return out
+
+
+def _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame):
+    """Radii of the kinks other than N·V levels (:func:`_radial_kinks`)."""
+    out = []
     if frame is MIRROR:                 # R·V = 0: (a² + μ²) r² − 2 a r + sin²θ − μ² = 0, μ ν = a r − sin²θ ≥ 0
         q2, q1, q0 = a * a + mu * mu, -2 * a, st * st - mu * mu
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -286,22 +379,38 @@ def _torrance_sparrow_kinks(mu, a):
     shadowing 2 N·H N·L / L·H = 1  ⟺  μ z = a r − μ²  ⟹  r = 4 a μ² / (μ² + a²);
     masking   2 N·H N·V / V·H = 1  ⟺  μ z = 2 r² − 3 a r − μ²  ⟹
     4 r³ − 12 a r² + (9 a² − 3 μ²) r + 4 a μ² = 0 (with z² = μ² + 2 a r − r²).
-    Roots of the squared equations are kept only where the unsquared sign holds."""
+    Roots of the squared equations are kept only where the unsquared sign holds.
+
+    The cubic is solved in s = 2r − 3a, s³ + 3a s² − 3μ² s − a μ² = 0: near grazing its r-form has a
+    near-double root at r = 3a/2 (the two roots 1e-11 apart at 90° − 1e-9, below the √ε resolution
+    of a double root, so that they came and went between neighbouring rays), which in s are ±μ/√3,
+    well separated.  The root near r = 0 (s ≈ −3a) is taken from the product of the roots, −a μ²."""
     out = []
     with np.errstate(invalid="ignore", divide="ignore"):
         r_s = 4 * a * mu * mu / (mu * mu + a * a)
         out.append(np.where(a * r_s - mu * mu >= 0, r_s, np.nan))
-        coef = np.stack([np.full_like(a, 4.0), -12 * a, 9 * a * a - 3 * mu * mu, 4 * a * mu * mu], -1)
-        roots = _cubic_roots(coef)
-        for r in roots:
-            r = _newton(coef, r)
-            ok = 2 * r * r - 3 * a * r - mu * mu >= -1e-12
+        coef = np.stack([np.ones_like(a), 3 * a, -3 * mu * mu, -a * mu * mu], -1)
+        s_roots = np.stack(_cubic_roots(coef, complex_roots=True), -1)          # (m, 3) complex
+        r_roots = 0.5 * (s_roots + 3 * a[:, None])
+        near_zero = np.argmin(np.abs(r_roots), -1)
+        others = np.prod(np.where(np.arange(3) == near_zero[:, None], 1.0, r_roots), -1)
+        np.put_along_axis(r_roots, near_zero[:, None], (-a * mu * mu / others)[:, None], -1)
+        # in ascending order, so that a root keeps its slot from ray to ray (:func:`_kink_events`)
+        r_roots = np.take_along_axis(r_roots, np.argsort(r_roots.real, -1), -1)
+        for k in range(3):
+            z = r_roots[:, k]
+            real = np.abs(z.imag) <= 1e-7 * np.maximum(np.abs(z.real), 1e-300)
+            r = np.where(real, z.real, np.nan)
+            sv = 2 * r - 3 * a
+            rhs = r * sv - mu * mu
+            ok = rhs >= -8 * _EPS * (np.abs(r * sv) + mu * mu)
             out.append(np.where(ok, r, np.nan))
     return out
 
 
-def _cubic_roots(coef):
-    """Real roots (NaN where complex) of c0 r³ + c1 r² + c2 r + c3, vectorised via companion matrices."""
+def _cubic_roots(coef, complex_roots=False):
+    """Real roots (NaN where complex; all three as complex numbers with ``complex_roots``) of
+    c0 r³ + c1 r² + c2 r + c3, vectorised via companion matrices."""
     c = coef / coef[:, :1]
     comp = np.zeros((c.shape[0], 3, 3))
     comp[:, 0, :] = -c[:, 1:]
@@ -310,15 +419,7 @@ def _cubic_roots(coef):
     ev = np.full((c.shape[0], 3), np.nan + 0j)
     if good.any():
         ev[good] = np.linalg.eigvals(comp[good])
+    if complex_roots:
+        return list(ev.T)
     real = np.abs(ev.imag) <= 1e-7 * np.maximum(np.abs(ev.real), 1e-300)
     return list(np.where(real, ev.real, np.nan).T)
-
-
-def _newton(coef, r, steps=3):
-    for _ in range(steps):
-        p = ((coef[:, 0] * r + coef[:, 1]) * r + coef[:, 2]) * r + coef[:, 3]
-        dp = (3 * coef[:, 0] * r + 2 * coef[:, 1]) * r + coef[:, 2]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            step = np.where(dp != 0, p / dp, 0.0)
-        r = r - np.where(np.isfinite(step), step, 0.0)
-    return r

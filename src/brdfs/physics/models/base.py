@@ -32,7 +32,9 @@ What is known in closed form (``None`` where nothing is):
 * ``truncation_error(L, V)``: a bound of the error of an evaluation of f beyond its rounding
   (a series' truncation); zero by default.
 
-* ``grazing_law()``: the law of a(θ) as cos θ → 0 (:class:`GrazingLaw`).
+* ``grazing_law()``: the law of a(θ) as cos θ → 0 (:class:`GrazingLaw`); ``diverges_at_grazing``:
+  a(θ) → ∞ there; ``grazing_limit_model()``: the integrand whose albedo is a(90°), which every
+  albedo method integrates at exactly 90° (the model itself unless it is singular at N·L = 0).
 * ``limit_cos_power``: k with lim_{n→∞} a(θ) = cos^k θ for θ < 90° (cosine-lobe models).
 * ``limit_albedo_90``: lim_{n→∞} a(90°).
 * ``exact_albedo(theta_deg)``: a(θ) in closed form at the angles where one exists, else NaN.
@@ -163,6 +165,12 @@ class BRDF:
     #: The integrand carries the min of eq. 2.10 (Torrance–Sparrow's G): its masking and shadowing
     #: switches are kinks (the disk reference finds them along its rays in closed form).
     torrance_sparrow_switches: ClassVar[bool] = False
+    #: a(θ_L) → ∞ as θ_L → 90° (Ward, the original Phong and Blinn, Cook–Torrance with G = 1): at
+    #: exactly 90° every albedo method answers +inf with error 0 and status ``"diverged"``.
+    diverges_at_grazing: ClassVar[bool] = False
+    #: Bound of |f as evaluated / f of the exact model − 1| (a model built from tables: the pumped
+    #: models' ε, :mod:`brdfs.numerics.pumping`): :func:`brdfs.albedo` adds it × |a| to every error.
+    evaluation_rtol: ClassVar[float] = 0.0
 
     def __call__(self, L, V):
         L = np.asarray(L, float)
@@ -206,6 +214,13 @@ class BRDF:
         one array (of the shape of ``cos_psi``) per kink: by default the constant radii of
         :meth:`scattering_radius_levels`."""
         return [np.full(np.shape(cos_psi), r) for r in self.scattering_radius_levels()]
+
+    def half_vector_factors(self):
+        """``(distribution, S)`` where f(L, V) = D(H) S(N·L, N·V): D the distribution's density of
+        the half vector (it integrates D over the azimuth about N in closed form,
+        ``azimuthal_integral``) and S any function of the polar angles (Smith's masking), so that the
+        albedo is a 1-D integral over θ_V (:mod:`brdfs.numerics.integrate.polar`).  None by default."""
+        return None
 
     def azimuth_weight(self, cos_beta):
         """The radial weight w(β) per unit of the lobe variable t that multiplies the closed-form

@@ -81,6 +81,7 @@ class BlinnOriginal(_BlinnFamily):
     # conserves_energy = False: divided by cos θ_L, its albedo diverges at grazing incidence (sec. 2.2.1)
     conserves_energy = False
     reciprocal = False
+    diverges_at_grazing = True   # a(θ) cos θ → the reciprocal Blinn's a(90°) > 0
 
     def _eval(self, L, V, nl, nv):
         return self.C * positive_power(n_dot_h(L, V), self.n) / nl

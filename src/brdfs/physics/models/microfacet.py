@@ -74,6 +74,7 @@ class Ward(_BeckmannFamily):
     # conserves_energy = False: a(θ) ~ K/√(cos θ) diverges at grazing incidence (sec. 2.2.1, :func:`ward_constant`)
     conserves_energy = False
     accuracy_families = {"ward": ("m", {})}
+    diverges_at_grazing = True   # a(θ) √cos θ → K (grazing_law)
     sqrt_at_horizon = True
     closed_form_azimuth = (HALF, "sqrt(nv/nl)")
 
@@ -195,8 +196,18 @@ class CookTorrance(_BeckmannFamily):
         return None
 
     def grazing_limit_model(self):
-        """With Smith's G the BRDF is singular at N·L = 0; a(90°) integrates :class:`SmithGrazingLimit`."""
-        return SmithGrazingLimit(self.m, self.C) if self.G == "smith" else self
+        """At N·L = 0 the BRDF is 0/0 with Smith's G and with eq. 2.10's; a(90°) integrates
+        :class:`SmithGrazingLimit` or :class:`TorranceSparrowGrazingLimit`."""
+        if self.G == "smith":
+            return SmithGrazingLimit(self.m, self.C)
+        if self.G == "torrance_sparrow":
+            return TorranceSparrowGrazingLimit(self.m, self.C)
+        return self
+
+    @property
+    def diverges_at_grazing(self):
+        """G = 1: a(μ) μ → C m/(2√π) (:meth:`grazing_law`)."""
+        return self.G == "none"
 
     @property
     def closed_form_azimuth(self):
@@ -206,6 +217,16 @@ class CookTorrance(_BeckmannFamily):
     def azimuth_weight(self, cos_beta):
         """C e^(−tan²δ/m²)/(4π m² cos⁴δ) · 4 · sin δ dδ/dt · cos δ = C/(8π) (the kernel keeps L·H/cos δ)."""
         return self.C / (8 * np.pi) + 0 * cos_beta
+
+    def half_vector_factors(self):
+        """Smith's G: f = D(H) · C G*(N·L) G*(N·V)/(4 N·L N·V) with D the Beckmann density
+        (:mod:`brdfs.numerics.integrate.polar`); eq. 2.10's G depends on L·H: None."""
+        if self.G != "smith":
+            return None
+        return self.distribution, self._smith_over_4_nl_nv
+
+    def _smith_over_4_nl_nv(self, nl, nv):
+        return self.C * g_smith_beckmann(nl, nv, self.m) / (4 * nl * nv)
 
     @property
     def kink_at_normal(self):
@@ -242,6 +263,7 @@ class CookTorranceFresnel(CookTorrance):
     ior_im: float = field(kw_only=True, default=0.0)
     name = "cook_torrance_fresnel"
     closed_form_azimuth = None
+    half_vector_factors = BRDF.half_vector_factors
     grazing_law = BRDF.grazing_law
     grazing_limit_model = BRDF.grazing_limit_model
     exact_albedo = BRDF.exact_albedo
@@ -274,10 +296,11 @@ def ward_constant(m, C=1.0):
     """K_Ward = lim √μ a(μ) for Ward (eq. 2.8).
 
     √μ a = ∫ C e^(−tan²δ/m²)/(4π m²) √(N·V) dω_V → (L horizontal, dω_V = 4 L·H dω_H,
-    N·V = sin 2δ cos φ, L·H = sin δ cos φ):
-    K = C/(π m²) · ∫cos^{3/2}φ dφ · ∫ e^(−tan²δ/m²) √(sin 2δ) sin²δ dδ
-      = C/(π m²) · √π Γ(5/4)/Γ(7/4) · √2 m^{7/2} ∫₀^∞ u^{5/2} (1 + m²u²)^{−5/2} e^{−u²} du
-      = C Γ(5/4) U(7/4, 1/4, 1/m²) / (√(2π) m²)   (tan δ = m u; the limit by dominated convergence).
+    N·V = sin 2δ cos φ, L·H = sin δ cos φ)::
+
+        K = C/(π m²) · ∫cos^{3/2}φ dφ · ∫ e^(−tan²δ/m²) √(sin 2δ) sin²δ dδ
+          = C/(π m²) · √π Γ(5/4)/Γ(7/4) · √2 m^{7/2} ∫₀^∞ u^{5/2} (1 + m²u²)^{−5/2} e^{−u²} du
+          = C Γ(5/4) U(7/4, 1/4, 1/m²) / (√(2π) m²)   (tan δ = m u; the limit by dominated convergence).
     """
     inner = _v_integral(lambda u: u ** 2.5 * (1 + (m * u) ** 2) ** -2.5)
     scale = C / (np.pi * m * m) * np.sqrt(np.pi) * gamma(1.25) / gamma(1.75) * np.sqrt(2.0) * m ** 3.5
@@ -285,9 +308,13 @@ def ward_constant(m, C=1.0):
 
 
 def ward_cosmin_limit(m, C=1.0):
-    """a(90°) of the corrected Ward (eq. 3.36): f = D/N·V at N·L = 0, so
-    a = C/(4π m²) ∫ e^(−tan²δ/m²) 4 L·H dω_H = 2C/(π m²) ∫ e^(−tan²δ/m²) sin²δ dδ
-      = 2C m/π ∫₀^∞ u² (1 + m²u²)^(−2) e^(−u²) du = C Γ(3/2) U(3/2, 1/2, 1/m²)/(π m²)."""
+    """a(90°) of the corrected Ward (eq. 3.36).
+
+    f = D/N·V at N·L = 0, so::
+
+        a = C/(4π m²) ∫ e^(−tan²δ/m²) 4 L·H dω_H = 2C/(π m²) ∫ e^(−tan²δ/m²) sin²δ dδ
+          = 2C m/π ∫₀^∞ u² (1 + m²u²)^(−2) e^(−u²) du = C Γ(3/2) U(3/2, 1/2, 1/m²)/(π m²).
+    """
     inner = _v_integral(lambda u: u * u * (1 + (m * u) ** 2) ** -2.0)
     scale = 2 * C * m / np.pi
     return Estimate(scale * inner.value, scale * inner.error + 4 * _EPS * scale * inner.value)
@@ -313,3 +340,25 @@ class SmithGrazingLimit(BRDF):
         e, nh = beckmann_exponential(L, V, self.m)
         d = self.C * e / (4 * np.pi * self.m ** 2 * nh ** 4)
         return d * np.sqrt(np.pi / 2) / self.m * g_smith_beckmann(np.ones_like(nv), nv, self.m) / nv
+
+
+@dataclass(frozen=True)
+class TorranceSparrowGrazingLimit(BRDF):
+    """The integrand of lim a(θ_L), θ_L → 90°, of Cook–Torrance with G of eq. 2.10.
+
+    At N·L → 0 the shadowing term of eq. 2.10 is the least, G → 2 N·H N·L / L·H, so
+    G/(N·L N·V) → 2 N·H / (L·H N·V) and f_lim = C D · 2 N·H / (4π m² cos⁴δ L·H N·V); its albedo is
+    C (:meth:`CookTorrance.grazing_law`)."""
+
+    m: float
+    C: float = 1.0
+    name = "cook_torrance_ts_grazing_limit"
+
+    @property
+    def lobe(self):
+        return MicrofacetLobe(Beckmann(self.m))
+
+    def _eval(self, L, V, nl, nv):
+        tan2, nh, h_norm = half_vector_parts(L, V)
+        d = self.C * Beckmann(self.m).slope_weight(tan2) / (4 * np.pi * self.m ** 2 * nh ** 4)
+        return d * 2 * nh / (0.5 * h_norm * nv)

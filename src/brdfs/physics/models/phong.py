@@ -141,6 +141,7 @@ class PhongOriginal(_PhongFamily):
     # incidence (sec. 2.2, Figure 2.1; a(89.9°) ≈ 51 for n = 20)
     conserves_energy = False
     reciprocal = False
+    diverges_at_grazing = True   # a(θ) cos θ → the reciprocal Phong's a(90°) = c B(3/2, (n+1)/2) > 0
 
     def _eval(self, L, V, nl, nv):
         return self._lobe_value(L, V) / nl

@@ -71,6 +71,13 @@ class Pumped(BRDF):
         return True
 
     @property
+    def evaluation_rtol(self):
+        """ε of this level: |f̃ / f − 1| ≤ ε = (1 + ε_base) / (1 − δ) − 1, with ε_base the tabulated
+        model's own (``table.model_rtol``) and δ the table's relative error (``table.rtol``;
+        :mod:`brdfs.numerics.pumping`, "Error budget")."""
+        return (1.0 + self.table.model_rtol) / (1.0 - self.table.rtol) - 1.0
+
+    @property
     def lobe(self):
         return self.base.lobe
 

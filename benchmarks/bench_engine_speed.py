@@ -1,0 +1,112 @@
+"""Benchmark: the engine on one angle at a time and at loose tolerances, as ratios measured in one run.
+
+Issue 24, "Fast on one angle and at loose tolerances".  For the five curves of the speed benchmark
+(:mod:`bench_albedo_curves`: Phong n = 150, Ward m = 0.1, Cook–Torrance m = 0.1 with eq. 2.10's G,
+phong_cosmin n = 128, blinn_cosmin n = 2) it measures, interleaved so that a change of the shared
+machine's load hits all alike:
+
+* ``curve_ms_per_point``: one ``albedo`` call on the 100-point curve θ = 0 … 89°, divided by 100;
+* ``single_ms_1e-10`` / ``single_ms_1e-6``: the mean over 12 angles of one ``albedo`` call per angle;
+* ``single_over_curve`` = single (1e-10) / per-point (target ≤ 5) and ``loose_over_tight`` =
+  single (1e-6) / single (1e-10) (target ≤ ½).
+
+Each time is the best of ``ROUNDS`` rounds.  For the Smith-masked models (GGX, Beckmann–Smith at
+α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
+(BRDF or kernel values) of single calls at 1e-10 at 12 angles from 0° to 89.9° — median and maximum
+(target: median ≤ 5,000) — and the median time.  Evaluation counts are exact; times are ratios on a
+shared machine, never absolute targets.  Writes results/benchmarks/engine_speed.csv.
+"""
+import time
+
+import numpy as np
+import pandas as pd
+
+from brdfs.numerics.albedo import albedo
+from brdfs.pipeline.io import REPO_ROOT
+from brdfs.physics.models import model
+
+CURVES = [("phong", {"n": 150}), ("ward", {"m": 0.1}), ("cook_torrance", {"m": 0.1}),
+          ("phong_cosmin", {"n": 128}), ("blinn_cosmin", {"n": 2})]
+SMITH = [("ggx", {"alpha": 0.3}), ("beckmann", {"alpha": 0.3}), ("cook_torrance", {"m": 0.3, "G": "smith"})]
+CURVE_THETA = np.linspace(0.0, 89.0, 100)
+SINGLE_THETA = np.linspace(0.0, 89.0, 12)
+SMITH_THETA = np.linspace(0.0, 89.9, 12)
+ROUNDS = 3
+TIGHT, LOOSE = 1e-10, 1e-6
+SINGLE_TARGET, LOOSE_TARGET, EVALUATIONS_TARGET = 5.0, 0.5, 5000
+
+
+def _label(name, params):
+    return f"{name} " + " ".join(f"{k}={v}" for k, v in params.items())
+
+
+def _seconds(fn):
+    start = time.perf_counter()
+    fn()
+    return time.perf_counter() - start
+
+
+def _curve_runs(brdf):
+    """The three timed runs of one curve model: seconds per point, per single call at each rtol."""
+    return {
+        "curve_ms_per_point": lambda: _seconds(lambda: albedo(brdf, CURVE_THETA, rtol=TIGHT)) / CURVE_THETA.size,
+        "single_ms_1e-10": lambda: _seconds(lambda: [albedo(brdf, float(t), rtol=TIGHT) for t in SINGLE_THETA])
+        / SINGLE_THETA.size,
+        "single_ms_1e-6": lambda: _seconds(lambda: [albedo(brdf, float(t), rtol=LOOSE) for t in SINGLE_THETA])
+        / SINGLE_THETA.size,
+    }
+
+
+def curve_ratios():
+    """Best-of-``ROUNDS`` times of every curve model, all models interleaved in each round."""
+    brdfs = {_label(n, p): model(n, **p) for n, p in CURVES}
+    for brdf in brdfs.values():                              # warm up (imports, caches)
+        albedo(brdf, 30.0)
+    runs = {label: _curve_runs(brdf) for label, brdf in brdfs.items()}
+    best = {label: {k: np.inf for k in r} for label, r in runs.items()}
+    for _ in range(ROUNDS):
+        for label, r in runs.items():
+            for key, run in r.items():
+                best[label][key] = min(best[label][key], run())
+    rows = []
+    for label, b in best.items():
+        row = {"case": label, **{k: 1e3 * v for k, v in b.items()}}
+        row["single_over_curve"] = b["single_ms_1e-10"] / b["curve_ms_per_point"]
+        row["loose_over_tight"] = b["single_ms_1e-6"] / b["single_ms_1e-10"]
+        row["meets_targets"] = bool(row["single_over_curve"] <= SINGLE_TARGET and row["loose_over_tight"] <= LOOSE_TARGET)
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def smith_evaluations():
+    """Evaluations and time of single calls at 1e-10 for the Smith-masked models."""
+    rows = []
+    for name, params in SMITH:
+        brdf = model(name, **params)
+        albedo(brdf, 30.0)
+        evaluations, seconds, statuses = [], [], []
+        for t in SMITH_THETA:
+            start = time.perf_counter()
+            est = albedo(brdf, float(t), rtol=TIGHT)
+            seconds.append(time.perf_counter() - start)
+            evaluations.append(est.evaluations)
+            statuses.append(str(est.status))
+        rows.append({"case": _label(name, params), "median_evaluations": float(np.median(evaluations)),
+                     "max_evaluations": int(max(evaluations)), "median_ms": 1e3 * float(np.median(seconds)),
+                     "all_converged": all(s == "converged" for s in statuses),
+                     "meets_targets": bool(np.median(evaluations) <= EVALUATIONS_TARGET)})
+    return pd.DataFrame(rows)
+
+
+def main():
+    curves = curve_ratios()
+    print(curves.to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
+    smith = smith_evaluations()
+    print(smith.to_string(index=False, float_format=lambda x: f"{x:.4g}"), flush=True)
+    out = REPO_ROOT / "results" / "benchmarks" / "engine_speed.csv"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    pd.concat([curves.assign(kind="curve"), smith.assign(kind="smith")]).to_csv(out, index=False, float_format="%.4g")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,105 @@
+"""Albedo of a microfacet model whose masking depends on the polar angles only: one dimension, in θ_V.
+
+A model declares ``half_vector_factors() = (distribution, S)`` when its BRDF is
+
+    f(L, V) = D(H) S(N·L, N·V)                                            (1)
+
+with D the distribution of microfacet normals (a function of the half vector's tilt δ alone) and S
+anything of the two polar angles: Smith's G2/(4 N·L N·V) of the GGX and Beckmann models
+(Walter et al. 2007, eq. 20; RTR4 eq. 9.34, F = 1), Cook–Torrance with the thesis's Smith G
+(eq. 2.9 with eq. 1.38).  Then, with V at polar angle θ_V and azimuth φ about N (L at φ = 0),
+
+    a(θ_L) = ∫₀^{π/2} 2 sin θ_V cos θ_V S(cos θ_L, cos θ_V) Φ(θ_V) dθ_V,   Φ = ∫₀^π D dφ,
+
+and Φ is known in closed form: h = L + V has h_z = cos θ_L + cos θ_V and
+|h_xy|² = sin²θ_L + sin²θ_V + 2 sin θ_L sin θ_V cos φ, so
+
+    tan²δ = |h_xy|²/h_z² = q + b (1 + cos φ),  q = tan²((θ_L − θ_V)/2),  b = 2 sin θ_L sin θ_V / h_z²,
+
+both formed without cancellation (q is the tilt at the mirror azimuth φ = π), and the distribution
+integrates D over φ (``azimuthal_integral(q, b)``: rational for GGX, Kummer functions for Beckmann).
+Every V with θ_V < π/2 lies above the horizon for every φ, so no cut in φ is needed.
+
+The radial integrand is smooth in θ_V (in cos θ_V it would carry √(1 − cos θ_V) through sin θ_V);
+its scales are the lobe around the mirror angle θ_V = θ_L, of width 2 arctan α, and the Smith term's
+turn at cos θ_V ~ α (the model's ``nv_levels``): both become breakpoints.  The adaptive
+Gauss–Kronrod driver reports the Gauss sum with SAFETY Σ|K − G| plus the kernel's rounding bound.
+``evaluations`` counts the kernel's nodes.  Shares no code with :mod:`.hemisphere` or :mod:`.disk`:
+the tests check it against both and against nested ``scipy.integrate.quad``.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, integrate
+from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
+
+_EPS = np.finfo(float).eps
+#: Multiples of the lobe's width 2 arctan α on either side of the mirror angle, cut as breakpoints.
+LOBE_WIDTHS = (0.25, 1.0, 4.0)
+#: Relative rounding of S (Smith's Λ: square roots, erfc and exp of a few rounded cosines), in ulps.
+S_ROUNDING = 32.0
+
+
+def supports(model) -> bool:
+    """Whether ``model`` factors as eq. (1): it declares ``half_vector_factors()`` (None by default)."""
+    return model.half_vector_factors() is not None
+
+
+def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
+    """Albedo of ``models[i]`` at ``theta_deg[i]`` (every model :func:`supports`), in one adaptive run."""
+    models = list(models)
+    theta_deg = np.asarray(theta_deg, float).ravel()
+    if len(models) != theta_deg.size:
+        raise ValueError("albedo_many needs one model per angle")
+    bad = [m for m in models if not supports(m)]
+    if bad:
+        raise ValueError(f"the polar route needs a model that declares half_vector_factors, got {bad[0].name!r}")
+    theta_l = np.radians(theta_deg)
+    index = first_of_model(models)
+    factors = {k: models[k].half_vector_factors() for k in np.unique(index)}
+
+    def integrand(theta_v, elem):
+        value, rounding = np.empty_like(theta_v), np.empty_like(theta_v)
+        for k in np.unique(index[elem]):
+            rows = index[elem] == k
+            value[rows], rounding[rows] = radial_integrand(*factors[k], theta_l[elem[rows], None], theta_v[rows])
+        return NodeValues(value, value, rounding)
+
+    return integrate(integrand, breakpoints(models, theta_l), rtol=rtol, atol=atol, fill=FILL_CHEAP)
+
+
+def radial_integrand(distribution, S, theta_l, theta_v):
+    """2 sin θ_V cos θ_V S Φ at polar angles θ_V (module docstring), with its rounding bound."""
+    mu_l, mu_v = np.cos(theta_l), np.cos(theta_v)
+    s_l, s_v = np.sin(theta_l), np.sin(theta_v)
+    h_z = mu_l + mu_v
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        q = np.tan(0.5 * (theta_l - theta_v)) ** 2
+        b = 2.0 * s_l * s_v / (h_z * h_z)
+        phi, phi_err = distribution.azimuthal_integral(q, b)
+        weight = 2.0 * s_v * mu_v * S(mu_l, mu_v)
+        value = weight * phi
+    value = np.where(phi == 0, 0.0, value)       # D vanishes (e^−q/α² underflows): zero, not 0·∞
+    rounding = np.abs(weight) * phi_err + S_ROUNDING * _EPS * np.abs(value)
+    return value, np.where(np.isfinite(rounding), rounding, 0.0)
+
+
+def breakpoints(models, theta_l):
+    """Per element, ascending and NaN-padded: 0, π/2, the mirror angle θ_L and θ_L ± k · 2 arctan α
+    (:data:`LOBE_WIDTHS`), and the polar angles of the model's ``nv_levels`` (the Smith term's scale)."""
+    rows = [None] * len(models)
+    for members in indices_by_model(models):
+        idx = np.array(members)
+        brdf = models[idx[0]]
+        distribution, _ = brdf.half_vector_factors()
+        t = theta_l[idx]
+        width = 2.0 * np.arctan(distribution.alpha)
+        cand = [t] + [t + s * k * width for k in LOBE_WIDTHS for s in (-1.0, 1.0)]
+        cand += [np.broadcast_to(np.arccos(np.clip(c, 0.0, 1.0)), t.shape) for c in brdf.nv_levels(np.cos(t))]
+        cand = np.stack(cand, 1)
+        cand = np.where((cand > 0) & (cand < 0.5 * np.pi), cand, 0.0)
+        for i, row in zip(members, cand):
+            rows[i] = np.unique(np.concatenate([[0.0, 0.5 * np.pi], row]))
+    width = max(r.size for r in rows)
+    return np.vstack([np.pad(r, (0, width - r.size), constant_values=np.nan) for r in rows])

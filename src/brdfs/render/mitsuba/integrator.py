@@ -1,0 +1,189 @@
+"""``brdfs_path``: a unidirectional path tracer for Mitsuba 3 written in Python, one bounce at a time.
+
+Per camera ray the estimator is the usual one of pbrt-v4's ``PathIntegrator`` and Mitsuba's
+``path`` plugin (Veach 1997, ch. 9):
+
+* at every surface vertex, **next-event estimation**: one emitter direction from
+  ``scene.sample_emitter_direction`` (spherical area lights, the constant or map sky), a shadow ray,
+  and the contribution ``β f cos / p_light`` weighted by the power heuristic
+  ``w_light = p_light² / (p_light² + p_bsdf²)`` (a delta emitter has ``p_bsdf = 0``);
+* the path continues by **BSDF sampling** (the plugin's ``sample``: the model's own strategy, and
+  one-sample MIS over a material's lobes inside the plugin); where the sampled ray meets an emitter
+  (or leaves the scene into the sky), its radiance is added with ``w_bsdf = p_bsdf² / (p_bsdf² +
+  p_light²)``;
+* **Russian roulette** from depth ``rr_depth`` on: a path survives with probability
+  ``q = min(0.95, max β)`` and its throughput is divided by q (unbiased; this is *not* the 0/1
+  accept/reject sampling that section 4.2.4 of the thesis calls Russian roulette);
+  ``max_depth = -1`` means no fixed limit.
+
+The bounce loop is a Python ``while`` loop that ``@dr.syntax`` turns into ``dr.while_loop``: with
+Dr.Jit's default flags it is traced once into one kernel (fast); after :func:`wavefront` (symbolic
+calls and loops switched off) it runs one evaluated iteration at a time, so that a BSDF implemented
+in numpy (the generic plugin ``brdfs_model``) can read its arguments. The integrator writes two AOVs: ``id``,
+the index + 1 of the BSDF of the shape the camera ray hits first (:func:`scene_bsdfs`; 0 for the
+background), the object ID buffer of :mod:`brdfs.render.mitsuba.metrics`; and ``cos_v``, cos θ_V
+at that hit (0 for the background), for the material editor's S·a(θ_V) of Figure 3.8.
+
+The lines marked ``# MUTATION:<name>`` are the switches of ``make check-mutations``
+(``workflow/scripts/check_mutations.sh`` rewrites each in a temporary copy and expects a named
+test to fail).
+"""
+from __future__ import annotations
+
+import functools
+
+import drjit as dr
+import mitsuba as mi
+
+NAME = "brdfs_path"
+#: The depth limit of max_depth = -1 (never reached: Russian roulette ends the paths).
+UNLIMITED = 1 << 30
+#: Largest survival probability of Russian roulette (paths never live forever).
+RR_MAX_SURVIVAL = 0.95
+
+
+def wavefront(enabled: bool = True) -> None:
+    """Evaluate calls and loops one kernel at a time (a numpy BSDF can then read its inputs);
+    ``enabled = False`` restores Dr.Jit's symbolic default (one traced kernel, fast)."""
+    dr.set_flag(dr.JitFlag.SymbolicCalls, not enabled)
+    dr.set_flag(dr.JitFlag.SymbolicLoops, not enabled)
+
+
+def power_heuristic(pdf_a, pdf_b):
+    """Veach's power heuristic (β = 2), pdf_a² / (pdf_a² + pdf_b²); 0 where both vanish."""
+    a2, b2 = dr.square(pdf_a), dr.square(pdf_b)
+    return dr.select(a2 > 0, dr.detach(a2 / (a2 + b2)), 0.0)
+
+
+def scene_bsdfs(scene) -> list:
+    """The scene's distinct BSDFs in the order of first appearance in ``scene.shapes()``.
+
+    The ``id`` AOV numbers BSDFs, not shapes: Mitsuba merges meshes that share a BSDF, and an
+    object of several parts (a tank, a bust) is one material, one ID.
+    """
+    out = []
+    for shape in scene.shapes():
+        bsdf = shape.bsdf()
+        if all(bsdf is not seen for seen in out):
+            out.append(bsdf)
+    return out
+
+
+def _object_index(scene, si):
+    """1-based index (as a Float) of the hit shape's BSDF in :func:`scene_bsdfs`; 0 where the ray escaped."""
+    ids = mi.Float(0.0)
+    hit_bsdf = si.bsdf()
+    for k, bsdf in enumerate(scene_bsdfs(scene)):
+        ids = dr.select(si.is_valid() & (hit_bsdf == mi.BSDFPtr(bsdf)), float(k + 1), ids)
+    return ids
+
+
+@functools.lru_cache(maxsize=None)
+def integrator_class(variant: str):
+    """The ``brdfs_path`` class for ``variant`` (Mitsuba's base classes exist per variant)."""
+    if mi.variant() != variant:
+        raise ValueError(f"integrator_class({variant!r}): Mitsuba's variant is {mi.variant()!r}")
+    return type("BrdfsPath", (mi.SamplingIntegrator,), {k: v for k, v in vars(_BrdfsPathMethods).items()
+                                                          if k not in ("__dict__", "__weakref__")})
+
+
+class _BrdfsPathMethods:
+    """Path tracer with NEE, power-heuristic MIS and Russian roulette (module docstring).
+
+    Properties: ``max_depth`` (int, default -1: unlimited, paths end by Russian roulette; else the
+    number of scattering events, 1 = direct lighting), ``rr_depth`` (int, default 4: the first depth
+    at which Russian roulette may end a path), ``hide_emitters`` (bool, default False: camera rays
+    that miss see ``background`` instead of the sky or a light), ``background`` (float, default 0) and
+    ``count_rays`` (bool, default False: count camera, shadow and continuation rays in ``rays``).
+    """
+
+    def __init__(self, props):
+        mi.SamplingIntegrator.__init__(self, props)
+        self.max_depth = int(props.get("max_depth", -1))
+        self.rr_depth = int(props.get("rr_depth", 4))
+        self.hide_emitters = bool(props.get("hide_emitters", False))
+        self.background = float(props.get("background", 0.0))
+        self.count_rays = bool(props.get("count_rays", False))
+        self.rays = dr.zeros(mi.UInt32, 1)          # rays cast so far (count_rays), cumulative
+        if self.max_depth < -1 or self.max_depth == 0:
+            raise ValueError(f"brdfs_path: max_depth = {self.max_depth}: must be -1 (unlimited) or >= 1")
+        if self.background < 0 or (self.background > 0 and not self.hide_emitters):
+            raise ValueError(f"brdfs_path: background = {self.background}: needs hide_emitters and >= 0")
+        if self.rr_depth < 1:
+            raise ValueError(f"brdfs_path: rr_depth = {self.rr_depth}: must be >= 1")
+        self.bounce_limit = UNLIMITED if self.max_depth == -1 else self.max_depth
+        self.bounce_limit = self.bounce_limit  # MUTATION:depth3 self.bounce_limit = min(self.bounce_limit, 3)
+
+    def aov_names(self):
+        return ["id", "cos_v"]
+
+    def _count(self, active):
+        if self.count_rays:
+            dr.scatter_reduce(dr.ReduceOp.Add, self.rays, mi.UInt32(1), mi.UInt32(0), active)
+
+    @dr.syntax
+    def sample(self, scene, sampler, ray, medium=None, active=True):
+        bsdf_ctx = mi.BSDFContext()
+        ray = mi.Ray3f(ray)
+        active = mi.Bool(active)
+
+        # The camera ray: the object ID, what it sees of emitters, the background where it misses.
+        si = scene.ray_intersect(ray, ray_flags=mi.RayFlags.All, coherent=True, active=active)
+        self._count(active)
+        object_id = _object_index(scene, si)
+        cos_v = dr.select(si.is_valid(), dr.abs(si.wi.z), 0.0)
+        seen = active & (si.is_valid() | mi.Bool(not self.hide_emitters))
+        L = dr.select(seen, si.emitter(scene, seen).eval(si, seen), 0.0)
+        L = dr.select(active & ~si.is_valid() & mi.Bool(self.hide_emitters), L + self.background, L)
+        beta = mi.Spectrum(1.0)
+        depth = mi.UInt32(0)
+        active &= si.is_valid()
+
+        while active:
+            bsdf = si.bsdf(ray)
+
+            # Next-event estimation at this vertex (scattering event number depth + 1).
+            nee = active & mi.has_flag(bsdf.flags(), mi.BSDFFlags.Smooth)
+            nee &= mi.Bool(True)  # MUTATION:nee_first_vertex nee &= depth == 0
+            visibility = True  # MUTATION:no_shadow_rays visibility = False
+            ds_em, em_weight = scene.sample_emitter_direction(si, sampler.next_2d(nee), visibility, nee)
+            nee &= ds_em.pdf != 0.0
+            self._count(nee & mi.Bool(visibility))
+            f_em, pdf_bsdf_em = bsdf.eval_pdf(bsdf_ctx, si, si.to_local(ds_em.d), nee)
+            w_light = dr.select(ds_em.delta, 1.0, power_heuristic(ds_em.pdf, pdf_bsdf_em))
+            L = dr.select(nee, L + beta * w_light * f_em * em_weight, L)
+
+            # BSDF sampling: the next direction, and what it meets.
+            bs, bsdf_weight = bsdf.sample(bsdf_ctx, si, sampler.next_1d(active), sampler.next_2d(active), active)
+            beta = dr.select(active, beta * bsdf_weight, beta)
+            prev_si = mi.Interaction3f(si)
+            delta = mi.has_flag(bs.sampled_type, mi.BSDFFlags.Delta)
+            ray = si.spawn_ray(si.to_world(bs.wo))
+            active &= (bs.pdf > 0) & dr.any(beta != 0.0)
+            si = scene.ray_intersect(ray, ray_flags=mi.RayFlags.All, coherent=False, active=active)
+            self._count(active)
+
+            # The emitter (or the sky) the BSDF sample meets, MIS-weighted against NEE.
+            emitter = si.emitter(scene, active)
+            hit_emitter = active & (emitter != None)  # noqa: E711  (Dr.Jit pointer comparison)
+            ds = mi.DirectionSample3f(scene, si=si, ref=prev_si)
+            em_pdf = scene.pdf_emitter_direction(prev_si, ds, hit_emitter & ~delta)
+            w_bsdf = dr.select(delta, 1.0, power_heuristic(bs.pdf, em_pdf))
+            L = dr.select(hit_emitter, L + beta * w_bsdf * emitter.eval(si, hit_emitter), L)
+
+            depth[active] += 1
+            active &= si.is_valid() & (depth < self.bounce_limit)
+
+            # Russian roulette, weight 1/q.
+            q = dr.minimum(dr.max(beta), RR_MAX_SURVIVAL)
+            roulette = active & (depth >= self.rr_depth)
+            survive = sampler.next_1d(roulette) < q
+            beta = dr.select(roulette, beta / dr.maximum(q, 1e-30), beta)
+            active &= ~roulette | survive
+        return L, mi.Bool(True), [object_id, cos_v]
+
+
+def register() -> None:
+    """Register ``brdfs_path`` with Mitsuba for the variant that is set."""
+    cls = integrator_class(mi.variant())
+    mi.register_integrator(NAME, lambda props: cls(props))

@@ -1,0 +1,219 @@
+"""BRDFs written again, from the thesis's and the papers' formulas, without the package's code.
+
+Each function ``f(L, V, nl, nv, geo)`` takes directions (…, 3) with N = (0, 0, 1) and, where the
+third route knows them exactly, the frame's coordinates in ``geo`` (``cos_axis`` = R·V in the
+mirror frame or N·H in the half frame, ``lh`` = L·H, ``tan2`` = tan²δ); without them it computes
+them from L and V.  Nothing here imports the package; :mod:`sweep.cells` holds them to the
+package's models at random directions (``pointwise_agreement``).
+
+References: Phong-type models eqs. 2.5, 2.6, 3.5, 3.10, 3.12 (c = (n+2)/2π, eq. 3.6); Blinn-type
+eqs. 1.34, 2.5, 3.34; Ward eqs. 2.8, 3.35, 3.36; Cook–Torrance eqs. 2.9, 2.10 and the thesis's
+Smith G* (eq. 1.38); GGX and Beckmann with Smith's exact Λ (Walter et al. 2007, eqs. 25–27, 33–34;
+Heitz 2014, eqs. 72, 86); patch models eqs. 4.1, 4.2, 4.7, 4.21, 4.32–4.36, 4.44, 4.58–4.59.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import erfc, erfcx
+
+
+def _rv(L, V, geo):
+    if geo and "cos_axis" in geo and "lh" not in geo:
+        return geo["cos_axis"]
+    R = np.stack([-L[..., 0], -L[..., 1], L[..., 2]], -1)
+    return np.sum(R * V, -1)
+
+
+def _half(L, V, geo):
+    """(N·H, L·H, tan²δ)."""
+    if geo and "lh" in geo:
+        return geo["cos_axis"], geo["lh"], geo["tan2"]
+    h = L + V
+    norm = np.linalg.norm(h, axis=-1)
+    nh = h[..., 2] / norm
+    lh = np.sum(L * h, -1) / norm
+    tan2 = (h[..., 0] ** 2 + h[..., 1] ** 2) / h[..., 2] ** 2
+    return nh, lh, tan2
+
+
+def _pos_pow(x, n):
+    return np.where(x > 0, np.maximum(x, 0.0) ** n, 0.0)
+
+
+# --- Phong and Blinn types ------------------------------------------------------------------
+
+def phong(n, C=None, divide="none", p=1.0):
+    """c (R·V)^n / d, d = 1, cos θ_L (original), max(N·L, N·V) (new model) or its p-th power."""
+    C = (n + 2.0) / (2.0 * np.pi) if C is None else C
+
+    def f(L, V, nl, nv, geo=None):
+        lobe = C * _pos_pow(_rv(L, V, geo), n)
+        return lobe / _divisor(divide, nl, nv, p)
+    return f
+
+
+def blinn(n, C=1.0, divide="none"):
+    """C (N·H)^n / d."""
+    def f(L, V, nl, nv, geo=None):
+        nh, _, _ = _half(L, V, geo)
+        return C * _pos_pow(nh, n) / _divisor(divide, nl, nv, 1.0)
+    return f
+
+
+def _divisor(divide, nl, nv, p):
+    if divide == "none":
+        return 1.0
+    if divide == "nl":
+        return nl
+    return np.maximum(nl, nv) ** p
+
+
+# --- Beckmann lobes: Ward, corrected Ward, Cook–Torrance ---------------------------------------
+
+def ward(m, C=1.0, corrected=False):
+    """C e^(−tan²δ/m²)/(4π m²) / √(N·L N·V) (eq. 2.8), or / max(N·L, N·V) (eq. 3.36)."""
+    def f(L, V, nl, nv, geo=None):
+        _, _, tan2 = _half(L, V, geo)
+        lobe = C * np.exp(-tan2 / (m * m)) / (4.0 * np.pi * m * m)
+        return lobe / (np.maximum(nl, nv) if corrected else np.sqrt(nl * nv))
+    return f
+
+
+def g_star(x, m):
+    """The thesis's Smith term (eq. 1.38): h = x²/(2m²(1 − x²)), g = √(πh)(2 − erfc √h), G* = g/(g + 1)."""
+    x = np.asarray(x, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        h = x * x / (2.0 * m * m * (1.0 - x) * (1.0 + x))
+        g = np.sqrt(np.pi * h) * (2.0 - erfc(np.sqrt(h)))
+        out = g / (g + 1.0)
+    return np.where(x >= 1.0, 1.0, out)
+
+
+def cook_torrance(m, G="torrance_sparrow", C=1.0):
+    """e^(−tan²δ/m²)/(4π m² cos⁴δ) · G/(N·L N·V) (eq. 2.9, F = 1), G of eq. 2.10, eq. 1.38 or 1."""
+    def f(L, V, nl, nv, geo=None):
+        nh, lh, tan2 = _half(L, V, geo)
+        d = C * np.exp(-tan2 / (m * m)) / (4.0 * np.pi * m * m * nh ** 4)
+        if G == "torrance_sparrow":
+            g = np.minimum(1.0, np.minimum(2.0 * nh * nv / lh, 2.0 * nh * nl / lh))
+        elif G == "smith":
+            g = g_star(nl, m) * g_star(nv, m)
+        else:
+            g = 1.0
+        return d * g / (nl * nv)
+    return f
+
+
+def torrance_sparrow_lh_levels(nl, cos_delta):
+    """L·H where eq. 2.10's shadowing (L·H = 2 N·H N·L) and masking (L·H (4 N·H² − 1) = 2 N·H N·L,
+    with N·V = 2 L·H N·H − N·L) terms reach 1."""
+    cos_delta = np.asarray(cos_delta, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        masking = 2.0 * cos_delta * nl / (4.0 * cos_delta ** 2 - 1.0)
+    return (2.0 * cos_delta * nl, np.where(4.0 * cos_delta ** 2 > 1.0, masking, np.inf))
+
+
+# --- Smith microfacet models (GGX, Beckmann) ----------------------------------------------------
+
+def fresnel_conductor(cos_t, ior_re, ior_im):
+    """Unpolarised Fresnel reflectance of a complex index η = n + ik: (R_s + R_p)/2 with
+    t = √(η² − sin²θ), R_s = |(cos θ − t)/(cos θ + t)|², R_p = |(η² cos θ − t)/(η² cos θ + t)|²."""
+    c = np.asarray(cos_t, complex)
+    eta = complex(ior_re, ior_im)
+    t = np.sqrt(eta * eta - (1.0 - c * c))
+    rs = np.abs((c - t) / (c + t)) ** 2
+    rp = np.abs((eta * eta * c - t) / (eta * eta * c + t)) ** 2
+    return 0.5 * (rs + rp)
+
+
+def ggx_lambda(mu, a):
+    """Λ = (√(1 + α² tan²θ) − 1)/2 (Walter et al. 2007)."""
+    mu = np.asarray(mu, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = a * a * (1.0 - mu) * (1.0 + mu) / (mu * mu)
+        return 0.5 * x / (1.0 + np.sqrt(1.0 + x))
+
+
+def beckmann_lambda(mu, a):
+    """Λ = (erf(c) − 1)/2 + e^(−c²)/(2c√π), c = 1/(α tan θ) (Walter et al. 2007, eq. 27 context)."""
+    mu = np.asarray(mu, float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        c = mu / (a * np.sqrt((1.0 - mu) * (1.0 + mu)))
+        lam = 0.5 * np.exp(-c * c) * (1.0 / (c * np.sqrt(np.pi)) - erfcx(c))
+    return np.where(mu >= 1.0, 0.0, lam)
+
+
+def smith_microfacet(distribution, alpha, G2="height_correlated", ior_re=None, ior_im=0.0, multiple=None):
+    """F D G2 / (4 N·L N·V); ``multiple(nl, nv)`` adds a multiple-scattering term (Kulla–Conty)."""
+    lam = ggx_lambda if distribution == "ggx" else beckmann_lambda
+
+    def D(nh, tan2):
+        if distribution == "ggx":
+            a2 = alpha * alpha
+            return a2 / (np.pi * (a2 * nh * nh + (1.0 - nh) * (1.0 + nh)) ** 2)
+        return np.exp(-tan2 / (alpha * alpha)) / (np.pi * alpha * alpha * nh ** 4)
+
+    def f(L, V, nl, nv, geo=None):
+        nh, lh, tan2 = _half(L, V, geo)
+        ll, lv = lam(nl, alpha), lam(nv, alpha)
+        g2 = 1.0 / (1.0 + ll + lv) if G2 == "height_correlated" else 1.0 / ((1.0 + ll) * (1.0 + lv))
+        F = 1.0 if ior_re is None else fresnel_conductor(lh, ior_re, ior_im)
+        out = F * D(nh, tan2) * g2 / (4.0 * nl * nv)
+        if multiple is not None:
+            out = out + multiple(nl, nv)
+        return out
+    return f
+
+
+# --- patch models on the projected disk: ξ(m) with m = |L_xy + V_xy| ---------------------------
+
+def basic_constant(R):
+    """c(R) = 1/(π min(1, R²)) (eq. 4.7)."""
+    return 1.0 / (np.pi * min(1.0, R * R))
+
+
+def patch_basic_xi(R, C=None):
+    C = basic_constant(R) if C is None else C
+    return lambda m: np.where(m <= R, C, 0.0)
+
+
+def patch_exponential_xi(s, C):
+    return lambda m: C * np.exp(-s * m)
+
+
+def generalized_lambert_xi(d, m_clip, C):
+    """C min((1 − (m/2)²)^(−d/2), ξ(m_clip)) (eqs. 4.58, 4.59)."""
+    cap = (1.0 - (m_clip / 2.0) ** 2) ** (-d / 2.0)
+
+    def xi(m):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return C * np.minimum((1.0 - (m / 2.0) ** 2) ** (-d / 2.0), cap)
+    return xi
+
+
+def patch_mixture_xi(kind, p_diffuse=0.0):
+    """ξ(m) = ∫_m² p(R) c(R) dR + p_Diffuse c(2) (eq. 4.21) in closed form, c(R) = 1/(π min(1, R²)),
+    for p(R) = 1/2 ('uniform') and p(R) = 1 − R/2 ('falling'):
+    uniform: (1/m − 1)/2 + 1/2 (m < 1), (2 − m)/2 (m ≥ 1); falling: (1/m − 1) + ln(m)/2 + 1/4 (m < 1),
+    (1 − m/2)² (m ≥ 1); all over π."""
+    def xi(m):
+        m = np.minimum(np.asarray(m, float), 2.0)
+        small = np.minimum(m, 1.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if kind == "uniform":
+                inner = np.where(m < 1.0, 0.5 * (1.0 / small - 1.0) + 0.5, 0.5 * (2.0 - m))
+            else:
+                inner = np.where(m < 1.0, (1.0 / small - 1.0) + 0.5 * np.log(small) + 0.25, (1.0 - 0.5 * m) ** 2)
+        return inner / np.pi + p_diffuse / np.pi
+    return xi
+
+
+def ellipse_radius(b, ratio, u_angle_deg):
+    """ρ_e(ψ): the radius along (cos ψ, sin ψ) of the ellipse |(ratio z·u, z·v)| = b (eq. 4.34)."""
+    phi = np.radians(u_angle_deg)
+
+    def rho(psi):
+        cu = np.cos(psi) * np.cos(phi) + np.sin(psi) * np.sin(phi)
+        cv = -np.cos(psi) * np.sin(phi) + np.sin(psi) * np.cos(phi)
+        return b / np.hypot(ratio * cu, cv)
+    return rho

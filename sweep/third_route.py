@@ -1,0 +1,414 @@
+"""The third route: directional albedos a(θ) = ∫ f(L, V) cos θ_V dω_V by nested quadrature that
+shares no code with :mod:`brdfs.numerics` (it imports nothing from the package at all).
+
+Coordinates (L = (sin θ, 0, cos θ), N = (0, 0, 1); every integrand here is even in V_y, so the
+azimuth runs over [0, π] and the result is doubled):
+
+* ``mirror``: V = cos α R + sin α (cos ψ e₁ + sin ψ e₂) about the mirror direction
+  R = (−sin θ, 0, cos θ), e₁ = (cos θ, 0, sin θ), e₂ = (0, 1, 0); dω_V = sin α dα dψ and
+  N·V = cos α cos θ + sin α sin θ cos ψ.
+* ``half``: the half vector H = (sin δ cos φ, sin δ sin φ, cos δ), V = 2 (L·H) H − L,
+  dω_V = 4 (L·H) sin δ dδ dφ (Walter et al. 2007, eq. 14), L·H = sin θ sin δ cos φ + cos θ cos δ,
+  N·V = 2 (L·H) cos δ − cos θ.
+
+In both, a level N·V = c or L·H = c of the integrand is a threshold cos φ = τ(r) = num/den of the
+inner variable at each outer radius r (α or δ), with den ≥ 0; the horizon is the level N·V = 0.
+The outer integral (``scipy.integrate.quad``, its own error estimate) is split where a threshold
+enters or leaves (−1, 1) (num = ±den) or where two thresholds cross (num_j den_k = num_k den_j),
+found on a dense scan and polished by ``brentq``, and at the lobe's scale points.  The inner
+integral is a vectorised Gauss–Legendre pair (N and 2N nodes) on the pieces between the
+thresholds, bisected until the pair agrees; the piece that ends at the horizon is integrated in
+u with φ = a + (b − a)(1 − (1 − u)²), which takes a √(N·V) endpoint (Ward) out.
+
+* ``disk`` (patch models, chapter 4): on the projected disk (cos θ_V dω_V = dx dy) in polar
+  coordinates (ρ, ψ) about V'_P = −L_P = (−sin θ, 0): the unit disk ends at
+  ρ_max(ψ) = s cos ψ + √(1 − s² sin² ψ) (s = sin θ), and m(L, V) = ρ.
+
+The truth's error is the outer estimate plus the largest relative inner estimate times the value
+plus a rounding allowance.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+import numpy as np
+from scipy.integrate import quad_vec
+from scipy.optimize import brentq
+
+EPS = np.finfo(float).eps
+#: Relative tolerance asked of every quadrature of the third route.
+EPSREL = 1e-13
+#: Gauss–Legendre nodes of the inner pair (N, 2N).
+_N = 16
+_X1, _W1 = np.polynomial.legendre.leggauss(_N)
+_X2, _W2 = np.polynomial.legendre.leggauss(2 * _N)
+#: Rounds of bisection of the inner pieces.
+_INNER_ROUNDS = 12
+#: Widest inner piece before the first comparison [rad].
+_INNER_WIDTH = 0.4
+
+
+@dataclass(frozen=True)
+class Integrand:
+    """What the third route needs of one BRDF.
+
+    ``f(L, V, nl, nv, geo)`` evaluates the BRDF on arrays (…, 3) of directions; ``geo`` holds the
+    frame's exact coordinates (``cos_axis``: R·V in the mirror frame, N·H in the half frame;
+    ``lh``: L·H in the half frame) for formulas that can use them instead of a rounded dot product.
+    ``nv_levels(nl)`` and ``lh_levels(nl, cos_delta)`` are the kinks (levels of N·V, of L·H);
+    ``radial_points`` the lobe's scale points of the outer variable (α or δ in radians);
+    ``normal_kink``: a cone-shaped kink at V = N (the outer radius of V = N is a breakpoint and the
+    inner azimuth is refined geometrically toward it).
+    """
+
+    f: Callable
+    frame: str
+    radial_points: Sequence[float] = ()
+    nv_levels: Callable = lambda nl: ()
+    lh_levels: Callable = lambda nl, cos_delta: ()
+    normal_kink: bool = False
+    #: Relative accuracy of one evaluation of f beyond rounding (a truncated series).
+    f_rtol: float = 0.0
+    #: An integrable 1/√ singularity or a divergence is expected nowhere; extra outer points.
+    extra_points: Sequence[float] = ()
+
+
+@dataclass
+class Truth:
+    value: float
+    error: float
+    route: str
+    evaluations: int = 0
+    notes: list = field(default_factory=list)
+
+
+def incidence(theta_deg):
+    """(cos θ, sin θ), cos θ as sin(90° − θ) (exact to rounding at grazing angles)."""
+    return float(np.sin(np.radians(90.0 - theta_deg))), float(np.sin(np.radians(theta_deg)))
+
+
+# --- thresholds ------------------------------------------------------------------------------
+
+def _mirror_thresholds(integrand, cl, sl, alpha):
+    """(num, den) of every threshold cos ψ = τ at outer radii α; the horizon first."""
+    ca, sa = np.cos(alpha), np.sin(alpha)
+    den = sa * sl
+    out = [(0.0 - ca * cl, den)]
+    for c in integrand.nv_levels(cl):
+        c = float(np.asarray(c).ravel()[0]) if np.ndim(c) else float(c)
+        if 0.0 < c < 1.0:
+            out.append((c - ca * cl, den))
+    return out
+
+
+def _half_thresholds(integrand, cl, sl, delta):
+    cd, sd = np.cos(delta), np.sin(delta)
+    den = sl * sd
+    out = [(0.5 * cl / cd - cl * cd, den)]
+    for c in integrand.nv_levels(cl):
+        c = float(c)
+        if 0.0 < c < 1.0:
+            out.append((0.5 * (c + cl) / cd - cl * cd, den))
+    for c in integrand.lh_levels(cl, cd):
+        c = np.broadcast_to(np.asarray(c, float), np.shape(cd))
+        out.append((np.where(np.isfinite(c), c, 10.0) - cl * cd, den))
+    return out
+
+
+def _thresholds(integrand, cl, sl, r):
+    fn = _mirror_thresholds if integrand.frame == "mirror" else _half_thresholds
+    return fn(integrand, cl, sl, np.asarray(r, float))
+
+
+def _tau(num, den):
+    num, den = np.broadcast_arrays(np.asarray(num, float), np.asarray(den, float))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = num / den
+    return np.where(den > 0, t, np.where(num > 0, np.inf, -np.inf))
+
+
+# --- the outer breakpoints -----------------------------------------------------------------
+
+def _scan_grid(lo, hi, anchors):
+    """A dense grid of [lo, hi], geometric toward lo, hi and every anchor."""
+    pts = [np.linspace(lo, hi, 3001)]
+    width = hi - lo
+    for a in (lo, hi, *anchors):
+        if lo <= a <= hi:
+            off = width * np.geomspace(1e-12, 1.0, 400)
+            pts += [a + off, a - off]
+    g = np.concatenate(pts)
+    return np.unique(g[(g >= lo) & (g <= hi)])
+
+
+def _roots(fun, grid):
+    """Sign changes of fun on the grid, polished by brentq."""
+    v = fun(grid)
+    out = []
+    s = np.sign(v)
+    idx = np.nonzero((s[:-1] * s[1:] < 0) & np.isfinite(v[:-1]) & np.isfinite(v[1:]))[0]
+    for i in idx:
+        try:
+            out.append(brentq(lambda x: float(fun(np.array([x]))[0]), grid[i], grid[i + 1], xtol=1e-15, rtol=4 * EPS))
+        except ValueError:
+            out.append(0.5 * (grid[i] + grid[i + 1]))
+    out += list(grid[np.nonzero(v == 0)[0]])
+    return out
+
+
+def outer_breakpoints(integrand, cl, sl, lo, hi):
+    """Outer radii where a threshold enters or leaves (−1, 1), two thresholds cross, plus the lobe's
+    scale points, V = N (``normal_kink``) and the frame's own points, inside (lo, hi)."""
+    anchors = [p for p in (*integrand.radial_points, *integrand.extra_points) if lo < p < hi]
+    theta = float(np.arctan2(sl, cl))
+    if integrand.normal_kink:
+        anchors.append(theta if integrand.frame == "mirror" else 0.5 * theta)
+    grid = _scan_grid(lo, hi, anchors)
+    n_thr = len(_thresholds(integrand, cl, sl, grid[:2]))
+    points = list(anchors)
+    if sl > 0:
+        for k in range(n_thr):
+            for sign in (1.0, -1.0):
+                def edge(r, k=k, sign=sign):
+                    num, den = _thresholds(integrand, cl, sl, r)[k]
+                    return np.broadcast_to(num, np.shape(r)) - sign * np.broadcast_to(den, np.shape(r))
+                points += _roots(edge, grid)
+            for j in range(k):
+                def cross(r, j=j, k=k):
+                    th = _thresholds(integrand, cl, sl, r)
+                    (nj, dj), (nk, dk) = th[j], th[k]
+                    tj, tk = np.clip(_tau(nj, dj), -2, 2), np.clip(_tau(nk, dk), -2, 2)
+                    inside = (np.abs(tj) < 1) | (np.abs(tk) < 1)
+                    return np.where(inside, tj - tk, np.nan)
+                points += _roots(cross, grid)
+    return np.unique([p for p in points if lo < p < hi])
+
+
+# --- the inner integral --------------------------------------------------------------------
+
+def _inner_pieces(integrand, cl, sl, r):
+    """Pieces (a, b, clustered) of the inner azimuth [0, φ_max] at radius r."""
+    th = _thresholds(integrand, cl, sl, np.array([r]))
+    taus = [float(_tau(n, d)[0]) for n, d in th]
+    horizon = taus[0]
+    if horizon >= 1.0:
+        return []
+    phi_max = np.pi if horizon <= -1.0 else float(np.arccos(horizon))
+    cuts = {0.0, phi_max}
+    for t in taus[1:]:
+        if -1.0 < t < 1.0:
+            p = float(np.arccos(t))
+            if 0.0 < p < phi_max:
+                cuts.add(p)
+    if integrand.normal_kink and sl > 0:
+        r0 = float(np.arctan2(sl, cl)) * (1.0 if integrand.frame == "mirror" else 0.5)
+        gap = abs(r - r0)
+        for k in (0.3, 1.0, 3.0, 10.0, 30.0, 100.0):
+            if 0.0 < k * gap < phi_max:
+                cuts.add(k * gap)
+    cuts = sorted(cuts)
+    pieces = []
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        n_split = max(1, int(np.ceil((b - a) / _INNER_WIDTH)))
+        edges = np.linspace(a, b, n_split + 1)
+        last_is_horizon = (b == phi_max) and phi_max < np.pi
+        for i, (x, y) in enumerate(zip(edges[:-1], edges[1:])):
+            pieces.append((x, y, last_is_horizon and i == n_split - 1))
+    return pieces
+
+
+def _directions(integrand, cl, sl, r, phi):
+    """(L, V, N·V, jacobian × 2, geo) at radius r and azimuths phi."""
+    L = np.array([sl, 0.0, cl])
+    cp, sp = np.cos(phi), np.sin(phi)
+    if integrand.frame == "mirror":
+        ca, sa = np.cos(r), np.sin(r)
+        V = np.stack([-ca * sl + sa * cp * cl, sa * sp, ca * cl + sa * cp * sl], -1)
+        jac = 2.0 * sa * np.ones_like(phi)
+        geo = {"cos_axis": np.full(phi.shape, ca)}
+    else:
+        cd, sd = np.cos(r), np.sin(r)
+        H = np.stack([sd * cp, sd * sp, np.full(phi.shape, cd)], -1)
+        lh = sl * sd * cp + cl * cd
+        V = 2.0 * lh[..., None] * H - L
+        V[..., 2] = 2.0 * lh * cd - cl
+        jac = 2.0 * 4.0 * lh * sd
+        geo = {"cos_axis": np.full(phi.shape, cd), "lh": lh, "tan2": np.full(phi.shape, (sd / cd) ** 2)}
+    return L, V, V[..., 2], jac, geo
+
+
+def _values(integrand, cl, sl, r, phi):
+    L, V, nv, jac, geo = _directions(integrand, cl, sl, r, phi)
+    Lb = np.broadcast_to(L, V.shape)
+    with np.errstate(all="ignore"):
+        f = integrand.f(Lb, V, np.full(nv.shape, cl), nv, geo)
+    g = np.where(nv > 0, f * nv * jac, 0.0)
+    return np.nan_to_num(g, nan=0.0, posinf=0.0)
+
+
+def inner_integral(integrand, cl, sl, r):
+    """(value, error, evaluations) of the azimuthal integral at outer radius r."""
+    pieces = _inner_pieces(integrand, cl, sl, r)
+    if not pieces:
+        return 0.0, 0.0, 0
+    # each piece in u ∈ [u0, u1] ⊂ [0, 1] of its map φ(u)
+    work = [(a, b, cl_, 0.0, 1.0) for a, b, cl_ in pieces]
+    total, error, evals = 0.0, 0.0, 0
+    for round_ in range(_INNER_ROUNDS):
+        a = np.array([w[0] for w in work])
+        b = np.array([w[1] for w in work])
+        clu = np.array([w[2] for w in work])
+        u0 = np.array([w[3] for w in work])
+        u1 = np.array([w[4] for w in work])
+        q = []
+        for x, w in ((_X1, _W1), (_X2, _W2)):
+            u = 0.5 * (u0 + u1)[:, None] + 0.5 * (u1 - u0)[:, None] * x
+            lin = a[:, None] + (b - a)[:, None] * u
+            cur = a[:, None] + (b - a)[:, None] * (1.0 - (1.0 - u) ** 2)
+            phi = np.where(clu[:, None], cur, lin)
+            dphi = np.where(clu[:, None], 2.0 * (b - a)[:, None] * (1.0 - u), (b - a)[:, None])
+            g = _values(integrand, cl, sl, r, phi) * dphi
+            q.append(0.5 * (u1 - u0) * (g @ w))
+            evals += phi.size
+        q1, q2 = q
+        diff = np.abs(q2 - q1)
+        scale = max(abs(total) + np.sum(np.abs(q2)), 1e-300)
+        done = diff <= 1e-15 * scale
+        if round_ == _INNER_ROUNDS - 1:
+            done[:] = True
+        total += float(np.sum(q2[done]))
+        error += float(np.sum(diff[done]))
+        work = [(a[i], b[i], clu[i], u0[i], 0.5 * (u0[i] + u1[i])) for i in np.nonzero(~done)[0]] + \
+               [(a[i], b[i], clu[i], 0.5 * (u0[i] + u1[i]), u1[i]) for i in np.nonzero(~done)[0]]
+        if not work:
+            break
+    return total, error, evals
+
+
+# --- the outer integral --------------------------------------------------------------------
+
+def _outer_quad(outer, edges, epsrel):
+    """∫ outer over the pieces ``edges`` by ``scipy.integrate.quad_vec`` of the pair (inner value,
+    inner error): (value, outer error + integrated inner error, notes)."""
+    value, error, notes = 0.0, 0.0, []
+    for a, b in zip(edges[:-1], edges[1:]):
+        if b <= a:
+            continue
+        res, err, info = quad_vec(outer, a, b, epsabs=1e-18, epsrel=epsrel, norm="max", limit=2000,
+                                  full_output=True)
+        if not info.success:
+            notes.append(f"[{a:.4g},{b:.4g}]: {info.message[:50]}")
+        value += float(res[0])
+        error += float(err) + abs(float(res[1]))
+    return value, error, notes
+
+
+def _outer_range(integrand, cl, sl):
+    """[0, r_max]: beyond r_max no direction of the shell is above the horizon."""
+    theta = float(np.arctan2(sl, cl))
+    if integrand.frame == "mirror":
+        return 0.0, min(np.pi, 0.5 * np.pi + theta)
+    return 0.0, min(0.5 * np.pi, 0.5 * (0.5 * np.pi + theta))
+
+
+def hemisphere_albedo(integrand: Integrand, theta_deg: float, epsrel: float = EPSREL) -> Truth:
+    """a(θ) by the nested quadrature of the module docstring, with its error estimate."""
+    cl, sl = incidence(theta_deg)
+    lo, hi = _outer_range(integrand, cl, sl)
+    points = outer_breakpoints(integrand, cl, sl, lo, hi)
+    edges = np.concatenate([[lo], points, [hi]])
+    state = {"evals": 0}
+
+    def outer(r):
+        v, e, n = inner_integral(integrand, cl, sl, r)
+        state["evals"] += n
+        return np.array([v, e])
+
+    value, error, notes = _outer_quad(outer, edges, epsrel)
+    error += (64 * EPS + integrand.f_rtol) * abs(value)
+    return Truth(value, error, f"quad/{integrand.frame}", state["evals"], notes)
+
+
+# --- the projected disk (patch models) ---------------------------------------------------------
+
+def disk_rho_max(s, psi):
+    """ρ_max(ψ) = s cos ψ + √(1 − s² sin² ψ): where the ray from (−s, 0) at angle ψ leaves the unit disk."""
+    c, sn = np.cos(psi), np.sin(psi)
+    return s * c + np.sqrt(np.maximum(1.0 - (s * sn) ** 2, 0.0))
+
+
+def _gl_pair(fun, a, b, rounds=14, clustered=False):
+    """∫_a^b fun by bisected Gauss–Legendre pairs (vectorised fun): (value, error).  ``clustered``:
+    in u with x = b − (b − a)(1 − u)², which takes a √(b − x) endpoint out."""
+    if clustered:
+        g = lambda u: fun(b - (b - a) * (1.0 - u) ** 2) * 2.0 * (b - a) * (1.0 - u)
+        return _gl_pair(g, 0.0, 1.0, rounds)
+    work = [(a, b)]
+    total, error = 0.0, 0.0
+    for k in range(rounds):
+        lo = np.array([w[0] for w in work])
+        hi = np.array([w[1] for w in work])
+        q = []
+        for x, w in ((_X1, _W1), (_X2, _W2)):
+            t = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * x
+            q.append(0.5 * (hi - lo) * (fun(t) @ w))
+        diff = np.abs(q[1] - q[0])
+        scale = max(abs(total) + np.sum(np.abs(q[1])), 1e-300)
+        done = diff <= 1e-15 * scale
+        if k == rounds - 1:
+            done[:] = True
+        total += float(np.sum(q[1][done]))
+        error += float(np.sum(diff[done]))
+        mid = 0.5 * (lo + hi)
+        work = [(lo[i], mid[i]) for i in np.nonzero(~done)[0]] + [(mid[i], hi[i]) for i in np.nonzero(~done)[0]]
+        if not work:
+            break
+    return total, error
+
+
+def disk_albedo(xi, theta_deg, radial_kinks=(), radial_scales=(), ellipse_radius=None,
+                symmetric=True, epsrel: float = EPSREL, psi_radii=None, horizon_layer=False) -> Truth:
+    """a(θ) = ∫∫ ξ(ρ, ψ) ρ dρ dψ over the unit disk, polar about (−sin θ, 0).
+
+    ``xi(rho, psi)`` is the BRDF as a function of the polar coordinates (m = ρ for the patch models);
+    ``radial_kinks`` its kinks or jumps in ρ (the same for every ψ); ``ellipse_radius(psi)`` a kink or
+    jump at a ψ-dependent radius (the elliptical patch), or None; ``radial_scales`` extra inner points.
+    The outer integral in ψ (quad) splits where ρ_max(ψ) meets a kink radius.
+    """
+    cl, s = incidence(theta_deg)
+    top = np.pi if symmetric else 2 * np.pi
+    def inner(psi):
+        rmax = float(disk_rho_max(s, psi))
+        cuts = {0.0, rmax}
+        for k in (*radial_kinks, *radial_scales):
+            if 0.0 < k < rmax:
+                cuts.add(float(k))
+        extra = [] if ellipse_radius is None else [float(ellipse_radius(psi))]
+        extra += [] if psi_radii is None else list(psi_radii(psi))
+        for k in extra:
+            if 0.0 < k < rmax:
+                cuts.add(k)
+        cuts = sorted(cuts)
+        v, e = 0.0, 0.0
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            vi, ei = _gl_pair(lambda rho: xi(rho, np.full(rho.shape, psi)) * rho, a, b,
+                              clustered=horizon_layer and b == rmax)
+            v, e = v + vi, e + ei
+        return np.array([v, e])
+
+    points = []
+    for k in radial_kinks:
+        if s > 0 and k > 0:
+            c = (s * s + k * k - 1.0) / (2.0 * s * k)
+            if -1.0 < c < 1.0:
+                points += [float(np.arccos(c))] + ([2 * np.pi - float(np.arccos(c))] if not symmetric else [])
+    if ellipse_radius is not None:
+        grid = np.linspace(0.0, top, 20001)
+        points += _roots(lambda p: disk_rho_max(s, p) - np.array([ellipse_radius(x) for x in np.atleast_1d(p)]), grid)
+    edges = np.unique(np.concatenate([[0.0], [p for p in points if 0 < p < top], [top]]))
+    value, error, notes = _outer_quad(inner, edges, epsrel)
+    factor = 2.0 if symmetric else 1.0
+    value, error = factor * value, factor * error
+    error += 64 * EPS * abs(value)
+    return Truth(value, error, "quad/disk", 0, notes)

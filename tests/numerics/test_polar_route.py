@@ -1,0 +1,79 @@
+"""The polar route (integrate.polar) of the Smith-masked models: honest against nested quad of
+independently written BRDFs, cheap, and taken only where the model factors as D(H) S(N·L, N·V)."""
+import math
+import sys
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from brdfs import albedo
+from brdfs.numerics.integrate import polar
+from brdfs.physics.distributions import GGX, Beckmann, kummer_half_integer
+from brdfs.physics.models import model
+from brdfs.physics.models.microfacet import CookTorranceFresnel
+
+sys.path.insert(0, str(Path(__file__).parent))
+from polar_truth import FAMILIES, nested_quad_albedo  # noqa: E402
+
+#: One cell per family and roughness class (the full ≥ 20 cells per family: benchmarks/bench_polar_honesty.py).
+CELLS = [("ggx", 0.3, 37.0), ("ggx_separable", 0.3, 71.0), ("beckmann", 0.3, 55.0),
+         ("cook_torrance_smith", 0.3, 12.0), ("beckmann", 0.05, 83.0)]
+
+
+@pytest.mark.parametrize("family, alpha, theta", CELLS)
+def test_polar_route_is_honest_against_nested_quad_of_an_independent_brdf(family, alpha, theta):
+    brdf, make = FAMILIES[family]
+    truth, truth_err = nested_quad_albedo(brdf, alpha, theta)
+    name, params = make(alpha)
+    for rtol in (1e-10, 1e-6):
+        est = polar.albedo_many([model(name, **params)], [theta], rtol=rtol)
+        assert est.status[0] == "converged"
+        assert abs(float(est.value[0]) - truth) <= float(est.error[0]) + truth_err
+        assert float(est.error[0]) <= max(rtol * truth, 1e-14)
+
+
+@pytest.mark.parametrize("distribution", [GGX(0.01), GGX(0.3), GGX(1.6), Beckmann(0.05), Beckmann(0.3), Beckmann(1.0)],
+                         ids=repr)
+def test_azimuthal_integral_of_d_matches_quad_over_phi_within_its_bound(distribution):
+    """∫₀^π D dφ with tan²δ = q + b (1 + cos φ) in closed form against quad of D itself."""
+    a2 = distribution.alpha ** 2
+    for q, b in [(0.0, 0.0), (1e-4, 0.003), (0.02, 0.4), (0.3, 2.0), (1.5, 7.0)]:
+        def d(phi):
+            tan2 = q + b * (1.0 + math.cos(phi))
+            return float(distribution.D(1.0 / math.sqrt(1.0 + tan2)))
+        pts = [math.pi - w for w in (1.0, 0.3, 0.1, 0.03, 0.01)]
+        truth, truth_err = quad(d, 0.0, math.pi, points=pts, epsabs=0.0, epsrel=1e-13, limit=200)
+        value, bound = distribution.azimuthal_integral(np.array(q), np.array(b))
+        # D from cos δ carries the rounding of 1 − cos δ: ~ε/α² relative in quad's own integrand
+        assert abs(float(value) - truth) <= float(bound) + truth_err + 1e3 * np.finfo(float).eps / a2 * truth
+
+
+def test_kummer_functions_match_mpmath_within_their_bound():
+    x = np.concatenate([[0.0], np.geomspace(1e-6, 1e5, 40), [39.999, 40.0, 40.001]])
+    for k in range(3):
+        value, bound = kummer_half_integer(k, x)
+        truth = np.array([float(mpmath.hyp1f1(k + 0.5, k + 1, -mpmath.mpf(v))) for v in x])
+        assert np.all(np.abs(value - truth) <= bound)
+        assert np.all(bound <= 300 * np.finfo(float).eps * truth)
+
+
+@pytest.mark.parametrize("name, params", [("ggx", {"alpha": 0.3}), ("beckmann", {"alpha": 0.3}),
+                                          ("cook_torrance", {"m": 0.3, "G": "smith"})])
+def test_smith_masked_models_need_at_most_5000_evaluations_per_albedo(name, params):
+    """Issue 24's target: median over single calls at 12 angles in [0°, 89.9°], rtol 1e-10."""
+    brdf = model(name, **params)
+    runs = [albedo(brdf, float(t), rtol=1e-10) for t in np.linspace(0.0, 89.9, 12)]
+    assert all(str(r.status) == "converged" for r in runs)
+    assert all(str(r.route) == "engine/polar" for r in runs)
+    assert np.median([r.evaluations for r in runs]) <= 5000
+
+
+def test_the_polar_route_is_withdrawn_where_the_masking_depends_on_more_than_the_polar_angles():
+    assert polar.supports(model("ggx", alpha=0.3)) and polar.supports(model("cook_torrance", m=0.3, G="smith"))
+    assert not polar.supports(model("ggx", alpha=0.3, ior_re=1.5))              # F(L·H)
+    assert not polar.supports(model("cook_torrance", m=0.3))                    # eq. 2.10's G
+    assert not polar.supports(CookTorranceFresnel(m=0.3, G="smith", ior_re=1.5))
+    assert str(albedo(model("ggx", alpha=0.3), 40.0, "engine_2d").route) == "engine/hemisphere"

@@ -1,0 +1,206 @@
+"""The path tracer ``brdfs_path`` against closed forms, with the package's plugins (tiny images).
+
+Each test is one of the checks ``make check-mutations`` runs under a deliberate fault
+(``workflow/scripts/check_mutations.sh``): the fault's name is in the test's docstring.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import brdfs
+from brdfs.physics.models import MODELS
+
+SPP = 64
+PASSES = 8
+
+
+@pytest.fixture(scope="module")
+def mi(mitsuba):
+    from brdfs.render.mitsuba import integrator
+
+    integrator.register()
+    return mitsuba
+
+
+def _plugin_models():
+    """(plugin name, its model's class, typical parameters) for every Dr.Jit twin of a model."""
+    from brdfs.render.mitsuba.variant import use_variant
+    from brdfs.render.mitsuba.plugins import PREFIX, plugin_classes
+
+    try:
+        use_variant("llvm_ad_rgb")
+    except Exception:          # no libllvm19: the fixture skips the tests with the reason
+        return []
+    out = []
+    for name in sorted(plugin_classes()):
+        model_name = name[len(PREFIX):]
+        if model_name in MODELS:
+            out.append((name, model_name, dict(MODELS[model_name].examples["typical"])))
+    return out
+
+
+PLUGIN_MODELS = _plugin_models()
+
+
+def _isotropic(model, pairs=256, seed=0):
+    """f(L, V) = f(turned L, turned V) for turns about N at random pairs (else a(θ_V) depends on φ_V)."""
+    rng = np.random.default_rng(seed)
+    L, V = (v / np.linalg.norm(v, axis=1, keepdims=True) for v in (rng.normal(size=(pairs, 3)) * [1, 1, 0] + [0, 0, 1.2]
+                                                                    for _ in range(2)))
+    c, s = np.cos(0.7), np.sin(0.7)
+    turn = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return np.allclose(model(L, V), model(L @ turn.T, V @ turn.T), rtol=1e-9, atol=0.0)
+
+
+ISOTROPIC_PLUGIN_MODELS = [p for p in PLUGIN_MODELS if _isotropic(brdfs.model(p[1], **p[2]))]
+
+
+def _ortho(mi, origin, target, half, pixels, up=(0.0, 0.0, 1.0)):
+    """An orthographic camera seeing the square of half-size ``half`` around ``target``."""
+    T = mi.ScalarTransform4f
+    return {"type": "orthographic",
+            "to_world": T().look_at(origin=list(origin), target=list(target), up=list(up)) @ T().scale([half, half, 1.0]),
+            "film": {"type": "hdrfilm", "width": pixels, "height": pixels, "pixel_format": "rgb",
+                     "rfilter": {"type": "box"}},
+            "sampler": {"type": "independent"}}
+
+
+def _passes(mi, scene, spp=SPP, passes=PASSES):
+    """(passes, H, W) of the red channel of independently seeded renders."""
+    return np.stack([np.asarray(mi.render(scene, spp=spp, seed=17 + k))[..., 0] for k in range(passes)])
+
+
+def _mean_and_error(values):
+    """Mean over passes of a per-pass scalar and its standard error."""
+    values = np.asarray(values, float)
+    return values.mean(), values.std(ddof=1) / np.sqrt(values.size)
+
+
+def _light(position, radius, radiance):
+    return {"type": "sphere", "center": list(position), "radius": radius,
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [radiance] * 3}}}
+
+
+def _plate(bsdf, half=2.0):
+    import mitsuba as mi
+
+    return {"type": "rectangle", "to_world": mi.ScalarTransform4f().scale([half, half, 1.0]), "bsdf": bsdf}
+
+
+def _direct_radiance(mi, bsdf, L, V, blocker=False, depth=1, distance=40.0, radius=0.4):
+    """Mean radiance of the plate's centre (|x|, |y| ≤ 0.01) seen from V, lit by a sphere of
+    ``radius`` at ``distance`` along L, and the irradiance E = L_e π r² cos θ_L / D² that sphere gives
+    there (exact while the sphere is above the horizon)."""
+    radiance = 50.0
+    L, V = np.asarray(L, float) / np.linalg.norm(L), np.asarray(V, float) / np.linalg.norm(V)
+    scene = {"type": "scene", "integrator": {"type": "brdfs_path", "max_depth": depth, "hide_emitters": True},
+             "sensor": _ortho(mi, 10.0 * V, (0.0, 0.0, 0.0), 0.01, 4,
+                              up=(0.0, 1.0, 0.0) if abs(V[1]) < 0.9 else (1.0, 0.0, 0.0)),
+             "plate": _plate(bsdf), "light": _light(distance * L, radius, radiance)}
+    if blocker:
+        scene["blocker"] = {"type": "sphere", "center": list(0.5 * distance * L), "radius": 2.0,
+                            "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.5] * 3}}}
+    image = _passes(mi, mi.load_dict(scene), spp=16, passes=PASSES)
+    E = radiance * np.pi * radius ** 2 * L[2] / distance ** 2
+    return _mean_and_error(image.mean(axis=(1, 2))), E
+
+
+def test_a_blocker_between_light_and_plate_leaves_the_plate_unlit(mi):
+    """Fault ``no_shadow_rays``: without the shadow ray the blocked light still lights the plate."""
+    lambert = {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [0.8] * 3}}
+    L, V = (0.3, 0.2, 1.0), (-0.4, 0.1, 1.0)
+    (lit, lit_err), E = _direct_radiance(mi, lambert, L, V)
+    (shadowed, _), _ = _direct_radiance(mi, lambert, L, V, blocker=True)
+    assert abs(lit - 0.8 / np.pi * E) <= 5 * lit_err + 2e-3 * lit
+    assert shadowed == 0.0, f"blocked light gives {shadowed} (unblocked {lit})"
+
+
+def test_a_large_near_light_over_a_lambert_plate_gives_rho_e_over_pi(mi):
+    """A sphere light subtending a wide cone (sin α = 2/3): light and cosine samples share the
+    work (MIS), so the fault ``uniform_claims_cosine`` (uniform directions weighted as cosine ones)
+    biases the plate's radiance ρ E / π."""
+    lambert = {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [0.8] * 3}}
+    L, V = (0.2, 0.1, 1.0), (-1.0, 0.1, 0.6)          # V passes the light at 1.4 > its radius
+    (got, err), E = _direct_radiance(mi, lambert, L, V, distance=1.5, radius=1.0)
+    expected = 0.8 / np.pi * E
+    assert abs(got - expected) <= 5 * err + 1e-3 * expected, (got, expected, err)
+
+
+@pytest.mark.parametrize("plugin, model_name, params", PLUGIN_MODELS, ids=[p[0] for p in PLUGIN_MODELS])
+def test_a_far_spherical_light_gives_f_cos_e_for_every_plugin(mi, plugin, model_name, params):
+    """One bounce from a far sphere of irradiance E: radiance = f(L, V) E (f cos θ_L E_⊥). L and V are
+    off the plane of incidence of the tangent, so ``frame_rotated_90`` moves an anisotropic f."""
+    model = brdfs.model(model_name, **params)
+    L = np.array([0.35, 0.25, 1.0]) / np.linalg.norm([0.35, 0.25, 1.0])
+    V = np.array([-0.5, 0.1, 1.0]) / np.linalg.norm([-0.5, 0.1, 1.0])
+    (got, err), E = _direct_radiance(mi, {"type": plugin, **params}, L, V)
+    expected = float(model(L, V)) * E
+    assert abs(got - expected) <= 5 * err + 3e-3 * expected, (got, expected, err)
+
+
+def _mean_albedo(model, nodes=24):
+    """ā = ∫₀¹ a(θ(μ)) 2μ dμ (μ = cos θ_V) by Gauss–Legendre, with its quadrature error bound."""
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    mu = 0.5 * (x + 1.0)
+    albedo = brdfs.albedo(model, np.degrees(np.arccos(mu)), rtol=1e-8)
+    return float(np.sum(0.5 * w * albedo.value * 2 * mu)), float(np.sum(0.5 * w * albedo.error * 2 * mu))
+
+
+@pytest.mark.parametrize("plugin, model_name, params", ISOTROPIC_PLUGIN_MODELS,
+                         ids=[p[0] for p in ISOTROPIC_PLUGIN_MODELS])
+def test_a_sphere_under_a_constant_sky_returns_sky_times_its_mean_albedo_for_every_plugin(mi, plugin, model_name, params):
+    """White furnace with the plugins' own (glossy) samplers: a lone sphere of radius r under a
+    constant sky S, seen by an orthographic camera, reflects S a(θ_V) at each point, so the image
+    integral is S ā π r² (eq. 3.32; ā = 2∫ a(θ) cos θ sin θ dθ; isotropic models: a anisotropic
+    one's a depends on φ_V). Faults ``pdf_scale`` and
+    ``uniform_claims_cosine`` bias it."""
+    model = brdfs.model(model_name, **params)
+    sky, half = 1.0, 1.05
+    scene = mi.load_dict({"type": "scene", "integrator": {"type": "brdfs_path", "hide_emitters": True},
+                          "sensor": _ortho(mi, (0.0, -5.0, 0.0), (0.0, 0.0, 0.0), half, 12),
+                          "sphere": {"type": "sphere", "radius": 1.0, "bsdf": {"type": plugin, **params}},
+                          "sky": {"type": "constant", "radiance": {"type": "rgb", "value": [sky] * 3}}})
+    image = _passes(mi, scene)
+    got, err = _mean_and_error(image.mean(axis=(1, 2)) * (2 * half) ** 2 / np.pi)
+    expected, quad_err = _mean_albedo(model)
+    assert abs(got - sky * expected) <= 5 * err + quad_err + 1e-4, (got, expected, err)
+
+
+def test_inside_a_glowing_diffuse_sphere_the_radiance_is_the_geometric_series(mi):
+    """Multi-bounce: inside a closed sphere whose wall emits L_e and reflects ρ (Lambert), every
+    direction sees L_e (1 + ρ + ρ² + ...) = L_e / (1 − ρ). Faults ``depth3`` (L_e (1 + ρ + ρ²)),
+    ``nee_first_vertex`` (MIS weights that assume a light sample that was not taken) and
+    ``uniform_claims_cosine`` bias it."""
+    rho, emitted = 0.6, 1.0
+    scene = mi.load_dict({
+        "type": "scene", "integrator": {"type": "brdfs_path"},
+        "sensor": {"type": "perspective", "fov": 60,
+                   "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 0], target=[1, 0.3, 0.2], up=[0, 0, 1]),
+                   "film": {"type": "hdrfilm", "width": 8, "height": 8, "pixel_format": "rgb", "rfilter": {"type": "box"}},
+                   "sampler": {"type": "independent"}},
+        "wall": {"type": "sphere", "radius": 1.0, "flip_normals": True,
+                 "bsdf": {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [rho] * 3}},
+                 "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [emitted] * 3}}}})
+    image = _passes(mi, scene, spp=32)
+    got, err = _mean_and_error(image.mean(axis=(1, 2)))
+    expected = emitted / (1.0 - rho)
+    assert err < 0.01 * expected
+    assert abs(got - expected) <= 5 * err, (got, expected, err)
+
+
+def test_an_elliptical_patch_highlight_turns_with_the_tangent(mi):
+    """Anisotropy, ``patch_elliptical`` at B/A < 1: the plugin's direct lighting follows the model
+    at (L, V) and at (L, V) turned 90° about N, which differ (fault ``frame_rotated_90``)."""
+    params = {"b": 0.3, "ratio": 0.4}
+    model = brdfs.model("patch_elliptical", **params)
+    L = np.array([0.4, 0.0, 1.0]) / np.linalg.norm([0.4, 0.0, 1.0])
+    V = np.array([-L[0] + 0.55, 0.0, L[2]]) / np.linalg.norm([-L[0] + 0.55, 0.0, L[2]])   # in the patch along u only
+    turn = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    values = []
+    for l, v in ((L, V), (turn @ L, turn @ V)):
+        (got, err), E = _direct_radiance(mi, {"type": "brdfs_patch_elliptical", **params}, l, v)
+        expected = float(model(l, v)) * E
+        assert abs(got - expected) <= 5 * err + 3e-3 * expected, (l, v, got, expected, err)
+        values.append(expected)
+    assert values[0] > 0 and values[1] == 0

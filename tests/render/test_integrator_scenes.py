@@ -1,0 +1,112 @@
+"""Noise figures, scenes and figure plumbing of the Mitsuba renders (metrics.py, scenes.py,
+artifacts/_render_figures.py), and the old numpy tracer as an independent oracle of the new path."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from brdfs.render.mitsuba import metrics
+
+
+def test_object_pixels_need_the_same_id_within_two_pixels_and_one_percent_of_the_p99():
+    ids = np.zeros((12, 12))
+    ids[:, 6:] = 1.0
+    ids[0, 11] = 2.0                              # a stray ID near a corner
+    y = np.ones((12, 12))
+    y[10, 10] = 1e-3                              # dark: below 1 % of the 99th percentile
+    mask = metrics.object_pixels(ids, y)
+    assert not mask[:, :6].any()                  # background (ID 0) is never an object pixel
+    assert not mask[:, 6:8].any() and mask[5, 8]  # columns within 2 px of the ID edge are out
+    assert not mask[0:3, 9:].any()                # within 2 px of the stray ID
+    assert not mask[10, 10] and mask[9, 9]
+
+
+def test_relative_standard_error_is_the_std_over_passes_over_root_passes_over_the_mean():
+    passes = np.array([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0])[:, None, None] * np.ones((8, 2, 2))
+    expected = np.std(np.arange(1, 9), ddof=1) / np.sqrt(8) / 4.5
+    assert np.allclose(metrics.relative_standard_error(passes), expected, rtol=1e-14)
+    with pytest.raises(ValueError, match="1 pass"):
+        metrics.relative_standard_error(passes[:1])
+
+
+def test_a_firefly_exceeds_ten_times_the_median_of_its_five_by_five_neighbourhood():
+    y = np.ones((9, 9))
+    y[4, 4] = 10.5
+    y[1, 1] = 9.5                                 # bright but not a firefly
+    mask = np.ones((9, 9), bool)
+    found = metrics.fireflies(y, mask)
+    assert found[4, 4] and found.sum() == 1
+    assert metrics.fireflies(y, np.zeros((9, 9), bool)).sum() == 0    # only object pixels count
+
+
+def test_noise_figures_of_a_noiseless_panel_are_zero_noise_and_every_interior_pixel():
+    ids = np.ones((10, 10))
+    figures = metrics.noise_figures(np.full((8, 10, 10), 0.3), ids)
+    assert figures.p95_relative_se == 0.0 and figures.fireflies == 0 and figures.object_pixels == 100
+
+
+def test_the_pyramid_is_five_vertices_with_outward_faces():
+    from brdfs.render.mitsuba import scenes
+
+    (part,) = scenes.pyramid((0.0, 0.0, 0.0), 1.0, 1.5)
+    v = np.asarray(part["vertices"])
+    assert v.shape == (5, 3)
+    centroid = v.mean(axis=0)
+    for a, b, c in part["faces"]:
+        normal = np.cross(v[b] - v[a], v[c] - v[a])
+        assert normal @ ((v[a] + v[b] + v[c]) / 3 - centroid) > 0
+
+
+def test_a_panel_is_at_least_the_presets_size_at_its_aspect():
+    from brdfs.artifacts import _render_figures as rf
+
+    setup = {"min_width": 640, "min_height": 400}
+    for aspect in (1.0, 4 / 3, 1.6, 3.0):
+        w, h = rf.panel_size(setup, aspect)
+        assert w >= 640 and h >= 400 and abs(w / h - aspect) < 0.01
+
+
+def test_the_png_shows_the_render_pixels_unscaled(tmp_path):
+    import matplotlib.image
+    import pandas as pd
+
+    from brdfs.artifacts import _render_figures as rf
+
+    rng = np.random.default_rng(1)
+    img = rng.integers(0, 256, (40, 64, 3), dtype=np.uint8)
+    df = pd.DataFrame({"x": [0]})
+    df.attrs["images"] = [("panel", img)]
+    rf.plot_panels(df, tmp_path / "p.png", "title")
+    png = (matplotlib.image.imread(tmp_path / "p.png")[..., :3] * 255).round().astype(np.uint8)
+    top, left = 2 * rf.TITLE_PX, rf.GAP_PX
+    assert np.array_equal(png[top:top + 40, left:left + 64], img)
+
+
+@pytest.fixture(scope="module")
+def mi(mitsuba):
+    from brdfs.render.mitsuba import integrator
+
+    integrator.register()
+    return mitsuba
+
+
+def _sphere_on_floor(mi, spp, seed, width=24, height=16):
+    from brdfs.render.mitsuba import scenes
+
+    objects = (scenes.SceneObject("floor", scenes.floor(4.0), {"type": "brdfs_lambert"}),
+               scenes.SceneObject("ball", scenes.sphere((0.0, 0.0, 1.0), 1.0), {"type": "brdfs_phong_cosmin", "n": 20.0}))
+    scene = scenes.Scene(objects, (scenes.Light((-3.0, -4.0, 6.0), 40.0),), sky=0.5)
+    camera = scenes.Camera((0.0, -7.0, 2.5), (0.0, 0.0, 0.8), width, height, 34.0)
+    return np.asarray(mi.render(scenes.load(scene, camera, {"type": "brdfs_path"}), spp=spp, seed=seed))
+
+
+def test_renders_are_byte_identical_for_the_same_seed_and_differ_for_another(mi):
+    a, b, c = (_sphere_on_floor(mi, 8, seed) for seed in (3, 3, 4))
+    assert a.tobytes() == b.tobytes()
+    assert a.tobytes() != c.tobytes()
+
+
+def test_the_id_buffer_names_each_object(mi):
+    image = _sphere_on_floor(mi, 4, 0)
+    ids = set(np.unique(image[..., 3]))
+    assert {1.0, 2.0} <= ids                       # floor and ball both in view, integer where uniform

@@ -1,0 +1,407 @@
+"""The patch plugins (:mod:`brdfs.render.mitsuba.plugins.patch`) are twins of the numpy models of
+chapter 4: the same f and pdf at 10⁴ random pairs, samplers whose directions follow the model's pdf
+(Mitsuba's chi-square test on a chart of the base plane), weights equal to f cos/pdf, an anisotropic
+ellipse whose frame matters, and the "normal" loop's costs and give-up probability.
+
+Twin tolerance |f32 − f64| ≤ 2⁻²⁰ (1 + n)|f64| + 2⁻²⁴ max f, with n the amplification of the
+relative error of m (and of the inputs) in the formula: 0 for the indicator functions (basic,
+elliptical), s for e^{−s m} (δf/f = s δm, m ≤ 2, δm ≤ 2⁻²³ m), 1 + d m_clip²/(4 − m_clip²) for the
+generalized Lambertian ((1 − m²/4)^{−d/2}: δf/f = (d m²/2)/(4 − m²) δm/m), and 4 for pdfs that divide
+by a lens area (float64 in the plugin, then one rounding).  Where f jumps (m = R, the ellipse), a pair
+whose f64 distance to the jump is within 2⁻¹⁸ of it is left out and counted: float32 may put it on
+the other side.
+"""
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+from scipy.special import gammainc, gammaincinv
+
+from _chi2 import incidence
+
+from brdfs.physics import patch_geometry as patch
+from brdfs.physics.models import model as numpy_model
+
+PAIRS = 10_000
+ANGLES = (30.0, 75.0)
+#: (plugin, params of the numpy model, n of the tolerance, where f jumps: a function of (L, V) giving
+#: the signed distance to the jump, or None).
+KINDS = ("narrowest", "typical")
+
+
+def _plugin(name, strategy=None, **params):
+    d = {"type": f"brdfs_{name}", **{k: float(v) for k, v in params.items()}}
+    if strategy is not None:
+        d["strategy"] = strategy
+    return d
+
+
+def _tolerance_n(brdf):
+    """n of the twin tolerance (module docstring)."""
+    p = brdf.params
+    if "s" in p:
+        return float(p["s"])
+    if "d" in p:
+        return 1.0 + p["d"] * p["m_clip"] ** 2 / (4.0 - p["m_clip"] ** 2)
+    return 0.0
+
+
+def _distance_to_jump(brdf, L, V):
+    """|m − R| (basic), the elliptic distance − b (elliptical), inf where f has no jump."""
+    p = brdf.params
+    z = L[..., :2] + V[..., :2]
+    if "R" in p:
+        return np.abs(np.hypot(z[..., 0], z[..., 1]) - p["R"])
+    if "ratio" in p:
+        phi = np.radians(p["u_angle_deg"])
+        along_u = np.cos(phi) * z[..., 0] + np.sin(phi) * z[..., 1]
+        along_v = -np.sin(phi) * z[..., 0] + np.cos(phi) * z[..., 1]
+        return np.abs(np.hypot(p["ratio"] * along_u, along_v) - p["b"])
+    return np.full(L.shape[:-1], np.inf)
+
+
+CASES = [(name, kind) for name in ("patch_basic", "patch_exponential", "patch_elliptical", "generalized_lambertian")
+         for kind in KINDS]
+
+
+def _pairs(brdf, rng):
+    """L uniform over the hemisphere; V half uniform, half from the model's own sampler (so that a
+    narrow patch is hit); all rounded to float32 (the plugin's inputs)."""
+    def uniform(n):
+        u = rng.random((n, 2))
+        z = u[:, 0]
+        r = np.sqrt(1 - z * z)
+        return np.stack([r * np.cos(2 * np.pi * u[:, 1]), r * np.sin(2 * np.pi * u[:, 1]), z], -1)
+    L = uniform(2 * PAIRS)
+    strategy = brdf.strategies[0]
+    V_own = brdf.sample_direction(L[:PAIRS], rng.random((PAIRS, brdf.sample_dimension(strategy))), strategy)
+    V = np.concatenate([V_own, uniform(PAIRS)])
+    own, other = np.flatnonzero(V[:PAIRS, 2] > 1e-3), PAIRS + np.flatnonzero(V[PAIRS:, 2] > 1e-3)
+    keep = np.concatenate([own[:PAIRS // 2], other[:PAIRS - min(own.size, PAIRS // 2)]])
+    L, V = L[keep].astype(np.float32), V[keep].astype(np.float32)
+    return L.astype(np.float64), V.astype(np.float64)
+
+
+def _np(x):
+    """A Dr.Jit array as a float64 numpy array (``.numpy()``: no element-wise conversion)."""
+    return np.asarray(x.numpy(), np.float64)
+
+
+def _call(mi, plugin, verb, L, V):
+    import drjit as dr
+    si = dr.zeros(mi.SurfaceInteraction3f, len(L))
+    si.wi = mi.Vector3f(*(mi.Float(L[:, k].astype(np.float32)) for k in range(3)))
+    wo = mi.Vector3f(*(mi.Float(V[:, k].astype(np.float32)) for k in range(3)))
+    out = getattr(plugin, verb)(mi.BSDFContext(), si, wo)
+    arr = _np(out)
+    return arr[0] if arr.ndim == 2 else arr
+
+
+def _assert_twin(computed, exact, n, where, what):
+    bound = 2.0 ** -20 * (1.0 + n) * np.abs(exact) + 2.0 ** -24 * np.max(np.abs(exact))
+    err = np.abs(computed - exact)
+    bad = where & (err > bound)
+    assert not bad.any(), (f"{what}: {bad.sum()} of {where.sum()} pairs off, worst |f32 − f64| = "
+                           f"{err[bad].max():.3g} at f64 = {exact[bad][np.argmax(err[bad])]:.6g}")
+
+
+@pytest.mark.parametrize("name, kind", CASES)
+def test_plugin_eval_and_pdf_agree_with_the_numpy_model_at_ten_thousand_pairs(mitsuba, name, kind):
+    mi = mitsuba
+    from brdfs.physics.models import MODELS
+    brdf = MODELS[name].example(kind)
+    L, V = _pairs(brdf, np.random.default_rng(7))
+    n = _tolerance_n(brdf)
+    clear = _distance_to_jump(brdf, L, V) > 2.0 ** -18
+    assert (~clear).sum() <= 5, f"{(~clear).sum()} pairs in the rounding band of the jump"
+    assert clear.sum() >= PAIRS - 5
+    f64 = brdf(V, L) * V[:, 2]                          # Mitsuba's eval: f cos θ_o, o = V
+    plugin_params = brdf.params
+    for strategy in _plugin_strategies(mi, name):
+        plugin = mi.load_dict(_plugin(name, strategy, **plugin_params))
+        if strategy == _plugin_strategies(mi, name)[0]:
+            _assert_twin(_call(mi, plugin, "eval", L, V), f64, n, clear, f"{name} {kind} eval")
+            assert (f64 > 0).sum() > PAIRS / 4, "too few pairs inside the patch"
+        model_strategy = _MODEL_STRATEGY[strategy]
+        if name == "patch_exponential" and strategy == "normal":
+            model_strategy = "russian_roulette"              # the MIS proxy (module docstring of patch.py)
+        pdf64 = brdf.pdf(L, V, model_strategy)
+        n_pdf = n + (4.0 if strategy == "normal" else 0.0)
+        _assert_twin(_call(mi, plugin, "pdf", L, V), pdf64, n_pdf, clear, f"{name} {kind} pdf {strategy}")
+
+
+_MODEL_STRATEGY = {"cosine": "cosine", "accept_reject": "russian_roulette", "normal": "exact"}
+
+
+def _plugin_strategies(mi, name):
+    from brdfs.render.mitsuba.plugins import patch as plugins
+    return plugins.PLUGINS[name].strategies
+
+
+# --- chi-square on charts of the base plane ------------------------------------------------------------
+
+@dataclass(frozen=True)
+class BasePlaneChart:
+    """(φ, t) ∈ [−π, π] × [0, 1] ↔ points x of the base plane (V = (x, √(1 − |x|²))), polar about c:
+    x = c + A r (cos φ, sin φ) with r = √t (a disk, or through A an ellipse, filled evenly; its rim is
+    the chart's edge t = 1), or, given ``s``, A = 1 and r = m = G⁻¹(t G(m_max)), G(m) = P(2, s m), the
+    radial law of e^{−s m} m, so that e^{−s m} fills the chart evenly.  :meth:`jacobian` is dA_x/(dφ dt)."""
+
+    centre: tuple
+    axes: tuple = ((1.0, 0.0), (0.0, 1.0))
+    s: float | None = None
+    m_max: float = 2.0
+
+    def bounds(self):
+        import mitsuba as mi
+        return mi.ScalarBoundingBox2f([-np.pi, 0.0], [np.pi, 1.0])
+
+    def aspect(self):
+        return 1.0                        # (ChiSquareTest: res / aspect columns, res rows)
+
+    def _radius(self, t):
+        t = np.clip(t, 0.0, 1.0)
+        if self.s is None:
+            return np.sqrt(t)
+        return np.interp(t, *_inverse_table(self.s, self.m_max))
+
+    def _to_plane(self, phi, t):
+        r = self._radius(t)
+        ex, ey = r * np.cos(phi), r * np.sin(phi)
+        A, c = np.asarray(self.axes), self.centre
+        return c[0] + A[0, 0] * ex + A[0, 1] * ey, c[1] + A[1, 0] * ex + A[1, 1] * ey
+
+    def _from_plane(self, x, y):
+        ex, ey = np.linalg.solve(np.asarray(self.axes), np.stack([x - self.centre[0], y - self.centre[1]]))
+        r = np.hypot(ex, ey)
+        t = r * r if self.s is None else gammainc(2.0, self.s * r) / gammainc(2.0, self.s * self.m_max)
+        return np.arctan2(ey, ex), t
+
+    def jacobian(self, x, y):
+        """dA_x/(dφ dt) at x: |det A|/2, or G(m_max) e^{s m}/s² for the e^{−s m} chart."""
+        det = abs(np.linalg.det(np.asarray(self.axes)))
+        if self.s is None:
+            return np.full(np.shape(x), 0.5 * det)
+        m = np.hypot(x - self.centre[0], y - self.centre[1])
+        return gammainc(2.0, self.s * self.m_max) * np.exp(np.minimum(self.s * m, 700.0)) / self.s ** 2
+
+    def map_forward(self, p):
+        import mitsuba as mi
+        x, y = self._to_plane(_np(p.x), _np(p.y))
+        z = np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
+        return mi.Vector3f(*(mi.Float(a.astype(np.float32)) for a in (x, y, z)))
+
+    def map_backward(self, v):
+        import mitsuba as mi
+        phi, t = self._from_plane(_np(v.x), _np(v.y))
+        return mi.Vector2f(mi.Float(phi.astype(np.float32)), mi.Float(t.astype(np.float32)))
+
+
+@functools.lru_cache(maxsize=None)
+def _inverse_table(s, m_max):
+    """(t, m) on 2·10⁴ points: G⁻¹ by interpolation (its slope off by O(10⁻⁴), far below the test's
+    noise), as scipy's gammaincinv costs microseconds a point."""
+    m = gammaincinv(2.0, np.linspace(0.0, 1.0, 20_001) * gammainc(2.0, s * m_max)) / s
+    return gammainc(2.0, s * m) / gammainc(2.0, s * m_max), m
+
+
+def _chart(brdf, strategy, L):
+    """The chart that resolves ``strategy``'s points at L (a lens, an ellipse, e^{−s m}, or the disk)."""
+    c = (-L[0], -L[1])
+    p = brdf.params
+    if strategy == "cosine":
+        return BasePlaneChart((0.0, 0.0))
+    if "s" in p:
+        return BasePlaneChart(c, s=p["s"], m_max=min(2.0, 60.0 / p["s"]))
+    if "R" in p and p["R"] < 1.0:
+        r = (1 + 2 ** -20) * p["R"]
+        return BasePlaneChart(c, ((r, 0.0), (0.0, r)))
+    if "ratio" in p and np.pi * p["b"] ** 2 / p["ratio"] <= np.pi:
+        phi = np.radians(p["u_angle_deg"])
+        a, b = (1 + 2 ** -20) * p["b"] / p["ratio"], (1 + 2 ** -20) * p["b"]
+        return BasePlaneChart(c, ((a * np.cos(phi), -b * np.sin(phi)), (a * np.sin(phi), b * np.cos(phi))))
+    return BasePlaneChart((0.0, 0.0))
+
+
+def _normal_marginal(brdf, L):
+    """The density per unit area of the exponential model's "normal" sampler (R from p(R)/W, then a
+    uniform point of the lens of R), a function of m alone: Q(m) = (1/W)(∫_m² p(R)/A_R(d) dR +
+    p_Diffuse/π), tabulated by the trapezoid rule on 4·10⁴ points (denser below 40/s) and interpolated."""
+    profile = patch.ExponentialProfile(brdf.s)
+    W, d = brdf.total_weight, float(np.hypot(L[0], L[1]))
+    R = np.unique(np.concatenate([np.linspace(0.0, min(2.0, 40.0 / brdf.s), 20_001), np.linspace(0.0, 2.0, 20_001)]))
+    g = patch.weight(profile, R, brdf.C) / np.maximum(patch.circle_intersection(d, np.maximum(R, 1e-12)).area, 1e-300)
+    pieces = 0.5 * (g[1:] + g[:-1]) * np.diff(R)
+    tail = np.concatenate([np.cumsum(pieces[::-1])[::-1], [0.0]])
+    dirac = patch.diffuse_weight(profile, brdf.C) / np.pi
+    return lambda m: (np.interp(m, R, tail) + dirac) / W
+
+
+def _chi2(mi, brdf, strategy, theta_deg, sample_count=50_000, res=16, ires=16):
+    """Mitsuba's ChiSquareTest of the plugin's sampler (through ``BSDFAdapter``) against the numpy
+    model's pdf on :func:`_chart`; rejected samples go to the chart's centre with weight 0."""
+    import drjit as dr
+    name = brdf.name
+    wi = incidence(theta_deg)
+    L = np.array(wi)
+    bsdf = _plugin(name, strategy, **brdf.params)
+    plugin = mi.load_dict(bsdf)
+    chart = _chart(brdf, strategy, L)
+    centre = chart.map_forward(mi.Vector2f(0.0, 0.5))
+
+    def sample_func(sample):
+        si = dr.zeros(mi.SurfaceInteraction3f, dr.width(sample))
+        si.wi = dr.opaque(mi.Vector3f, wi)         # (opaque: one kernel for every angle)
+        bs, _ = plugin.sample(mi.BSDFContext(), si, sample[0], mi.Vector2f(sample[1], sample[2]))
+        drawn = bs.pdf > 0                      # (the cosine strategy's weight is 0 off the patch)
+        return dr.select(drawn, bs.wo, centre), dr.select(drawn, mi.Float(1.0), 0.0)
+
+    marginal = _normal_marginal(brdf, L) if strategy == "normal" and "s" in brdf.params else None
+
+    def pdf_func(v):
+        x, y = _np(v.x), _np(v.y)
+        z2 = 1.0 - x * x - y * y
+        inside = z2 > 0
+        V = np.stack([x, y, np.sqrt(np.maximum(z2, 0.0))], -1)
+        if marginal is not None:
+            area_pdf = marginal(np.hypot(x + L[0], y + L[1]))
+        else:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                area_pdf = brdf.pdf(L, V, _MODEL_STRATEGY[strategy]) / V[:, 2]
+        out = np.where(inside, area_pdf * chart.jacobian(x, y), 0.0)
+        return mi.Float(np.nan_to_num(out).astype(np.float32))
+
+    test = mi.chi2.ChiSquareTest(domain=chart, sample_func=sample_func, pdf_func=pdf_func, sample_dim=3,
+                                 sample_count=sample_count, res=res, ires=ires, seed=0)
+    test.passed = bool(test.run(0.01, quiet=True))
+    return test
+
+
+def _chi2_cases():
+    cases = []
+    from brdfs.physics.models import MODELS
+    for name in ("patch_basic", "patch_exponential", "patch_elliptical", "generalized_lambertian"):
+        strategies = {"patch_basic": ("normal", "accept_reject", "cosine"),
+                      "patch_exponential": ("accept_reject", "normal", "cosine"),
+                      "patch_elliptical": ("accept_reject", "cosine"),
+                      "generalized_lambertian": ("cosine",)}[name]
+        params = [MODELS[name].examples[k] for k in KINDS] + ([{"R": 1.5}] if name == "patch_basic" else [])
+        for strategy in strategies:
+            for p in params:
+                if strategy == "cosine" and p is not params[0]:
+                    continue                                 # the cosine sampler ignores the parameters
+                for theta in ANGLES:
+                    cases.append(pytest.param(name, p, strategy, theta, id=f"{name}-{strategy}-{p}-{theta:g}"))
+    return cases
+
+
+@pytest.mark.parametrize("name, params, strategy, theta", _chi2_cases())
+def test_plugin_samplers_follow_the_numpy_models_pdf_by_mitsubas_chi_square_test(mitsuba, name, params, strategy, theta):
+    brdf = numpy_model(name, **params)
+    test = _chi2(mitsuba, brdf, strategy, theta)
+    assert test.passed, f"p = {test.p_value}: {test.messages}"
+
+
+# --- weights, costs, the give-up probability ------------------------------------------------------------
+
+def _sample(mi, plugin, theta_deg, n, seed):
+    import drjit as dr
+    rng = np.random.default_rng(seed)
+    si = dr.zeros(mi.SurfaceInteraction3f, n)
+    si.wi = dr.opaque(mi.Vector3f, incidence(theta_deg))
+    s1 = mi.Float(rng.random(n, dtype=np.float32))
+    s2 = mi.Point2f(mi.Float(rng.random(n, dtype=np.float32)), mi.Float(rng.random(n, dtype=np.float32)))
+    bs, weight = plugin.sample(mi.BSDFContext(), si, s1, s2)
+    wo = _np(bs.wo).T
+    return si, bs, wo, _np(weight)[0]
+
+
+@pytest.mark.parametrize("name, strategy", [("patch_basic", "normal"), ("patch_basic", "accept_reject"),
+                                            ("patch_exponential", "accept_reject"),
+                                            ("patch_elliptical", "accept_reject"),
+                                            ("generalized_lambertian", "cosine")])
+def test_each_strategys_own_weight_is_f_cos_over_its_pdf(mitsuba, name, strategy):
+    mi = mitsuba
+    from brdfs.physics.models import MODELS
+    params = MODELS[name].examples["typical"]
+    plugin = mi.load_dict(_plugin(name, strategy, **params))
+    si, bs, wo, weight = _sample(mi, plugin, 60.0, 20_000, 3)
+    kept = weight > 0
+    assert kept.mean() > 0.3
+    value = _np(plugin.eval(mi.BSDFContext(), si, bs.wo))[0]
+    pdf = _np(bs.pdf)
+    np.testing.assert_allclose(weight[kept], value[kept] / pdf[kept], rtol=2e-5)
+
+
+def test_exponential_normal_weights_average_to_the_models_albedo(mitsuba):
+    mi = mitsuba
+    brdf = numpy_model("patch_exponential", s=10.0)
+    plugin = mi.load_dict(_plugin("patch_exponential", "normal", s=10.0))
+    _, _, _, weight = _sample(mi, plugin, 60.0, 20_000, 11)
+    albedo = float(brdf.albedo_estimate(60.0, 1e-10, 1e-14).value)
+    assert (weight > 0).all()
+    assert abs(weight.mean() - albedo) < 5 * weight.std() / np.sqrt(weight.size) + 1e-6, (weight.mean(), albedo)
+
+
+def test_the_normal_loop_gives_up_with_a_probability_below_float32_resolution(mitsuba):
+    from brdfs.render.mitsuba.plugins import patch as plugins
+    d, R = np.meshgrid(np.linspace(0.0, 1.0, 201), np.linspace(0.01, 2.0, 200))
+    acceptance = patch.circle_intersection(d, R).area / (np.pi * np.minimum(R, 1.0) ** 2)
+    assert acceptance.min() >= plugins.MIN_ACCEPTANCE * (1 - 1e-12)
+    assert (1.0 - plugins.MIN_ACCEPTANCE) ** plugins.MAX_TRIES < 2.0 ** -40
+
+
+def test_costs_count_samples_tries_and_evaluations_as_the_thesis_does(mitsuba):
+    mi = mitsuba
+    n, theta = 40_000, 85.0
+    normal = mi.load_dict({**_plugin("patch_basic", "normal", R=0.9), "count": True})
+    _sample(mi, normal, theta, n, 5)
+    costs = normal.cost_counts()
+    d = np.sin(np.radians(theta))
+    acceptance = patch.circle_intersection(d, 0.9).area / (np.pi * 0.81)
+    expected, sigma = n / acceptance, np.sqrt(n * (1 - acceptance)) / acceptance
+    assert costs["samples"] == n and costs["evaluations"] == n and costs["failures"] == 0
+    assert abs(costs["tries"] - expected) < 5 * sigma, (costs, expected)
+    roulette = mi.load_dict({**_plugin("patch_exponential", "accept_reject", s=2.0), "count": True})
+    _, _, _, weight = _sample(mi, roulette, theta, n, 6)
+    assert roulette.cost_counts() == {"samples": n, "tries": n, "evaluations": 0, "failures": 0}
+    assert 0.2 < (weight == 0).mean() < 0.8
+
+
+def test_exponential_radius_is_the_models_inverse_cdf(mitsuba):
+    mi = mitsuba
+    from brdfs.render.mitsuba.plugins import patch as plugins
+    for s in (512.0, 4.0):
+        plugin = mi.load_dict(_plugin("patch_exponential", s=s))
+        u = np.random.default_rng(1).random(4096).astype(np.float32)
+        R = _np(plugin.radius(mi.Float(u)))
+        exact = numpy_model("patch_exponential", s=s).radius_of_cdf(u.astype(np.float64))
+        np.testing.assert_allclose(R, exact, rtol=2.0 ** -21, atol=2.0 ** -30)
+    assert plugins.CDF_BISECTIONS >= 52
+
+
+# --- anisotropy: patch_elliptical at B/A < 1 -----------------------------------------------------------------
+
+def _spread(mi, u_angle_deg):
+    plugin = mi.load_dict(_plugin("patch_elliptical", "accept_reject", b=0.1, ratio=0.25, u_angle_deg=u_angle_deg))
+    _, _, wo, weight = _sample(mi, plugin, 40.0, 20_000, 9)
+    kept = weight > 0
+    return np.std(wo[kept, 0]), np.std(wo[kept, 1])
+
+
+def test_elliptical_highlight_stretches_along_the_major_axis_of_the_shading_frame(mitsuba):
+    sx, sy = _spread(mitsuba, 0.0)
+    assert sx / sy == pytest.approx(4.0, rel=0.05)          # a/b = 1/ratio, along x = dp/du
+    sx, sy = _spread(mitsuba, 90.0)
+    assert sy / sx == pytest.approx(4.0, rel=0.05)
+
+
+def test_a_frame_turned_ninety_degrees_fails_the_elliptical_chi_square_test(mitsuba, monkeypatch):
+    from brdfs.render.mitsuba.plugins import _common
+    brdf = numpy_model("patch_elliptical", b=0.1, ratio=0.25)
+    monkeypatch.setattr(_common, "FRAME_ROTATED_90", True)
+    test = _chi2(mitsuba, brdf, "accept_reject", 40.0, sample_count=20_000, res=16)
+    assert not test.passed

@@ -1,0 +1,74 @@
+"""Every sampler of the Lambert, Phong-family and microfacet plugins passes Mitsuba's own chi-square
+test (``mi.chi2.ChiSquareTest`` through ``mi.chi2.BSDFAdapter``, on the lobe chart of :mod:`_chi2`) at
+the narrowest and the typical parameters of the model's examples, at two incidence angles each; and the
+test rejects a pdf off by 5 % and a uniform sampler that claims the cosine pdf.
+
+Significance 1 % per case, Šidák-corrected over the cases (``test_count``).  The lobe scale s of the
+chart is the lobe's width in u = (1 − cos a)/2: 1/(2n) for a cosine power, m² (Ward, Cook–Torrance) and
+4α² (GGX, Beckmann: heavier tails) for the microfacet lobes and 2/n for the Blinn lobes (δ ~ 1/√n, the
+angle from R ~ 2δ), 1 for the cosine.
+"""
+from __future__ import annotations
+
+import pytest
+
+from _chi2 import chi2_test, describe
+
+# (plugin dict, lobe scale s, chart axis, incidence angles in degrees)
+CASES = {
+    "lambert": ({"type": "brdfs_lambert"}, 1.0, "normal", (10.0, 80.0)),
+    "phong n=1e4": ({"type": "brdfs_phong", "n": 1e4}, 0.5e-4, "mirror", (30.0, 80.0)),
+    "phong n=20": ({"type": "brdfs_phong", "n": 20}, 1 / 40, "mirror", (10.0, 60.0)),
+    "phong_cosmin n=1e4": ({"type": "brdfs_phong_cosmin", "n": 1e4}, 0.5e-4, "mirror", (10.0, 85.0)),
+    "phong_cosmin n=20": ({"type": "brdfs_phong_cosmin", "n": 20}, 1 / 40, "mirror", (45.0, 80.0)),
+    "pumped phong g1 n=20": ({"type": "brdfs_phong", "n": 20, "pumping": "g1"}, 1 / 40, "mirror", (70.0,)),
+    "phong n=20 + diffuse (one-sample MIS)": ({"type": "brdfs_phong", "n": 20, "diffuse_reflectance": 0.5},
+                                              0.2, "mirror", (45.0,)),
+    "blinn n=1e4": ({"type": "brdfs_blinn", "n": 1e4}, 2e-4, "mirror", (30.0, 80.0)),
+    "blinn_cosmin n=20": ({"type": "brdfs_blinn_cosmin", "n": 20}, 0.1, "mirror", (10.0, 60.0)),
+    "ward m=0.005": ({"type": "brdfs_ward", "m": 0.005}, 0.005 ** 2, "mirror", (20.0, 70.0)),
+    "ward m=0.1": ({"type": "brdfs_ward", "m": 0.1}, 0.01, "mirror", (30.0, 80.0)),
+    "cook_torrance m=0.005": ({"type": "brdfs_cook_torrance", "m": 0.005}, 0.005 ** 2, "mirror", (10.0, 75.0)),
+    "cook_torrance m=0.1": ({"type": "brdfs_cook_torrance", "m": 0.1, "G": "smith"}, 0.01, "mirror", (60.0,)),
+    "ggx alpha=0.01": ({"type": "brdfs_ggx", "alpha": 0.01}, 4e-4, "mirror", (30.0, 75.0)),
+    "ggx alpha=0.3": ({"type": "brdfs_ggx", "alpha": 0.3}, 0.36, "mirror", (10.0, 70.0)),
+    "beckmann alpha=0.01": ({"type": "brdfs_beckmann", "alpha": 0.01}, 4e-4, "mirror", (30.0, 75.0)),
+    "beckmann alpha=0.3": ({"type": "brdfs_beckmann", "alpha": 0.3}, 0.36, "mirror", (10.0, 70.0)),
+}
+RUNS = [(case, theta) for case, (*_, angles) in CASES.items() for theta in angles]
+SAMPLES = 100_000
+#: p-values reached, printed by the last test (pytest -s) for the report.
+P_VALUES: dict[str, float] = {}
+
+
+@pytest.mark.parametrize("case, theta", RUNS, ids=[f"{c} theta={t:g}" for c, t in RUNS])
+def test_plugin_sampler_passes_mitsubas_chi_square_test(mitsuba, case, theta):
+    bsdf, scale, about, _ = CASES[case]
+    test = chi2_test(bsdf, theta, scale, about, sample_count=SAMPLES)
+    P_VALUES[f"{case} theta={theta:g}"] = test.p_value
+    significance = 1.0 - (1.0 - 0.01) ** (1.0 / len(RUNS))
+    assert not test.fail and test.p_value >= significance, describe(test)
+
+
+@pytest.mark.parametrize("case, theta", [("phong n=20", 30.0), ("ggx alpha=0.3", 45.0), ("lambert", 30.0)])
+def test_chi_square_rejects_a_pdf_off_by_five_percent(mitsuba, monkeypatch, case, theta):
+    from brdfs.render.mitsuba.plugins import _common
+    monkeypatch.setattr(_common, "PDF_SCALE", 1.05)
+    bsdf, scale, about, _ = CASES[case]
+    test = chi2_test(bsdf, theta, scale, about, sample_count=SAMPLES)
+    assert not test.passed, describe(test)
+
+
+@pytest.mark.parametrize("bsdf", [{"type": "brdfs_lambert"},
+                                  {"type": "brdfs_phong", "n": 20, "diffuse_reflectance": 0.5}])
+def test_chi_square_rejects_a_uniform_sampler_claiming_the_cosine_pdf(mitsuba, monkeypatch, bsdf):
+    from brdfs.render.mitsuba.plugins import _common
+    monkeypatch.setattr(_common, "UNIFORM_CLAIMS_COSINE", True)
+    test = chi2_test(bsdf, 30.0, 1.0, "normal", sample_count=SAMPLES)
+    assert not test.passed, describe(test)
+
+
+def test_print_p_values():
+    """Not a claim: prints the p-values reached (pytest -s) for the report."""
+    for case, p in P_VALUES.items():
+        print(f"chi2 p-value {case}: {p:.3g}")

@@ -1,0 +1,42 @@
+# The report's reading aids, built from a build's outputs by one job (nothing is read while the
+# DAG is planned): the landing table (every artifact with its count of printed numbers that
+# reproduce and differ; the report's front page shows it with a link to each, read when the
+# report is rendered: workflow/report/workflow.rst) and each table artifact as an HTML table, its
+# printed numbers beside ours with the differing cells marked (brdfs.pipeline.recomputed).
+
+REPORT_LANDING = "results/report/landing.html"
+REPORT_LANDING_CSV = "results/report/landing.csv"
+REPORT_CHAPTERS_CSV = "results/report/chapters.csv"
+REPORT_TABLE_NAMES = sorted(name for name, a in ARTIFACTS.items() if a.kind == "table")
+
+
+def report_table_html(name):
+    return f"results/report/tables/{name}.html"
+
+
+rule report_pages:
+    input:
+        comparison=COMPARISON,
+        tables=[ARTIFACTS[name].csv for name in REPORT_TABLE_NAMES],
+    output:
+        landing=report(REPORT_LANDING, caption="../report/landing.rst", category="Overview",
+                       labels={"page": "landing table"}),
+        landing_csv=REPORT_LANDING_CSV,
+        chapters_csv=REPORT_CHAPTERS_CSV,
+        tables=[
+            report(report_table_html(name), caption="../report/table_html.rst",
+                   category=report_text.category(ARTIFACTS[name].chapter), subcategory="Tables as HTML",
+                   labels={"artifact": name, "thesis": report_text.thesis_number(name) or "extra"})
+            for name in REPORT_TABLE_NAMES
+        ],
+    params:
+        tables=REPORT_TABLE_NAMES,
+    resources:
+        mem_mb=1000,
+        runtime=5,
+    log:
+        "results/logs/report_pages.log",
+    benchmark:
+        "results/benchmarks/rules/report_pages.tsv"
+    script:
+        "../scripts/report_pages.py"
