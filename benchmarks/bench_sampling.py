@@ -9,7 +9,7 @@ import time
 import numpy as np
 import pandas as pd
 
-from brdfs.artifacts.fig_4_9_sampling_efficiency import MODELS as FIG_4_9_MODELS, STRATEGIES, draw
+from brdfs.artifacts.extra_sampling_efficiency import MODELS as FIG_4_9_MODELS, STRATEGIES, draw
 from brdfs.artifacts.sampling_chi2 import build, parameters
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.models import MODELS, model

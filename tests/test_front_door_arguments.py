@@ -211,3 +211,14 @@ def test_the_front_door_examples_still_hold():
     for module in (albedo_module, arguments):
         result = doctest.testmod(module)
         assert result.attempted > 0 and result.failed == 0
+
+
+@pytest.mark.parametrize("argument, shown, call", [
+    ("models", "'phong'", lambda: brdfs.albedo_table("phong", [0.0])),
+    ("models[1]", "'ward'", lambda: brdfs.albedo_table([PHONG, "ward"], [0.0])),
+    ("theta_deg", "[91.]", lambda: brdfs.albedo_table([PHONG], [0.0, 91.0])),
+    ("rtol", "-1e-06", lambda: brdfs.albedo_table([PHONG], [0.0], rtol=-1e-6)),
+    ("atol", "nan", lambda: brdfs.albedo_table([PHONG], [0.0], atol=math.nan)),
+])
+def test_albedo_table_refuses_a_bad_argument_with_one_line_naming_it(argument, shown, call):
+    _refused(call, argument, shown)

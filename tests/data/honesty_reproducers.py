@@ -199,6 +199,7 @@ REPRODUCERS = {
     "patch_basic R=1 theta=1e-6": lambda: patch_basic_truth(1e-6, 1.0),
     "patch_basic R=1-1e-12 theta=1e-7": lambda: patch_basic_truth(1e-7, 1.0 - 1e-12),
     "cook_torrance smith m=0.1 theta=26.25": lambda: cook_torrance_truth(0.1, "smith", 26.25),
+    "cook_torrance smith m=0.1 theta=26.20": lambda: cook_torrance_truth(0.1, "smith", 26.20),
     "cook_torrance smith m=1 theta=85.75": lambda: cook_torrance_truth(1.0, "smith", 85.75),
     "cook_torrance ts m=0.005 theta=90-1e-9": lambda: cook_torrance_truth(0.005, "torrance_sparrow", 90 - 1e-9),
     "cook_torrance none m=0.005 theta=87.745827": lambda: cook_torrance_truth(0.005, "none", 87.745827),

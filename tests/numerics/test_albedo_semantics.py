@@ -74,11 +74,14 @@ def test_a_pumped_models_albedo_includes_its_tables_error():
     table = pumping.tabulate_albedo(base, target_rtol=1e-3, engine_rtol=1e-9, degree=2)
     coarse = pumping.pumped_models(base, [table], "g1")[-1]
     fine = pumping.pumped_models(base, [pumping.tabulate_albedo(base, target_rtol=1e-11, engine_rtol=1e-12)], "g1")[-1]
-    a, b = albedo(coarse, [30.0]), albedo(fine, [30.0])
+    with pytest.warns(NotConvergedWarning, match="1 stalled.*known only to evaluation_rtol"):
+        a = albedo(coarse, [30.0])                     # 1e-10 asked of a model known to 2e-3
+    b = albedo(fine, [30.0], rtol=1e-9)
     true_error = abs(a.value[0] - b.value[0])
     assert true_error > 1e4 * 1e-10 * abs(a.value[0])                   # the table's error, not the integration's
     assert true_error <= a.error[0] - b.error[0]
-    assert a.error[0] >= coarse.evaluation_rtol * a.value[0]
+    assert a.error[0] >= coarse.evaluation_rtol * a.value[0] and list(a.status) == [STALLED]
+    assert list(b.status) == [CONVERGED]
 
 
 # --- loud when not converged -----------------------------------------------------------------
@@ -171,3 +174,37 @@ def test_the_public_names_are_exported():
     assert brdfs.NotConvergedWarning is NotConvergedWarning and brdfs.NotConvergedError is NotConvergedError
     assert issubclass(brdfs.ArgumentError, ValueError) and issubclass(brdfs.ArgumentError, TypeError)
     assert "auto" in brdfs.ALBEDO_METHODS
+
+
+# --- a run that stops early says why -----------------------------------------------------------
+
+def test_a_run_stopped_on_its_budget_says_budget_exhausted_and_one_that_cannot_gain_says_stalled():
+    from brdfs.core.gauss_kronrod import NodeValues, integrate
+    spiky = lambda x, elem: 1.0 / np.sqrt(np.abs(x - 0.3) + 1e-12)          # a cusp off the breakpoints
+    assert list(integrate(spiky, np.array([[0.0, 1.0]]), rtol=1e-12, max_rounds=2).status) == ["budget_exhausted"]
+    # an inner integral known only to 1e-6: no split of the outer one can help
+    vague = lambda x, elem: NodeValues(np.cos(x), np.cos(x), np.full(x.shape, 1e-6))
+    assert list(integrate(vague, np.array([[0.0, 1.0]]), rtol=1e-10).status) == ["stalled"]
+
+
+def test_the_disk_keeps_its_drivers_reason_for_stopping_short(monkeypatch):
+    def stalled_disk(models, theta, rtol, atol):
+        return Estimate(np.full(len(models), 0.5), np.full(len(models), 1e-3), status=np.full(len(models), STALLED))
+
+    monkeypatch.setattr(albedo_module, "disk_albedo_many", stalled_disk)
+    est = albedo(model("phong", n=20), [30.0], "disk", warn=False)
+    assert list(est.status) == [STALLED]                                    # not "budget_exhausted"
+
+
+def test_a_models_own_route_without_a_status_is_judged_by_its_error():
+    from dataclasses import dataclass
+
+    @dataclass(frozen=True)
+    class Rough(type(model("phong", n=1))):
+        def albedo_estimate(self, theta_deg, rtol, atol):                   # an own route, 1e-3 off
+            theta = np.asarray(theta_deg, float)
+            return Estimate(np.full(theta.shape, 0.5), np.full(theta.shape, 1e-3))
+
+    with pytest.warns(NotConvergedWarning):
+        est = albedo(Rough(n=1.0), [30.0], "engine")
+    assert list(est.status) != [CONVERGED] and list(est.route) == ["engine/own"]

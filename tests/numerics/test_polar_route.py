@@ -16,7 +16,7 @@ from brdfs.physics.models import model
 from brdfs.physics.models.microfacet import CookTorranceFresnel
 
 sys.path.insert(0, str(Path(__file__).parent))
-from polar_truth import FAMILIES, nested_quad_albedo  # noqa: E402
+from polar_truth import FAMILIES, nested_quad_albedo, thesis_smith_g  # noqa: E402
 
 #: One cell per family and roughness class (the full ≥ 20 cells per family: benchmarks/bench_polar_honesty.py).
 CELLS = [("ggx", 0.3, 37.0), ("ggx_separable", 0.3, 71.0), ("beckmann", 0.3, 55.0),
@@ -77,3 +77,24 @@ def test_the_polar_route_is_withdrawn_where_the_masking_depends_on_more_than_the
     assert not polar.supports(model("cook_torrance", m=0.3))                    # eq. 2.10's G
     assert not polar.supports(CookTorranceFresnel(m=0.3, G="smith", ior_re=1.5))
     assert str(albedo(model("ggx", alpha=0.3), 40.0, "engine_2d").route) == "engine/hemisphere"
+
+
+def test_cook_torrance_smith_at_90_degrees_integrates_its_grazing_limit_on_the_polar_route():
+    """a(90°) of Cook–Torrance with Smith's G is the albedo of its limit integrand
+    D √(π/2) G*(N·V)/(4π m³ cos⁴δ N·V) (``grazing_limit_model``), checked by nested quad."""
+    m = 0.3
+
+    def limit(alpha, theta_l, theta_v, phi):
+        hx = math.sin(theta_l) + math.sin(theta_v) * math.cos(phi)
+        hy = math.sin(theta_v) * math.sin(phi)
+        hz = math.cos(theta_l) + math.cos(theta_v)
+        tan2 = (hx * hx + hy * hy) / (hz * hz)
+        mu_v = math.cos(theta_v)
+        d = math.exp(-tan2 / alpha ** 2) * (1.0 + tan2) ** 2 / (4.0 * math.pi * alpha ** 2)
+        return d * math.sqrt(math.pi / 2) / alpha * thesis_smith_g(alpha, mu_v) / mu_v
+
+    truth, truth_err = nested_quad_albedo(limit, m, 90.0)
+    est = albedo(model("cook_torrance", m=m, G="smith"), 90.0)
+    assert str(est.route).startswith("engine/polar")
+    assert abs(float(est.value) - truth) <= float(est.error) + truth_err
+    assert est.evaluations <= 5000

@@ -1,5 +1,6 @@
 """The HTML report's grouping, captions and verdicts (brdfs.pipeline.report)."""
 
+import re
 from types import SimpleNamespace
 
 import pandas as pd
@@ -72,13 +73,39 @@ def test_verdict_counts_the_printed_numbers_and_lists_each_difference_with_its_r
                                      "(each with its reason and evidence).")
 
 
-def test_comparison_html_shows_every_row_and_column_escaped_and_coloured_by_verdict():
+def test_comparison_html_shows_every_row_escaped_with_the_verdict_on_screen_and_differing_cells_marked():
     table = comparison([
         ["metal_a0", "Table 1.2", "fresnel", "chromium", "a0", "69.8", "67.66", "differs", "k = 4.85 <misprint>"],
         ["metal_a0", "Table 1.2", "fresnel", "gold", "a0", "81.5", "81.54", "reproduces", ""],
+        ["ward_cmax", "Table 3.2", "ward_cosmin", "0.4", "C_max", "1.63", "1.6204", "differs", "closed form"],
     ])
     page = report.comparison_html(table)
-    assert page.count('<tr class="differs">') == 1 and page.count('<tr class="reproduces">') == 1
-    assert page.count("<th>") == len(table.columns)
+    assert page.count('<tr class="differs">') == 2 and page.count('<tr class="reproduces">') == 1
+    assert page.count('<td class="num printed differs">') == 2 and '<td class="num printed">81.5</td>' in page
     assert "&lt;misprint&gt;" in page and "<misprint>" not in page
+    headers = re.findall(r"<th>(.*?)</th>", page.split("<tbody>")[0])
+    assert headers.index("verdict") < 7                      # on screen at 1400 px, not the tenth column
+    assert page.count("<h2>") == 2 and "1 printed number: 0 reproduce, 1 differ." in page
     assert report.comparison_html(table) == page
+
+
+def test_the_front_pages_landing_table_counts_each_chapter_and_links_only_results_in_the_report():
+    landing_csv = pd.DataFrame(
+        [["table_3_2_ward_cmax", "Table 3.2", report.CHAPTERS[3], "7", "2", "5", "results/tables/table_3_2_ward_cmax.csv",
+          "results/tables/table_3_2_ward_cmax.png"],
+         ["fig_3_1_new_model_albedo", "Figure 3.1", report.CHAPTERS[3], "0", "0", "0", "results/figures/x.csv",
+          "results/figures/fig_3_1_new_model_albedo.png"]],
+        columns=["artifact", "thesis", "category", "printed", "reproduce", "differ", "csv", "png"])
+    chapters = pd.DataFrame([[report.CHAPTERS[3], "7", "2", "5"], [report.CHAPTERS[2], "0", "0", "0"]],
+                            columns=["category", "printed", "reproduce", "differ"])
+    targets = {"table_3_2_ward_cmax.png", "table_3_2_ward_cmax.html"}       # Figure 3.1 not in this report
+    text = report.landing(landing_csv, chapters, targets)
+    links = "".join(f".. _{t}: javascript:show('{t}')\n" for t in targets)   # as Snakemake appends them
+    html = publish_parts(text + "\n" + links, writer="html")["body"]
+    assert "system-message" not in html                                      # every reference resolves
+    assert f"<strong>{report.CHAPTERS[3]}.</strong> 7 printed numbers: 2 reproduce, 5 differ." in html
+    assert "javascript:show('table_3_2_ward_cmax.png')\">Table 3.2</a>" in html
+    assert "javascript:show('table_3_2_ward_cmax.html')\">HTML table</a>" in html
+    assert "Without printed numbers: Figure 3.1." in html                    # named, not linked: not in the report
+    assert report.CHAPTERS[2] not in html                                    # a chapter without artifacts here
+    assert "not built yet" in report.landing(None, None, targets)

@@ -40,7 +40,9 @@ def snakemake(cwd: Path, *args: str) -> subprocess.CompletedProcess:
 
 
 def planned_jobs(run: subprocess.CompletedProcess) -> dict[str, int]:
-    """The "Job stats" table of a dry run: jobs by rule."""
+    """The "Job stats" table of a dry run: jobs by rule (empty when nothing is to be done)."""
+    if "Job stats:" not in run.stdout + run.stderr:
+        return {}
     table = (run.stdout + run.stderr).split("Job stats:")[1].split("\n\n")[0]
     return {m[1]: int(m[2]) for m in re.finditer(r"^(\S+)\s+(\d+)$", table, re.M) if m[1] != "total"}
 

@@ -204,3 +204,42 @@ def test_an_elliptical_patch_highlight_turns_with_the_tangent(mi):
         assert abs(got - expected) <= 5 * err + 3e-3 * expected, (l, v, got, expected, err)
         values.append(expected)
     assert values[0] > 0 and values[1] == 0
+
+
+GOLD_AT_555NM = (0.35, 2.7)           # n, k of a gold-like metal (one value for all three channels)
+
+
+def _metal_plugin(n):
+    eta, k = GOLD_AT_555NM
+    return {"type": "brdfs_phong_cosmin", "n": n, "eta": {"type": "rgb", "value": [eta] * 3},
+            "k": {"type": "rgb", "value": [k] * 3}}
+
+
+def test_a_metal_sphere_under_a_constant_sky_returns_sky_times_its_fresnel_reduced_mean_albedo(mi):
+    """White furnace with Fresnel (eq. 3.29, F at Θ_min): the image integral is S ā π r² with ā
+    of the metal model, below the F = 1 model's ā."""
+    from brdfs.physics.models.metal import PhongCosminMetal
+
+    n, half = 20.0, 1.05
+    eta, k = GOLD_AT_555NM
+    scene = mi.load_dict({"type": "scene", "integrator": {"type": "brdfs_path", "hide_emitters": True},
+                          "sensor": _ortho(mi, (0.0, -5.0, 0.0), (0.0, 0.0, 0.0), half, 12),
+                          "sphere": {"type": "sphere", "radius": 1.0, "bsdf": _metal_plugin(n)},
+                          "sky": {"type": "constant", "radiance": {"type": "rgb", "value": [1.0] * 3}}})
+    got, err = _mean_and_error(_passes(mi, scene).mean(axis=(1, 2)) * (2 * half) ** 2 / np.pi)
+    expected, quad_err = _mean_albedo(PhongCosminMetal(n, ior_re=eta, ior_im=k))
+    plain, _ = _mean_albedo(brdfs.model("phong_cosmin", n=n))
+    assert expected < 0.9 * plain
+    assert abs(got - expected) <= 5 * err + quad_err + 1e-4, (got, expected, err)
+
+
+def test_a_far_light_on_a_metal_plate_gives_f_times_fresnel_at_theta_min_times_e(mi):
+    """Direct lighting of the metal of eq. 3.29: radiance = f(L, V) F(Θ_min) E."""
+    from brdfs.physics.models.metal import PhongCosminMetal
+
+    eta, k = GOLD_AT_555NM
+    L = np.array([0.35, 0.25, 1.0]) / np.linalg.norm([0.35, 0.25, 1.0])
+    V = np.array([-0.5, 0.1, 0.4]) / np.linalg.norm([-0.5, 0.1, 0.4])
+    (got, err), E = _direct_radiance(mi, _metal_plugin(4.0), L, V)
+    expected = float(PhongCosminMetal(4.0, ior_re=eta, ior_im=k)(L, V)) * E
+    assert abs(got - expected) <= 5 * err + 3e-3 * expected, (got, expected, err)

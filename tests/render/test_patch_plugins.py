@@ -27,8 +27,7 @@ from brdfs.physics.models import model as numpy_model
 
 PAIRS = 10_000
 ANGLES = (30.0, 75.0)
-#: (plugin, params of the numpy model, n of the tolerance, where f jumps: a function of (L, V) giving
-#: the signed distance to the jump, or None).
+#: The examples every plugin is tested at (the models' ``examples``).
 KINDS = ("narrowest", "typical")
 
 
@@ -63,8 +62,8 @@ def _distance_to_jump(brdf, L, V):
     return np.full(L.shape[:-1], np.inf)
 
 
-CASES = [(name, kind) for name in ("patch_basic", "patch_exponential", "patch_elliptical", "generalized_lambertian")
-         for kind in KINDS]
+PLUGIN_MODELS = ("patch_basic", "patch_exponential", "patch_elliptical", "generalized_lambertian")
+CASES = [(name, kind) for name in PLUGIN_MODELS for kind in KINDS]
 
 
 def _pairs(brdf, rng):
@@ -125,7 +124,7 @@ def test_plugin_eval_and_pdf_agree_with_the_numpy_model_at_ten_thousand_pairs(mi
         if strategy == _plugin_strategies(mi, name)[0]:
             _assert_twin(_call(mi, plugin, "eval", L, V), f64, n, clear, f"{name} {kind} eval")
             assert (f64 > 0).sum() > PAIRS / 4, "too few pairs inside the patch"
-        model_strategy = _MODEL_STRATEGY[strategy]
+        model_strategy = _model_strategy(strategy)
         if name == "patch_exponential" and strategy == "normal":
             model_strategy = "russian_roulette"              # the MIS proxy (module docstring of patch.py)
         pdf64 = brdf.pdf(L, V, model_strategy)
@@ -133,7 +132,10 @@ def test_plugin_eval_and_pdf_agree_with_the_numpy_model_at_ten_thousand_pairs(mi
         _assert_twin(_call(mi, plugin, "pdf", L, V), pdf64, n_pdf, clear, f"{name} {kind} pdf {strategy}")
 
 
-_MODEL_STRATEGY = {"cosine": "cosine", "accept_reject": "russian_roulette", "normal": "exact"}
+def _model_strategy(strategy):
+    """The numpy model's name of the plugin's strategy (``patch.MODEL_STRATEGY``)."""
+    from brdfs.render.mitsuba.plugins import patch as plugins
+    return plugins.MODEL_STRATEGY[strategy]
 
 
 def _plugin_strategies(mi, name):
@@ -241,8 +243,13 @@ def _normal_marginal(brdf, L):
 
 
 def _chi2(mi, brdf, strategy, theta_deg, sample_count=50_000, res=16, ires=16):
-    """Mitsuba's ChiSquareTest of the plugin's sampler (through ``BSDFAdapter``) against the numpy
-    model's pdf on :func:`_chart`; rejected samples go to the chart's centre with weight 0."""
+    """Mitsuba's ChiSquareTest of the plugin's sampler against the numpy model's pdf on :func:`_chart`.
+
+    The sample function is ``mi.chi2.BSDFAdapter``'s, but for two things: a sample counts where the
+    plugin drew a direction (``bs.pdf > 0``; the adapter keys on weight ≠ 0, which drops the cosine
+    strategy's draws off the patch), and ``wi`` is opaque (one kernel for every angle); a rejected
+    sample goes to the chart's centre with weight 0.  ``ires`` 16: cells cut by the unit circle (where
+    the density per area jumps to 0) need it."""
     import drjit as dr
     name = brdf.name
     wi = incidence(theta_deg)
@@ -270,7 +277,7 @@ def _chi2(mi, brdf, strategy, theta_deg, sample_count=50_000, res=16, ires=16):
             area_pdf = marginal(np.hypot(x + L[0], y + L[1]))
         else:
             with np.errstate(divide="ignore", invalid="ignore"):
-                area_pdf = brdf.pdf(L, V, _MODEL_STRATEGY[strategy]) / V[:, 2]
+                area_pdf = brdf.pdf(L, V, _model_strategy(strategy)) / V[:, 2]
         out = np.where(inside, area_pdf * chart.jacobian(x, y), 0.0)
         return mi.Float(np.nan_to_num(out).astype(np.float32))
 
@@ -280,14 +287,18 @@ def _chi2(mi, brdf, strategy, theta_deg, sample_count=50_000, res=16, ires=16):
     return test
 
 
+#: Every plugin's strategies (collected before Mitsuba's variant is set; checked against the plugins
+#: by test_the_chi_square_cases_cover_every_strategy_of_every_plugin).
+STRATEGIES = {"patch_basic": ("normal", "accept_reject", "cosine"),
+              "patch_exponential": ("accept_reject", "normal", "cosine"),
+              "patch_elliptical": ("accept_reject", "cosine"),
+              "generalized_lambertian": ("cosine",)}
+
+
 def _chi2_cases():
     cases = []
     from brdfs.physics.models import MODELS
-    for name in ("patch_basic", "patch_exponential", "patch_elliptical", "generalized_lambertian"):
-        strategies = {"patch_basic": ("normal", "accept_reject", "cosine"),
-                      "patch_exponential": ("accept_reject", "normal", "cosine"),
-                      "patch_elliptical": ("accept_reject", "cosine"),
-                      "generalized_lambertian": ("cosine",)}[name]
+    for name, strategies in STRATEGIES.items():
         params = [MODELS[name].examples[k] for k in KINDS] + ([{"R": 1.5}] if name == "patch_basic" else [])
         for strategy in strategies:
             for p in params:
@@ -296,6 +307,12 @@ def _chi2_cases():
                 for theta in ANGLES:
                     cases.append(pytest.param(name, p, strategy, theta, id=f"{name}-{strategy}-{p}-{theta:g}"))
     return cases
+
+
+def test_the_chi_square_cases_cover_every_strategy_of_every_plugin(mitsuba):
+    from brdfs.render.mitsuba.plugins import patch as plugins
+    assert {name: cls.strategies for name, cls in plugins.PLUGINS.items()} == STRATEGIES
+    assert tuple(STRATEGIES) == PLUGIN_MODELS
 
 
 @pytest.mark.parametrize("name, params, strategy, theta", _chi2_cases())
@@ -373,14 +390,13 @@ def test_costs_count_samples_tries_and_evaluations_as_the_thesis_does(mitsuba):
 
 def test_exponential_radius_is_the_models_inverse_cdf(mitsuba):
     mi = mitsuba
-    from brdfs.render.mitsuba.plugins import patch as plugins
-    for s in (512.0, 4.0):
+    for s in (512.0, 4.0, 0.5):
         plugin = mi.load_dict(_plugin("patch_exponential", s=s))
-        u = np.random.default_rng(1).random(4096).astype(np.float32)
+        ends = [0.0, 1e-7, 1e-4, 0.5, 0.999, 1 - 2 ** -20, 1 - 2 ** -24]
+        u = np.concatenate([np.random.default_rng(1).random(4096), ends]).astype(np.float32)
         R = _np(plugin.radius(mi.Float(u)))
         exact = numpy_model("patch_exponential", s=s).radius_of_cdf(u.astype(np.float64))
         np.testing.assert_allclose(R, exact, rtol=2.0 ** -21, atol=2.0 ** -30)
-    assert plugins.CDF_BISECTIONS >= 52
 
 
 # --- anisotropy: patch_elliptical at B/A < 1 -----------------------------------------------------------------

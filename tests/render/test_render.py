@@ -1,4 +1,5 @@
-"""Physical tests of the renderer (brdfs.render) on tiny images."""
+"""Physical tests of the old numpy tracer (brdfs.render.tracer), kept as an independent oracle of
+the Mitsuba path (tests/render/test_integrator*.py test the renderer of the figures)."""
 from __future__ import annotations
 
 import numpy as np

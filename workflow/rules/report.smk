@@ -8,10 +8,7 @@ REPORT_LANDING = "results/report/landing.html"
 REPORT_LANDING_CSV = "results/report/landing.csv"
 REPORT_CHAPTERS_CSV = "results/report/chapters.csv"
 REPORT_TABLE_NAMES = sorted(name for name, a in ARTIFACTS.items() if a.kind == "table")
-
-
-def report_table_html(name):
-    return f"results/report/tables/{name}.html"
+REPORT_TABLES = {name: f"results/report/tables/{name}.html" for name in REPORT_TABLE_NAMES}
 
 
 rule report_pages:
@@ -24,7 +21,7 @@ rule report_pages:
         landing_csv=REPORT_LANDING_CSV,
         chapters_csv=REPORT_CHAPTERS_CSV,
         tables=[
-            report(report_table_html(name), caption="../report/table_html.rst",
+            report(REPORT_TABLES[name], caption="../report/table_html.rst",
                    category=report_text.category(ARTIFACTS[name].chapter), subcategory="Tables as HTML",
                    labels={"artifact": name, "thesis": report_text.thesis_number(name) or "extra"})
             for name in REPORT_TABLE_NAMES

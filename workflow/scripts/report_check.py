@@ -10,7 +10,8 @@ after the app has started, the probe shows every image result in the app's own v
 click on it does), waits until the browser has decoded the ``<img>``, records its natural size,
 opens the result's info panel and records the caption the app displays. Chromium prints the
 final DOM (``--dump-dom``); this script then asserts that every ``<img>`` loaded (natural width
-and height > 0) and that every figure has a written caption (not the placeholder). A second
+and height > 0), that every figure has a written caption (not the placeholder), and that the front
+page shows the landing table with links to the results and the report holds ``results/report/``. A second
 Chromium run saves a screenshot of the report showing a thesis figure with its caption.
 """
 
@@ -45,7 +46,8 @@ PROBE = r"""
   }
   async function probe() {
     for (let i = 0; i < 200 && typeof app === "undefined"; i++) { await wait(25); }
-    const out = {app: typeof app !== "undefined", results: []};
+    const out = {app: typeof app !== "undefined", results: [],
+                 front: typeof workflow_desc !== "undefined" ? String(workflow_desc) : ""};
     for (const [path, entry] of Object.entries(results)) {
       document.title = "probe " + path;
       const record = {path: path, mime: entry.mime_type, caption_data: entry.caption || ""};
@@ -140,6 +142,13 @@ def check(report: Path, out_dir: Path) -> list[str]:
             problems.append(f"{r['path']}: no caption")
         elif "".join(written.split())[:30] not in "".join(r["info_text"].split()):   # spacing aside
             problems.append(f"{r['path']}: caption not displayed by the report")
+    # The front page's landing table (rule report_pages): each chapter's count, links to the results.
+    front = data.get("front", "")
+    if "printed numbers:" not in front or front.count("app.showResultInfo(") < 10:
+        problems.append("the front page shows no landing table (printed numbers per chapter, links to each artifact)")
+    pages = [r for r in data["results"] if r["path"].startswith("results/report/")]
+    if not any(r["path"].endswith("landing.html") for r in pages) or len(pages) < 2:
+        problems.append("the report lacks the landing page or the tables as HTML (results/report/)")
     if shot.returncode != 0 or not (out_dir / "report.png").is_file() or (out_dir / "report.png").stat().st_size < 10000:
         problems.append(f"screenshot failed (rc {shot.returncode}): {shot.stderr[-300:]}")
     print(f"report-check: {len(images)} images loaded and captioned of {len(data['results'])} results; "

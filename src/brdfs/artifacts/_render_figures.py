@@ -9,11 +9,9 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   pixel and the number of independently seeded passes they are split into (≥ 8; the noise figures
   of :mod:`brdfs.render.mitsuba.metrics` are taken over them). A panel is at least ``min_width``
   columns and ``min_height`` rows, at its aspect ratio; its PNG shows it at native resolution.
-* **Colour** (section 3.8): a spectral panel carries the eight wavelengths of
-  :data:`brdfs.render.spectrum.WAVELENGTHS_NM` (the metals' measured n, k there), three to a pass of
-  the RGB variant (each RGB channel is one wavelength: 405/455/505, 555/605/655, 705/755 nm), with the
-  same seeds in every pass; the eight channels then go to XYZ and sRGB through colour-science
-  (:mod:`brdfs.render.spectrum`). An ``rgb`` panel (eq. 3.31) is one pass per seed.
+* **Colour** (section 3.8, :mod:`brdfs.render.mitsuba.spectral`): a spectral panel carries eight
+  wavelengths, three to a pass of the RGB variant, with the same seeds in every pass; the eight
+  channels go to XYZ and sRGB through colour-science. An ``rgb`` panel (eq. 3.31) is one pass per seed.
 * **Rows**: one per (panel, object): the mean luminance Y of the object's pixels and its standard
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
   ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset`` and ``variant``. The
@@ -24,6 +22,7 @@ section 3.6) unless a figure asks otherwise, and the same seeds (common random n
 """
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,12 +31,11 @@ import pandas as pd
 from brdfs.render import spectrum
 from brdfs.render.mitsuba import metrics
 from brdfs.render.mitsuba import scenes as msc
+from brdfs.render.mitsuba.spectral import WAVELENGTH_PASSES, metal_constants, pass_channels
 
 SECTION = "renders"
 PRESETS = ("preview", "final")
 SPECTRAL = len(spectrum.WAVELENGTHS_NM)
-#: The wavelengths (indices into WAVELENGTHS_NM) carried by the three RGB passes of a spectral panel.
-WAVELENGTH_PASSES = ((0, 1, 2), (3, 4, 5), (6, 7, 7))
 #: Material keys that are not model parameters.
 MATERIAL_KEYS = ("metal", "model", "pumped", "label", "diffuse", "rgb", "a_s", "strategy", "count")
 
@@ -84,15 +82,6 @@ def _texture(values):
     return {"type": "srgb", "color": [float(v) for v in values], "unbounded": True}
 
 
-def _metal_constants(metal: str, channels):
-    """(eta, k) of ``metal`` at the wavelengths ``channels`` (indices), from the measured data."""
-    from brdfs.physics import optical_constants
-
-    wavelengths = spectrum.WAVELENGTHS_NM[list(channels)]
-    ior = np.asarray(optical_constants.complex_index(metal, wavelengths), complex)
-    return ior.real, np.abs(ior.imag)
-
-
 def bsdf(spec: dict, channels=None) -> dict:
     """The plugin dictionary of a config material entry (see :mod:`brdfs.render.scenes`) for the
     wavelengths ``channels`` (indices, spectral) or r, g, b (``None``)."""
@@ -117,7 +106,7 @@ def bsdf(spec: dict, channels=None) -> dict:
     if "metal" in spec:
         if channels is None:
             raise ValueError(f"metal {spec!r}: metals are rendered at the {SPECTRAL} wavelengths")
-        eta, k = _metal_constants(spec["metal"], channels)
+        eta, k = metal_constants(spec["metal"], channels)
         out["eta"], out["k"] = _texture(eta), _texture(k)
     return out
 
@@ -193,7 +182,7 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                 if group is None:
                     out[p] += image[..., :3]
                 else:
-                    for c, wavelength in enumerate(group[:len(set(group))]):
+                    for c, wavelength in enumerate(pass_channels(group)):
                         out[p, ..., wavelength] += image[..., c]
                 if ids is None:
                     ids, labels, cos_v = image[..., 3].astype(float), msc.object_labels(scene), image[..., 4]
@@ -264,7 +253,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``plugin_evaluations`` (per object whose plugin counts), for one wavelength pass set.
     """
     setup = settings(cfg)
-    rows, images, scale = [], [], None
+    rows, images, id_buffers, scale = [], [], [], None
     for k, panel in enumerate(panels):
         width, height = panel_size(setup, panel.aspect)
         rendered = render_panel(panel, cfg, setup, width, height, count)
@@ -276,6 +265,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
             ref = [i for i, label in rendered.labels.items() if label in panel.reference]
             scale = spectrum.display_scale(rgb, np.isin(rendered.ids, ref))
         images.append((panel.title, spectrum.to_display(rgb, scale)))
+        id_buffers.append((rendered.ids, rendered.labels))
         noise = metrics.noise_figures(rendered.luminance_passes(channels), rendered.ids)
         specs = {label: spec for label, _, spec in panel.objects}
         for row in object_rows(rendered, channels):
@@ -290,7 +280,21 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
                          **_count_columns(rendered, row["object"], count)})
     df = pd.DataFrame(rows)
     df.attrs["images"] = images
+    df.attrs["ids"] = id_buffers
     return df
+
+
+def object_crop(image: np.ndarray, ids: np.ndarray, labels: dict, label: str, margin: int = 6,
+                side: str | None = None) -> np.ndarray:
+    """The pixels of ``image`` in the bounding box of ``label``'s ID (plus ``margin``), native
+    resolution; ``side = "right"`` keeps the right half of the box (a silhouette's rim)."""
+    k = next(i for i, name in labels.items() if name == label)
+    rows, cols = np.nonzero(ids == k)
+    r0, r1 = max(rows.min() - margin, 0), min(rows.max() + margin + 1, ids.shape[0])
+    c0, c1 = max(cols.min() - margin, 0), min(cols.max() + margin + 1, ids.shape[1])
+    if side == "right":
+        c0 = (c0 + c1) // 2
+    return image[r0:r1, c0:c1]
 
 
 # --- the PNG at native resolution ---------------------------------------------------------------------
@@ -311,20 +315,21 @@ def plot_panels(df: pd.DataFrame, path, title: str, columns: int | None = None) 
     if not images:
         raise ValueError(f"{path}: no rendered images passed from compute (df.attrs['images'])")
     columns = columns or len(images)
-    rows = -(-len(images) // columns)
+    grid = [images[i:i + columns] for i in range(0, len(images), columns)]
     cell_w = max(img.shape[1] for _, img in images) + GAP_PX
-    cell_h = max(img.shape[0] for _, img in images) + TITLE_PX
-    width, height = columns * cell_w + GAP_PX, rows * cell_h + TITLE_PX + GAP_PX
+    row_h = [max(img.shape[0] for _, img in row) + TITLE_PX for row in grid]     # each row as tall as it needs
+    width, height = columns * cell_w + GAP_PX, sum(row_h) + TITLE_PX + GAP_PX
     dpi = plotting.DPI
     fig = plt.figure(figsize=(width / dpi, height / dpi), dpi=dpi)
     fig.text(0.5, 1.0 - 4.0 / height, title, ha="center", va="top", fontsize=9)
-    for k, (panel_title, img) in enumerate(images):
-        r, c = divmod(k, columns)
-        x0 = GAP_PX + c * cell_w
-        top = TITLE_PX + r * cell_h + TITLE_PX          # pixels from the top to the image's top
-        fig.figimage(img, xo=x0, yo=height - top - img.shape[0], origin="upper", resize=False)
-        fig.text((x0 + img.shape[1] / 2) / width, 1.0 - (top - 4) / height, panel_title,
-                 ha="center", va="bottom", fontsize=7)
+    for r, row in enumerate(grid):
+        for c, (panel_title, img) in enumerate(row):
+            x0 = GAP_PX + c * cell_w
+            top = TITLE_PX + sum(row_h[:r]) + TITLE_PX          # pixels from the top to the image's top
+            fig.figimage(img, xo=x0, yo=height - top - img.shape[0], origin="upper", resize=False)
+            wrapped = textwrap.shorten(panel_title, width=max(img.shape[1] // 6, 20), placeholder=" ...")
+            fig.text((x0 + img.shape[1] / 2) / width, 1.0 - (top - 4) / height, wrapped,
+                     ha="center", va="bottom", fontsize=7)
     with matplotlib.rc_context({"savefig.bbox": None}):
         fig.savefig(path, format="png", dpi=dpi, metadata={"Software": None})
     plt.close(fig)

@@ -2,7 +2,9 @@
 
 Reciprocal Phong (eq. 2.6, c = (n+2)/2π) times the metal's Fresnel reflectance at Θ_min, and the
 same divided once by its albedo (g1, eq. 2.20; albedo table of brdfs.numerics.pumping); point
-lights plus homogeneous daylight, Monte Carlo paths. One display scale for the four panels.
+lights plus homogeneous daylight, Monte Carlo paths. One display scale for the four panels; below
+them, the right half of the silver sphere of each panel cropped at native resolution, where the
+grazing rims show what pumping does.
 """
 from __future__ import annotations
 
@@ -30,11 +32,26 @@ def panels(cfg: dict) -> list:
     return out
 
 
+#: The object whose grazing rim is cropped beside the panels (the argument of the figure).
+RIM_OBJECT = "silver sphere"
+
+
+def rim_crops(df: pd.DataFrame) -> list:
+    """(title, crop) of the right half of RIM_OBJECT in every panel, at native resolution."""
+    out = []
+    for (title, image), (ids, labels) in zip(df.attrs["images"], df.attrs["ids"]):
+        if RIM_OBJECT in labels.values():
+            out.append((f"rim crop: {title}", rf.object_crop(image, ids, labels, RIM_OBJECT, side="right")))
+    return out
+
+
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapters_2_3")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    return rf.compute_panels(cfg, NAME, panels(cfg))
+    df = rf.compute_panels(cfg, NAME, panels(cfg))
+    df.attrs["images"] = df.attrs["images"] + rim_crops(df)
+    return df
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    rf.plot_panels(df, path, "Fig. 2.8: metals, reciprocal Phong (top) and pumped once (bottom)",
-                   columns=len(set(df["n"].dropna())))
+    rf.plot_panels(df, path, "Fig. 2.8: metals, reciprocal Phong (top) and pumped once (bottom); "
+                   "the silver sphere's rims cropped below", columns=len(set(df["n"].dropna())))

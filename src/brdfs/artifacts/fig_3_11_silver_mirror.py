@@ -13,7 +13,7 @@ NAME = "fig_3_11_silver_mirror"
 
 def panels(cfg: dict) -> list:
     s = cfg[rf.SECTION]
-    return ms.mirror_scene(cfg, s['new_model_metals']['fig_3_11'], 'head, sphere, box, plate: ' + ms.describe(s['new_model_metals']['fig_3_11']))
+    return ms.mirror_scene(cfg, s['new_model_metals']['fig_3_11'], 'head, sphere, pyramid, plate: ' + ms.describe(s['new_model_metals']['fig_3_11']))
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapters_2_3")

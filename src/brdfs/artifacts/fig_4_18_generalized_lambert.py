@@ -3,8 +3,9 @@
 f = C min(ξ(m), ξ(m_clip)) (eqs. 4.58/4.59, C = 1/max albedo); gray; top: one point light at the
 eye (d = 1 shows the 'full moon', a disk of almost constant radiance); bottom: two point lights.
 Each panel has its own display scale (the light at the eye is farther away). Direct lighting
-(``max_depth = 1``: one scattering event), jittered pixel samples (box filter), a dim gray background
-(not a light) against which the unlit halves show.
+(``max_depth = 1``: one scattering event) from delta point lights, each rendered alone (no light
+sampling, so no noise but the jitter's), jittered pixel samples (box filter), and a dim gray
+background (not a light) against which the unlit halves show.
 """
 from __future__ import annotations
 
@@ -15,8 +16,11 @@ from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_18_generalized_lambert"
 CAMERA = {"eye": (0.0, -12.0, 0.8), "target": (0.0, 0.0, 0.8), "fov_deg": 14.0}
-#: The light "at the eye": just above the camera (the spherical emitter must not enclose it).
-LIGHT_AT_EYE = (0.0, -12.0, 1.2)
+#: The light at the eye (a delta point light: nothing there for the camera rays to hit).
+LIGHT_AT_EYE = CAMERA["eye"]
+#: Jittered samples per pixel: direct light from delta point lights, each rendered alone, has no
+#: sampling noise; the samples antialias the edges and the terminator.
+DIRECT_SPP = 16
 #: Radiance of the background camera rays see (not a light): the unlit halves stand out against it.
 BACKGROUND = 0.02
 
@@ -29,9 +33,10 @@ def panels(cfg: dict) -> list:
     labels = tuple(label for label, _, _ in objects)
     light_at_eye = [(LIGHT_AT_EYE, 1.0)]
     return [rf.Panel("point light at the eye", objects, light_at_eye, CAMERA, sky=False, channels="rgb",
-                     background=BACKGROUND, reference=labels, aspect=3.0, max_depth=1),
+                     background=BACKGROUND, reference=labels, aspect=3.0, max_depth=1, point_lights=True, spp=DIRECT_SPP),
             rf.Panel("two point lights", objects, rf.TWO_LIGHTS, CAMERA, sky=False, channels="rgb",
-                     background=BACKGROUND, reference=labels, aspect=3.0, max_depth=1)]
+                     background=BACKGROUND, reference=labels, aspect=3.0, max_depth=1, point_lights=True,
+                     spp=DIRECT_SPP)]
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 1}, batch="renders_chapter_4")

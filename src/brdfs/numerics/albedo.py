@@ -40,7 +40,9 @@ The ends, decided by what the model declares (never by its name), for every meth
 θ = 90° a model that ``diverges_at_grazing`` has albedo +inf (status ``diverged``), and a model whose
 BRDF is singular at N·L = 0 has the albedo of its ``grazing_limit_model()`` (the limit a(θ), θ → 90°).
 A model evaluated from tables (a pumped model) adds its ``evaluation_rtol`` × |a| to every error:
-the distance of the model evaluated to the exact model it stands for.
+the distance of the model evaluated to the exact model it stands for; where that takes the error
+above the tolerance, the value is ``stalled`` (no refinement of the integral can help: ask less,
+or build the model with finer tables).
 
 The route of the engine is read from what the model declares, never from its name or type: its
 own ``albedo_estimate`` (None: it has none), its ``closed_form_azimuth``, and its lobe's
@@ -60,7 +62,7 @@ from typing import Annotated
 import numpy as np
 from scipy.integrate import IntegrationWarning, dblquad
 
-from brdfs.numerics.arguments import Above, AtLeast, OneOf, check_albedo_call
+from brdfs.numerics.arguments import Above, AtLeast, OneOf, check_albedo_call, check_table_call
 from brdfs.numerics.integrate import azimuthal, polar
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
@@ -171,8 +173,8 @@ def _own_routes(models, theta, rtol, atol, value, error, status):
             continue
         own[rows] = True
         value[rows], error[rows] = est.value, est.error
-        if est.status is not None:
-            status[rows] = est.status
+        # a route that reports no status is judged by its error, not taken as converged
+        status[rows] = _status(est.value, est.error, rtol, atol) if est.status is None else est.status
     return own
 
 
@@ -354,7 +356,11 @@ def _monte_carlo(model, theta, rtol, atol, n_samples: Annotated[int, AtLeast(2)]
     return Estimate(value, error, 0, np.array([str(r.status) for r in runs]))
 
 
-#: The albedo methods by name: ``method(model, theta (1-D), rtol, atol, **options) -> Estimate``.
+#: The albedo methods by name, ``auto`` (the default of :func:`albedo`) first:
+#: ``method(model, theta (1-D), rtol, atol, **options) -> Estimate``.  A method's options are its
+#: function's keyword parameters, whose annotations give their types and bounds
+#: (:mod:`brdfs.numerics.arguments` checks a call against them); a method sets ``route`` where it
+#: knows more than its own name (the engine's sub-routes), else the front door fills in the name.
 ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
     "auto": _auto,
     "engine": _engine,
@@ -467,7 +473,11 @@ def _at_the_ends(run, model, theta, rtol, atol, options, method) -> Estimate:
         route[rows] = np.char.add(routes.astype(str), suffix)
         evaluations += est.evaluations
     finite = np.isfinite(value)
-    error[finite] += model.evaluation_rtol * np.abs(value[finite])
+    if model.evaluation_rtol:
+        error[finite] += model.evaluation_rtol * np.abs(value[finite])
+        # the model is known to no better than its tables: no refinement of the integral helps
+        missed = finite & (status == CONVERGED) & (error > np.maximum(rtol * np.abs(value), atol))
+        status[missed] = STALLED
     return Estimate(value, error, evaluations, status.astype(str), route.astype(str))
 
 
@@ -479,23 +489,31 @@ def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
     if not short.any() or not (strict or warn):
         return
     value, error = np.asarray(est.value, float), np.asarray(est.error, float)
-    target = np.maximum(rtol * np.abs(value), atol)
+    target = np.fmax(rtol * np.abs(value), atol)          # atol where the value itself is NaN
     ratio = np.where(np.isfinite(error), error / np.where(target > 0, target, np.inf), np.inf)
     worst = np.flatnonzero(short)[np.argmax(np.where(short, ratio, -1.0)[short])]
     kinds = ", ".join(f"{int((status == k).sum())} {k}" for k in (BUDGET_EXHAUSTED, STALLED) if (status == k).any())
+    by_tables = model.evaluation_rtol * abs(float(value.ravel()[worst])) > float(target.ravel()[worst])
+    if by_tables:
+        advice = (f"the model is known only to evaluation_rtol = {model.evaluation_rtol:.3g} (its tables): "
+                  "ask rtol above that, or build it with finer tables")
+    else:
+        advice = ("method='disk'" if method != "disk" else "method='engine'") + " or a looser rtol"
     message = (f"albedo of {model.name!r} by method {method!r}: {int(short.sum())} of {status.size} values "
                f"did not converge ({kinds}); worst at theta = {float(np.ravel(theta)[worst]):.10g} deg: "
                f"reported error {float(error.ravel()[worst]):.3g} against the {float(target.ravel()[worst]):.3g} "
-               f"asked for (rtol={rtol:g}, atol={atol:g}); the errors reported are honest bounds. Try "
-               + ("method='disk', " if method != "disk" else "method='engine', ")
-               + "a looser rtol, or read Estimate.status and Estimate.error (strict=True raises; warn=False is quiet)")
+               f"asked for (rtol={rtol:g}, atol={atol:g}); the errors reported are honest bounds. Try {advice}, "
+               "or read Estimate.status and Estimate.error (strict=True raises; warn=False is quiet)")
     if strict:
         raise NotConvergedError(message, est)
     warnings.warn(message, NotConvergedWarning, stacklevel=3)
 
 
 def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
-    """Albedo of several models on a common grid by the engine: arrays of shape (len(models), len(theta))."""
+    """Albedo of several models on a common grid by the engine: arrays of shape (len(models), len(theta)).
+
+    The engine's batch door: f as evaluated, statuses to read (no ends, no model error, no warning)."""
+    check_table_call(models, theta_deg, rtol, atol)
     theta = _check_angles(np.atleast_1d(theta_deg)).ravel()
     pairs = [(m, t) for m in models for t in theta]
     with counting_evaluations() as count:

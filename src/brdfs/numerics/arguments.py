@@ -155,6 +155,23 @@ def check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=Fals
     _check_options(f"albedo(method={method!r})", ALBEDO_METHODS[method], options)
 
 
+def check_table_call(models, theta_deg, rtol, atol) -> None:
+    """Refuse a bad :func:`brdfs.albedo_table` call: a list of model objects, angles, tolerances."""
+    from brdfs.physics.models import BRDF
+    where = "albedo_table()"
+    if isinstance(models, (str, BRDF)) or not hasattr(models, "__iter__"):
+        _fail(where, "models", models, "must be a list of models (brdfs.model(name, ...))")
+    for k, m in enumerate(models):
+        if not isinstance(m, BRDF):
+            _fail(where, f"models[{k}]", m, f"must be a model (brdfs.model(name, ...)), not {type(m).__name__}")
+    _check_angles(where, theta_deg)
+    for argument, value in (("rtol", rtol), ("atol", atol)):
+        if value is not None:
+            _check_real(where, argument, value)
+            if value <= 0:
+                _fail(where, argument, value, "must be > 0")
+
+
 def _check_angles(where, theta_deg):
     try:
         theta = np.asarray(theta_deg)

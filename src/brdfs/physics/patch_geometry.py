@@ -71,7 +71,7 @@ def _four_triangle_area(a, b, c):
     return np.sqrt(np.maximum(prod, 0.0))
 
 
-def circle_intersection(d, R):
+def circle_intersection(d, R, cos_theta=None):
     """The common part of the unit disk and the disk of radius R centred at distance d.
 
     Eqs. 4.9/4.10, with the angles from the triangle O, Q, P (P a chord end):
@@ -84,6 +84,10 @@ def circle_intersection(d, R):
         Distance of the centre from O, ``d >= 0``.
     R : array_like
         Radius, ``R > 0``.
+    cos_theta : array_like, optional
+        √(1 − d²) where the caller has it accurately (d = sin θ): then 1 − d = cos²θ/(1 + d) and
+        d² + R² − 1 = (R − cos θ)(R + cos θ) keep their relative accuracy for d near 1, which 1 − d
+        from a rounded d does not (R = 2e-7 at 89.9998°: 4e-11 off, from d's last bit).
 
     Returns
     -------
@@ -100,11 +104,20 @@ def circle_intersection(d, R):
     True
     """
     d, R = np.broadcast_arrays(np.asarray(d, float), np.asarray(R, float))
-    four_delta = _four_triangle_area(1.0, R, d)
     # 1 + d² − R² as d² + (1 − R)(1 + R): 1 − R is exact near R = 1 (Sterbenz), and
     # 1.0 + (d − R)(d + R) lost all of d² ≈ 3e-16 at d = sin 1e-6°, R = 1 (a 1.5e-9 error).
     x_alpha = d * d + (1.0 - R) * (1.0 + R)
+    four_delta = _four_triangle_area(1.0, R, d)
     x_beta = d * d + (R - 1.0) * (R + 1.0)
+    beta_abs = d * d + np.abs(R - 1.0) * (R + 1.0)
+    one_minus_d = np.zeros_like(d)
+    if cos_theta is not None:       # for d > 1/2 only: below, 1 − d from cos²θ/(1 + d) is the worse one
+        mu = np.broadcast_to(np.asarray(cos_theta, float), d.shape)
+        near = d > 0.5
+        one_minus_d = np.where(near, mu * mu / (1.0 + d), 0.0)
+        four_delta = np.where(near, _four_triangle_area_near_unit(one_minus_d, d, R), four_delta)
+        x_beta = np.where(near, (R - mu) * (R + mu), x_beta)
+        beta_abs = np.where(near, R * R + mu * mu, beta_abs)
     alpha = np.arctan2(four_delta, x_alpha)
     beta = np.arctan2(four_delta, x_beta)
     nested = d <= np.abs(1.0 - R)
@@ -112,30 +125,45 @@ def circle_intersection(d, R):
     alpha = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, 0.0, np.pi), alpha))
     beta = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, np.pi, 0.0), beta))
     area = _segment(alpha) + R * R * _segment(beta)
-    lens_x = d * d + np.abs(1.0 - R) * (1.0 + R)
+    alpha_abs = d * d + np.abs(1.0 - R) * (1.0 + R)
+    with np.errstate(divide="ignore", invalid="ignore"):  # R − (1 − d): inputs that carry 4 ε themselves
+        y_rel = 16 * _EPS + np.where(one_minus_d > 0, 4 * _EPS * one_minus_d / np.abs(R - one_minus_d), 0.0)
     error = np.where(apart | nested, _EPS * area,
-                     _lens_rounding(alpha, beta, R, four_delta, x_alpha, x_beta, lens_x, area))
+                     _lens_rounding(alpha, beta, R, four_delta, y_rel, (x_alpha, alpha_abs), (x_beta, beta_abs), area))
     return Lens(alpha, beta, area, error)
 
 
-def _angle_rounding(y, x, x_abs):
-    """Bound on the error of atan2(y, x) when y carries 16 ε relative (Kahan's Heron formula) and
-    x = d² ± (1 − R)(1 + R) carries 4 ε · x_abs (x_abs the sum of its terms' absolute values):
-    |δ atan2| ≤ (|x| |δy| + |y| |δx|)/(x² + y²), plus atan2's own rounding.  The ratio
+def _four_triangle_area_near_unit(u, d, R):
+    """4Δ of the triangle with sides 1, R, d = 1 − u: √((R + u)(1 + R + d)(R − u)(d − (R − 1)))
+    (Heron's product with the differences 1 − d = u and R − 1 formed exactly, Sterbenz)."""
+    last = np.where(R >= 0.5, d - (R - 1.0), d + (1.0 - R))
+    return np.sqrt(np.maximum((R + u) * (1.0 + R + d) * (R - u) * last, 0.0))
+
+
+def _angle_rounding(y, y_rel, x, x_abs):
+    """Bound on the error of atan2(y, x) when y carries ``y_rel`` relative (16 ε: Kahan's Heron
+    formula) and x = d² ± (1 − R)(1 + R) carries 4 ε · x_abs (x_abs the sum of its terms' absolute
+    values): |δ atan2| ≤ (|x| |δy| + |y| |δx|)/(x² + y²), plus atan2's own rounding.  The ratio
     x_abs / |x| is the condition number of the cancellation in x, which no rewriting removes."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        spread = (np.abs(x) * 16 * _EPS * y + y * 4 * _EPS * x_abs) / (x * x + y * y)
+        spread = (np.abs(x) * y_rel * y + y * 4 * _EPS * x_abs) / (x * x + y * y)
     return np.where(np.isfinite(spread), spread, 0.0) + _EPS * np.abs(np.arctan2(y, x))
 
 
-def _lens_rounding(alpha, beta, R, y, x_alpha, x_beta, x_abs, area):
+def _lens_rounding(alpha, beta, R, y, y_rel, x_alpha, x_beta, area):
     """Bound on the rounding of eq. 4.9's area for exact d and R: the angles' errors times
     d(t − sin t cos t)/dt = 2 sin²t, the segments' own rounding (t − sin t cos t is formed as
-    (x − sin x)/2, x = 2t, with an absolute error of a few ε t), and the final sum."""
-    d_alpha = _angle_rounding(y, x_alpha, x_abs)
-    d_beta = _angle_rounding(y, x_beta, x_abs)
+    (x − sin x)/2, x = 2t, with an absolute error of a few ε t), and the final sum.  ``x_alpha``,
+    ``x_beta``: the atan2 denominators with the sums of their terms' absolute values."""
+    d_alpha = _angle_rounding(y, y_rel, *x_alpha)
+    d_beta = _angle_rounding(y, y_rel, *x_beta)
     propagated = 2 * np.sin(alpha) ** 2 * d_alpha + 2 * R * R * np.sin(beta) ** 2 * d_beta
-    return propagated + 4 * _EPS * (alpha + R * R * beta) + 2 * _EPS * area
+    return propagated + _segment_rounding(alpha) + R * R * _segment_rounding(beta) + 2 * _EPS * area
+
+
+def _segment_rounding(t):
+    """Rounding of :func:`_segment`: a few ε relative on its series (2t < 1/4), a few ε t beyond."""
+    return 4 * _EPS * np.where(2 * np.abs(t) < 0.25, _segment(t), np.abs(t))
 
 
 def basic_constant(R):
@@ -152,7 +180,13 @@ def basic_albedo(theta_deg, R):
     Estimate
         Value and rounding bound, broadcast over ``theta_deg`` and ``R``.
     """
-    return basic_albedo_at(sin_incidence(theta_deg), R)
+    return basic_albedo_at(sin_incidence(theta_deg), R, _cos_incidence_near_grazing(theta_deg))
+
+
+def _cos_incidence_near_grazing(theta_deg):
+    """cos θ = sin(90° − θ): 90° − θ is exact near grazing, where cos of a rounded radian angle
+    carries ε (π/2)/(π/2 − θ) relative (7e-8 at 90° − 3e-7°)."""
+    return np.sin(np.radians(90.0 - np.asarray(theta_deg, float)))
 
 
 def basic_mean_albedo(R):
@@ -375,22 +409,28 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14):
     C = profile.c_max if C is None else float(C)
     theta = np.asarray(theta_deg, float)
     d = np.atleast_1d(sin_incidence(theta)).ravel()
-    est = _mixture_integral(profile, C, lambda R, e: basic_albedo_at(d[e][:, None], R),
+    mu = np.atleast_1d(_cos_incidence_near_grazing(theta)).ravel()
+    est = _mixture_integral(profile, C, lambda R, e: basic_albedo_at(d[e][:, None], R, mu[e][:, None]),
                             d, rtol, atol)
     return Estimate(est.value.reshape(theta.shape), est.error.reshape(theta.shape))
 
 
-def basic_albedo_at(d, R):
-    """a_R at |L'_P| = d (eq. 4.8), as an :class:`Estimate` (R > 0).
+def basic_albedo_at(d, R, cos_theta=None):
+    """a_R at |L'_P| = d (eq. 4.8), as an :class:`Estimate` (R > 0); ``cos_theta`` = √(1 − d²) where
+    known accurately (:func:`circle_intersection`).
 
     The error is the lens's rounding bound (:attr:`Lens.area_error`, which grows with the
-    cancellation in 1 + d² − R² where the circles are nearly tangent), plus d's own relative
-    rounding ε (d = sin θ) times |∂ area/∂d| = 2 sin α (the chord), plus c(R)'s rounding."""
-    lens = circle_intersection(d, R)
+    cancellation in 1 + d² − R² where the circles are nearly tangent), plus the input's own
+    rounding (2 ε relative in d = sin θ, or in cos θ, which moves d by 2 ε cos²θ/d) times
+    |∂ area/∂d| = 2 sin α (the chord), plus c(R)'s rounding."""
+    lens = circle_intersection(d, R, cos_theta)
     c = basic_constant(R)
     value = lens.area * c
-    from_d = 2.0 * np.abs(np.sin(lens.alpha)) * _EPS * np.asarray(d, float)
-    return Estimate(value, c * (lens.area_error + from_d) + 3 * _EPS * value)
+    d = np.asarray(d, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        moved = d if cos_theta is None else np.minimum(d, np.asarray(cos_theta, float) ** 2 / d)
+    from_input = 2.0 * np.abs(np.sin(lens.alpha)) * 2 * _EPS * moved
+    return Estimate(value, c * (lens.area_error + from_input) + 3 * _EPS * value)
 
 
 def mixture_mean_albedo(profile, C=None, rtol=1e-10, atol=1e-14):

@@ -160,23 +160,31 @@ def chapter_rst(category: str, names: Iterable[str], tree: ResultsTree, page_dir
     return "\n".join(parts)
 
 
-def index_rst(tallies: Mapping[str, recomputed.Tally], tree: ResultsTree, page_dir: Path) -> str:
-    """The index of the pages: each chapter's count and the whole comparison's, then every artifact's."""
+def summary_rst(tallies: Mapping[str, recomputed.Tally], tree: ResultsTree, pages: str) -> str:
+    """Each chapter's count (a table linking the chapter pages, in the directory ``pages`` relative to
+    the page that shows it; ``""``: the same directory) and the total."""
     total = recomputed.Tally(sum(t.printed for t in tallies.values()), sum(t.reproduce for t in tallies.values()))
-    lines = [_title("The thesis recomputed", "="),
-             "Every table and figure of the thesis, recomputed from its equations, chapter by chapter; every "
-             "number it prints beside ours. A number *reproduces* when ours, rounded to the printed digits, "
-             "equals the print (an exact expression: within our error bound; a claim: it holds); otherwise it "
-             "*differs*, with a reason and the evidence (see :doc:`../contract`).\n"]
+    lines = []
     if tree.comparison is None:
         lines.append(f"*Not built yet:* ``results/{COMPARISON.as_posix()}`` (run ``make all``).\n")
     lines += [".. list-table::", "   :header-rows: 1", "",
               "   * - chapter", "     - printed numbers", "     - reproduce", "     - differ"]
     for category, tally in tallies.items():
-        lines += [f"   * - :doc:`{PAGES[category]}`", f"     - {tally.printed}", f"     - {tally.reproduce}",
+        lines += [f"   * - :doc:`{pages + '/' if pages else ''}{PAGES[category]}`", f"     - {tally.printed}", f"     - {tally.reproduce}",
                   f"     - {tally.differ}"]
     lines += ["   * - **all chapters**", f"     - **{total.printed}**", f"     - **{total.reproduce}**",
-              f"     - **{total.differ}**", "", ".. toctree::", "   :maxdepth: 1", ""]
+              f"     - **{total.differ}**", ""]
+    return "\n".join(lines) + "\n"
+
+
+def index_rst(tallies: Mapping[str, recomputed.Tally], tree: ResultsTree, page_dir: Path) -> str:
+    """The index of the pages: each chapter's count and the whole comparison's, then every artifact's."""
+    lines = [_title("The thesis recomputed", "="),
+             "Every table and figure of the thesis, recomputed from its equations, chapter by chapter; every "
+             "number it prints beside ours. A number *reproduces* when ours, rounded to the printed digits, "
+             "equals the print (an exact expression: within our error bound; a claim: it holds); otherwise it "
+             "*differs*, with a reason and the evidence (see :doc:`../contract`).\n"]
+    lines += [summary_rst(tallies, tree, ""), ".. toctree::", "   :maxdepth: 1", ""]
     lines += [f"   {page}" for page in PAGES.values()]
     lines += ["", _title("Every artifact", "-"),
               "Each artifact's own count (Table 1.1's numbers are compared under Table 3.1 and counted for both); "
@@ -209,12 +217,14 @@ def write_pages(results: str | os.PathLike, out_dir: str | os.PathLike,
         tallies = recomputed.chapter_tallies(comparison, tree.sources, tree.chapters)
     order = [r.name for r in recomputed.landing(tree.artifacts, None, {})]
     pages = {"index": index_rst(tallies, tree, out_dir)}
+    # Included by the front page (docs/index.rst); not a page of its own (.inc is no source suffix).
+    snippets = {"summary.inc": summary_rst(tallies, tree, out_dir.name)}
     for category, page in PAGES.items():
         names = [n for n in order if recomputed.category(tree.artifacts[n].chapter) == category]
         pages[page] = chapter_rst(category, names, tree, out_dir, tallies[category])
     written = []
-    for page, text in pages.items():
-        path = out_dir / f"{page}.rst"
+    for path, text in [*((out_dir / f"{page}.rst", text) for page, text in pages.items()),
+                       *((out_dir / name, text) for name, text in snippets.items())]:
         if not path.is_file() or path.read_text(encoding="utf-8") != text:
             path.write_text(text, encoding="utf-8")
         written.append(path)

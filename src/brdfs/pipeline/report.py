@@ -173,8 +173,9 @@ def landing(table: pd.DataFrame | None, chapters: pd.DataFrame | None, targets: 
         members = table[table["category"] == chapter["category"]]
         if members.empty:
             continue
-        lines += [f"**{_clean(chapter['category'], 100)}.** {chapter['printed']} printed numbers: "
-                  f"{chapter['reproduce']} reproduce, {chapter['differ']} differ.", ""]
+        count = (f"{chapter['printed']} printed numbers: {chapter['reproduce']} reproduce, {chapter['differ']} differ."
+                 if int(chapter["printed"]) else "The thesis prints no number for these artifacts.")
+        lines += [f"**{_clean(chapter['category'], 100)}.** {count}", ""]
         compared = members[members["printed"].astype(int) > 0]
         if len(compared):
             lines += [".. list-table::", "   :header-rows: 1", "",
@@ -251,34 +252,22 @@ def _read_comparison(path: str, mtime_ns: int) -> pd.DataFrame:
     return pd.read_csv(path, dtype=str, keep_default_na=False)
 
 
-_HTML_STYLE = """
-body { font-family: sans-serif; font-size: 12px; margin: 1em; }
-table { border-collapse: collapse; }
-th, td { border: 1px solid #ccc; padding: 2px 4px; vertical-align: top; text-align: left; }
-th { background: #eee; position: sticky; top: 0; }
-tr.differs td { background: #fff3e0; }
-tr.reproduces td { background: #f1f8e9; }
-td.reason, td.evidence { min-width: 24em; max-width: 40em; }
-"""
-
-
 def comparison_html(comparison: pd.DataFrame) -> str:
     """``published_comparison.csv`` as a standalone HTML page (the report shows it in a frame).
 
-    One row per printed number, coloured by verdict, every column shown; deterministic.
+    One section per group of printed numbers (``artifact``, with its ``source``), each a table of
+    :func:`brdfs.pipeline.recomputed.comparison_table_html`: the printed digits beside ours, the
+    verdict within the first seven columns (on screen at 1400 px), the differing cells marked;
+    every row of the comparison, HTML-escaped, deterministic.
     """
     import html as html_lib
 
-    columns = list(comparison.columns)
-    head = "".join(f"<th>{html_lib.escape(c)}</th>" for c in columns)
-    body = []
-    for _, row in comparison.iterrows():
-        cells = "".join(
-            f'<td class="{html_lib.escape(c)}">{html_lib.escape(str(row[c]))}</td>' for c in columns
-        )
-        body.append(f'<tr class="{html_lib.escape(str(row.get("verdict", "")))}">{cells}</tr>')
-    return (
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>published_comparison</title>"
-        f"<style>{_HTML_STYLE}</style></head><body>\n<p>{html_lib.escape(summary(comparison))}</p>\n"
-        f"<table>\n<thead><tr>{head}</tr></thead>\n<tbody>\n" + "\n".join(body) + "\n</tbody></table>\n</body></html>\n"
-    )
+    from brdfs.pipeline import recomputed   # it imports this module's categories
+
+    sections = []
+    for artifact, rows in comparison.groupby("artifact", sort=False):
+        sources = "; ".join(dict.fromkeys(str(s) for s in rows["source"]))
+        sections.append(f"<h2>{html_lib.escape(str(artifact))} <small>({html_lib.escape(sources)})</small></h2>\n"
+                        f"<p>{recomputed.Tally.of(rows).sentence()}</p>\n" + recomputed.comparison_table_html(rows))
+    return recomputed.page_html("Every printed number against the recomputation",
+                                f"<p>{html_lib.escape(summary(comparison))}</p>\n" + "\n".join(sections))

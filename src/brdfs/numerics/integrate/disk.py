@@ -19,10 +19,19 @@ Breakpoints, all in closed form from the disk geometry (the "no narrow feature c
   in r along the ray; R·V = 0 for the mirror-frame lobes, where (R·V)⁺ is cut; the radii
   r = |L_xy + V_xy| the model declares (the patch models', He–Torrance's radial scales); where the
   ray crosses a half-plane φ_V = const through N that the model declares (``azimuth_levels``).
-* azimuthal: pieces of equal width, the tangent ray ψ = π/2 and points mu·10^k around it (the
-  ray length ρ(ψ) changes from ~cos²θ to ~2 over |ψ − π/2| ~ cos θ near grazing), the rays
-  tangent to the kink circles, and the rays through the points where a declared half-plane
-  φ_V = const meets the rim.
+* azimuthal: pieces of equal width, the tangent ray ψ = π/2 and points mu·10^k around it, every
+  decade up to 1/2 (the ray length ρ(ψ) changes from ~cos²θ to ~2 over |ψ − π/2| ~ cos θ near
+  grazing, and beyond the tangent ray the ray integrals fall like (ψ − π/2)⁻²), the rays
+  tangent to the kink circles, the rays through the points where a declared half-plane
+  φ_V = const meets the rim, and — by a scan and bisection, for every radial kink above — the
+  rays where a kink enters or leaves the rays or two kinks change order (a kink curve meets the
+  rim, touches a ray, or crosses another: the ray integral has a kink or a jump of its curvature
+  there).
+
+A kink next to the rim is placed by its distance to the rim, ρ − r, in closed form where it has one
+(N·V levels: at 90° − 1e-9, N·V = N·L lies 1e-22 inside the rim, where r/ρ rounds to 1 but
+1 − x ≈ 4e-6 does not).  The rounding bound of f is a quarter of its change when V_x moves by 2 ulp
+plus the lobe's declared rounding in ulps (cos^n β carries n of them).
 
 Every kink is declared by the model (:class:`brdfs.physics.models.base.BRDF`); nothing here knows a
 model by its name.
@@ -65,8 +74,9 @@ def disk_albedo_many(models, theta_deg, rtol=1e-12, atol=1e-16):
     # Pass 1, coarse: the albedo's size, which sets the absolute tolerance of every ray in pass 2
     # (a ray far out in the lobe's flank needs no 1e-13 of its own tiny value, and rounding noise
     # of f — 1e-10 relative near grazing, where L + V cancels — would keep refining it).
-    rough = _disk(models, theta_deg, ROUGH_RTOL, atol, None)
-    est = _disk(models, theta_deg, rtol, atol, np.abs(rough.value) + rough.error)
+    bp = psi_breakpoints_many(models, theta_deg)
+    rough = _disk(models, theta_deg, ROUGH_RTOL, atol, None, bp)
+    est = _disk(models, theta_deg, rtol, atol, np.abs(rough.value) + rough.error, bp)
     value, error = np.array(est.value), np.array(est.error)
     for i, m in enumerate(models):
         delta = m.delta_albedo(theta_deg[i])          # zero unless the model has a Dirac part
@@ -78,12 +88,18 @@ def disk_albedo_many(models, theta_deg, rtol=1e-12, atol=1e-16):
 ROUGH_RTOL = 1e-5
 
 
-def _disk(models, theta_deg, rtol, atol, scale):
+def psi_breakpoints_many(models, theta_deg):
+    """The ψ breakpoints of every element (:func:`_psi_breakpoints`), one NaN-padded row each."""
+    mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
+    return _pad([_psi_breakpoints(m, mu[i], st[i], not m.symmetric_about_incidence_plane)
+                 for i, m in enumerate(models)])
+
+
+def _disk(models, theta_deg, rtol, atol, scale, bp):
     """The disk integral of every element; rays to ``INNER_SHARE`` of the target relative to their own
     value, or (``scale`` given: the element's albedo) at least that share of rtol · scale spread over ψ."""
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     full = np.array([not m.symmetric_about_incidence_plane for m in models])
-    bp = _pad([_psi_breakpoints(m, mu[i], st[i], full[i]) for i, m in enumerate(models)])
     index = first_of_model(models)      # the same model object at many angles is evaluated together
     weight_el = np.where(full, 1.0, 2.0)             # [0, π] doubled by symmetry
     span = np.where(full, 2 * np.pi, np.pi)
@@ -178,27 +194,38 @@ def _kink_events(model, mu, st, top):
     scan = np.unique(scan[(scan >= 0) & (scan <= top)])
     radii = _kinks_inside(model, mu, st, scan)                     # (k, n), NaN outside the ray
     inside = np.isfinite(radii)
-    events = [_bisect(model, mu, st, scan, np.nonzero(inside[k, :-1] != inside[k, 1:])[0],
-                      lambda r, k=k: np.isfinite(r[k])) for k in range(radii.shape[0])]
     rho = ray_length(mu, st, np.cos(scan))
-    for i in range(radii.shape[0]):
-        for j in range(i + 1, radii.shape[0]):
-            gap = radii[i] - radii[j]
+    # an event is (first kink, second kink or −1, scan interval): a kink entering or leaving the
+    # rays, or two kinks changing order
+    first, second, where = [], [], []
+    for k in range(radii.shape[0]):
+        w = np.nonzero(inside[k, :-1] != inside[k, 1:])[0]
+        first += [k] * w.size
+        second += [-1] * w.size
+        where.append(w)
+        for j in range(k + 1, radii.shape[0]):
+            gap = radii[k] - radii[j]
             apart = np.abs(gap) > 64 * _EPS * rho                  # duplicates and rounding ties are no crossing
-            where = np.nonzero(apart[:-1] & apart[1:] & (np.sign(gap[:-1]) != np.sign(gap[1:])))[0]
-            events.append(_bisect(model, mu, st, scan, where, lambda r, i=i, j=j: r[i] > r[j]))
-    return np.concatenate(events) if events else np.empty(0)
-
-
-def _bisect(model, mu, st, scan, where, predicate):
-    """ψ in (scan[w], scan[w + 1]) for each w in ``where`` where ``predicate(kink radii)`` flips."""
+            w = np.nonzero(apart[:-1] & apart[1:] & (np.sign(gap[:-1]) != np.sign(gap[1:])))[0]
+            first += [k] * w.size
+            second += [j] * w.size
+            where.append(w)
+    where = np.concatenate(where)
     if where.size == 0:
         return np.empty(0)
+    first, second = np.array(first), np.array(second)
+    events = np.arange(where.size)
+
+    def state(psi):
+        r = _kinks_inside(model, mu, st, psi)
+        entered = np.isfinite(r[first, events])
+        return np.where(second < 0, entered, r[first, events] > r[np.maximum(second, 0), events])
+
     a, b = scan[where], scan[where + 1]
-    left = predicate(_kinks_inside(model, mu, st, a))
+    left = state(a)
     for _ in range(52):
         mid = 0.5 * (a + b)
-        same = predicate(_kinks_inside(model, mu, st, mid)) == left
+        same = state(mid) == left
         a, b = np.where(same, mid, a), np.where(same, b, mid)
     return 0.5 * (a + b)
 

@@ -152,6 +152,9 @@ HEAD = 10.0 ** -np.arange(1.0, 9.0, 1.0)
 #: rtol 1e-10).
 END = 10.0 ** -np.arange(1.0, 7.0, 1.0)
 _SCAN = 1024
+#: The scan of :func:`_lh_radial_breakpoints` on [0, 1], sorted: uniform in t (the lobe's core) and
+#: geometric in 1 − t (its tail, where the switches sit); built once (it cost a third of a call's setup).
+_UNIT_SCAN = np.sort(np.concatenate([np.linspace(0.0, 1.0, _SCAN), 1.0 - np.geomspace(1e-16, 1.0, _SCAN)]))
 
 
 def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
@@ -168,8 +171,7 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     if lobe.frame is not HALF or len(model.lh_levels(mu, np.ones_like(mu))) == 0:
         return none
     # uniform in t (the lobe's core) and geometric in 1 − t (its tail, where the switches sit)
-    unit = np.concatenate([np.linspace(0.0, 1.0, _SCAN), 1.0 - np.geomspace(1e-16, 1.0, _SCAN)])
-    scan = np.sort(t_max[:, None] * unit, axis=1)
+    scan = t_max[:, None] * _UNIT_SCAN
 
     def gaps(t, mu, st, nv_levels):
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -189,6 +191,27 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
                     out.append(np.where(inside, x_lh - x_nv, np.nan))
         return np.stack(out)
 
+    def selected_gap(t, mu, st, nv_levels, which):
+        """Row r of ``gaps(...)[which[r]]`` only, by the same formulas (the multisection evaluates
+        one function per bracket, not all of them)."""
+        width = 2 + len(nv_levels)
+        j, kind = (which // width)[:, None], (which % width)[:, None]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cb, sb = lobe.angle(np.minimum(t, np.nextafter(1.0, 0)))
+            a_lh, b_lh = cb * mu, sb * st
+            c = np.take_along_axis(np.stack(np.broadcast_arrays(*model.lh_levels(mu, cb), t))[:-1], j[None], 0)[0]
+            tangent = np.where(kind == 0, a_lh + b_lh - c, a_lh - b_lh - c)
+            if not nv_levels:
+                return tangent
+            cos2, sin2 = (cb - sb) * (cb + sb), 2 * sb * cb
+            a_nv, b_nv = cos2 * mu, sin2 * st
+            c_nv = np.stack(np.broadcast_arrays(*nv_levels, t))[:-1]
+            c_nv = np.take_along_axis(c_nv, np.broadcast_to(np.maximum(kind - 2, 0), t.shape)[None], 0)[0]
+            x_lh = (c - a_lh) / b_lh
+            x_nv = (c_nv - a_nv) / b_nv
+            inside = (np.abs(x_lh) <= 1) & (np.abs(x_nv) <= 1)
+            return np.where(kind < 2, tangent, np.where(inside, x_lh - x_nv, np.nan))
+
     levels = [c[:, None] for c in nv_levels]
     g = gaps(scan, mu[:, None], st[:, None], levels)
     sign = np.sign(g)
@@ -198,8 +221,7 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     a, b = scan[row, idx], scan[row, idx + 1]
     sign_a = np.sign(g[which, row, idx])
     levels = [c[row, None] for c in nv_levels]
-    a, b = _multisection(lambda x: gaps(x, mu[row, None], st[row, None], levels)[which, np.arange(a.size)],
-                         a, b, sign_a)
+    a, b = _multisection(lambda x: selected_gap(x, mu[row, None], st[row, None], levels, which), a, b, sign_a)
     roots = 0.5 * (a + b)
     return [roots[row == i] for i in range(mu.size)]
 

@@ -341,6 +341,13 @@ class SmithGrazingLimit(BRDF):
         d = self.C * e / (4 * np.pi * self.m ** 2 * nh ** 4)
         return d * np.sqrt(np.pi / 2) / self.m * g_smith_beckmann(np.ones_like(nv), nv, self.m) / nv
 
+    def half_vector_factors(self):
+        """f_lim = D(H) · C √(π/2) G*(N·V)/(4 m N·V), D the Beckmann density: the polar route."""
+        return Beckmann(self.m), self._limit_masking
+
+    def _limit_masking(self, nl, nv):
+        return self.C * np.sqrt(np.pi / 2) / self.m * g_smith_beckmann(np.ones_like(nv), nv, self.m) / (4 * nv)
+
 
 @dataclass(frozen=True)
 class TorranceSparrowGrazingLimit(BRDF):

@@ -55,6 +55,8 @@ class OrenNayar(BRDF):
     reciprocal = True            # α, β and cos(φ_L − φ_V) are symmetric in L and V
     strategies = ("cosine",)     # a Lambertian base: cosine sampling
     chi2_cases = ({"rho": 1.0, "sigma": np.pi / 2}, {"rho": 1.0, "sigma": 0.3})
+    #: Its rows of the accuracy map, if config.yaml lists values of σ for them (none by default).
+    accuracy_families = {"oren_nayar": ("sigma", {"rho": 1.0})}
 
     def __post_init__(self):
         for key in ("rho", "sigma"):

@@ -42,9 +42,10 @@ def _window(radius: int) -> int:
     return 2 * radius + 1
 
 
-def uniform_id(ids: np.ndarray, radius: int = ID_RADIUS) -> np.ndarray:
-    """True where every pixel within ``radius`` px (clipped at the border) has the pixel's ID."""
-    size = _window(radius)
+def uniform_id(ids: np.ndarray, radius: int | None = None) -> np.ndarray:
+    """True where every pixel within ``radius`` px (default :data:`ID_RADIUS`; clipped at the border)
+    has the pixel's ID."""
+    size = _window(ID_RADIUS if radius is None else radius)
     low = ndimage.minimum_filter(ids, size=size, mode="nearest")
     high = ndimage.maximum_filter(ids, size=size, mode="nearest")
     return (low == ids) & (high == ids)
