@@ -16,7 +16,7 @@ from multiprocessing import Pool
 import numpy as np
 import pandas as pd
 
-from sweep.cells import TRUTHS, cells, load_tables, truth
+from sweep.cells import FAMILY, TRUTHS, cells, load_tables, truth
 from sweep.config import config_seed
 
 _TABLES = None
@@ -69,13 +69,18 @@ def main(argv=None):
             rows[i] = row
             if k % 50 == 0:
                 print(f"{k}/{len(todo)} {time.time() - t0:.0f}s {row['family']} {row['seconds']}s", flush=True)
-    cols = ["family", "params", "theta_deg", "truth", "truth_err", "truth_route", "truth_evaluations",
-            "seconds", "notes"]
-    df = pd.DataFrame(rows)[cols]
-    df.insert(1, "model", [c[0] for c in todo])
-    df["model"] = [c for c in df["family"]]
-    df.to_csv(args.out, index=False, float_format="%.17g")
-    print(f"{len(df)} cells in {time.time() - t0:.0f}s -> {args.out}")
+                _write([r for r in rows if r is not None], args.out + ".partial")
+    _write(rows, args.out)
+    print(f"{len(rows)} cells in {time.time() - t0:.0f}s -> {args.out}")
+
+
+def _write(rows, path):
+    """The truths CSV: model (the registered name), family, params (JSON), θ, truth, truth_err, route, …"""
+    cols = ["model", "family", "params", "theta_deg", "truth", "truth_err", "truth_route",
+            "truth_evaluations", "seconds", "notes"]
+    df = pd.DataFrame(rows)
+    df["model"] = [FAMILY[f].model for f in df["family"]]
+    df[cols].to_csv(path, index=False, float_format="%.17g")
 
 
 if __name__ == "__main__":

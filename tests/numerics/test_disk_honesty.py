@@ -53,5 +53,6 @@ def test_masking_switch_roots_keep_their_count_and_slot_from_ray_to_ray_at_grazi
     near = np.abs(roots - 1.5 * a) < 1e-9 * a
     assert np.all(near.sum(0) == 1), near.sum(0)        # the one of the pair with μ z = 2r² − 3ar − μ² ≥ 0
     brdf = model("cook_torrance", m=1.0)
-    events = [disk._kink_events(brdf, np.cos(np.radians(t)), np.sin(np.radians(t)), np.pi).size for t in (85.0, theta)]
+    t = np.radians([85.0, theta])
+    events = [e.size for e in disk._kink_events(brdf, np.cos(t), np.sin(t), np.pi)]
     assert events[1] <= events[0], events

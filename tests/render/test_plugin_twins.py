@@ -181,6 +181,34 @@ def test_plugin_sampler_draws_the_package_samplers_directions(mitsuba, case):
     assert tail_error <= 2.0 ** -10, f"{case}: tail directions differ by {tail_error:.3g}"
 
 
+@pytest.mark.parametrize("case", [c for c in CASES if c != "lambert"] + ["lambert"])
+def test_plugin_verbs_agree_sample_weight_is_eval_over_pdf_and_eval_pdf_is_eval_and_pdf(mitsuba, case):
+    """What an integrator's MIS relies on: at the sampled wo, weight = eval/pdf and bs.pdf = pdf, and
+    eval_pdf returns eval and pdf (float32, relative 1e-5); a plugin with a diffuse lobe too."""
+    import drjit as dr
+    mi = mitsuba
+    bsdf_dict = {**CASES[case][0], "diffuse_reflectance": 0.25} if case == "phong n=20" else CASES[case][0]
+    bsdf = mi.load_dict(bsdf_dict)
+    rng = np.random.default_rng(3)
+    count = 4096
+    theta = np.radians(rng.uniform(0.0, 85.0, count))
+    si = dr.zeros(mi.SurfaceInteraction3f, count)
+    si.wi = mi.Vector3f(np.stack([np.sin(theta), np.zeros(count), np.cos(theta)]).astype(np.float32))
+    ctx = mi.BSDFContext()
+    u = rng.random((3, count)).astype(np.float32)
+    bs, weight = bsdf.sample(ctx, si, mi.Float(u[0]), mi.Point2f(u[1:]))
+    value, pdf = bsdf.eval(ctx, si, bs.wo), bsdf.pdf(ctx, si, bs.wo)
+    both_value, both_pdf = bsdf.eval_pdf(ctx, si, bs.wo)
+    weight, value, both_value = (np.array(a).reshape(3, -1)[0] for a in (weight, value, both_value))
+    pdf, both_pdf, bs_pdf = (np.array(a) for a in (pdf, both_pdf, bs.pdf))
+    ok = bs_pdf > 0
+    assert ok.mean() > 0.3
+    assert np.allclose(weight[ok], value[ok] / pdf[ok], rtol=1e-5, atol=0)
+    assert np.allclose(bs_pdf[ok], pdf[ok], rtol=1e-5, atol=0)
+    assert np.array_equal(both_value, value) and np.array_equal(both_pdf, pdf)
+    assert np.all(weight[~ok] == 0)
+
+
 def test_the_plugin_frame_is_the_shading_frame_and_its_mutation_is_observable(mitsuba, monkeypatch):
     """An anisotropic model (patch_elliptical, B/A = 0.2) through the generic plugin reads its axes in
     Mitsuba's shading frame (x = dp/du): its eval equals the numpy model's at the same local directions,

@@ -83,11 +83,26 @@ def new_canvas(width=5.0, height=4.0, ncols=1):
     return fig, list(axes.ravel())
 
 
-def arrow(ax, start, end, label=None, color="k", offset=(0.03, 0.03), lw=1.3, **text):
+def arrow(ax, start, end, label=None, color="k", offset=None, lw=1.3, gap=0.09, zorder=3, **text):
+    """An arrow from ``start`` to ``end``; its label sits ``gap`` beyond the arrowhead along the
+    arrow (centred there, so it touches neither head nor shaft), or at ``end + offset`` if given."""
     start, end = np.asarray(start, float), np.asarray(end, float)
-    ax.annotate("", xy=end, xytext=start, arrowprops=dict(arrowstyle="-|>", color=color, lw=lw, shrinkA=0, shrinkB=0))
+    ax.annotate("", xy=end, xytext=start, zorder=zorder,
+                arrowprops=dict(arrowstyle="-|>", color=color, lw=lw, shrinkA=0, shrinkB=0))
     if label:
-        ax.text(end[0] + offset[0], end[1] + offset[1], label, color=color, **text)
+        if offset is None:
+            where = end + gap * (end - start) / np.linalg.norm(end - start)
+            ax.text(*where, label, color=color, ha="center", va="center", **text)
+        else:
+            ax.text(end[0] + offset[0], end[1] + offset[1], label, color=color, **text)
+
+
+def label(ax, where, text, color="k", masked=False, **kw):
+    """A label centred at ``where``; ``masked`` puts it on an opaque white ground above the thin
+    lines (zorder < 3) it would otherwise sit on, below arrows (zorder ≥ 3.5)."""
+    if masked:
+        kw.update(bbox=dict(boxstyle="square,pad=0.1", fc="white", ec="none"), zorder=3.4)
+    ax.text(*np.asarray(where, float), text, color=color, ha="center", va="center", **kw)
 
 
 def arc(ax, center, radius, a0_rad, a1_rad, label=None, color="k", label_radius=None, **text):
@@ -122,13 +137,39 @@ def hemisphere_canvas():
     return fig, ax
 
 
+def hemisphere_silhouette(points: int = 200) -> np.ndarray:
+    """The projected outline of the unit hemisphere's dome (2D points, left to right over the top).
+
+    The oblique projection p ↦ p·O is linear, so the unit sphere maps onto the ellipse whose
+    boundary point in the direction w (a unit 2-vector) is the image of x = O w / |O w|; x lies on
+    the upper hemisphere iff x_z = w_y ≥ 0 (O's z row is (0, 1)). The dome's outline is that half
+    of the ellipse; it touches the projected base circle, which therefore never sticks out.
+    """
+    s = np.linspace(np.pi, 0.0, points)
+    x = np.stack([np.cos(s), np.sin(s)], -1) @ _OBLIQUE.T
+    return project(x / np.linalg.norm(x, axis=-1, keepdims=True))
+
+
 def hemisphere(ax, color="0.55"):
-    """Outline of the unit hemisphere and its base circle in the oblique projection."""
+    """Outline of the unit hemisphere (:func:`hemisphere_silhouette`) and its base circle in the
+    oblique projection."""
     t = np.linspace(0, 2 * np.pi, 200)
     base = project(np.stack([np.cos(t), np.sin(t), 0 * t], -1))
     ax.plot(base[:, 0], base[:, 1], color=color, lw=0.8)
-    s = np.linspace(0, np.pi, 100)
-    ax.plot(np.cos(s), np.sin(s), color=color, lw=0.8)  # silhouette (x–z great circle)
+    ax.plot(*hemisphere_silhouette().T, color=color, lw=0.8)
+
+
+def arc3(ax, a, b, radius, label=None, color="k", label_radius=None, **text):
+    """The arc of radius ``radius`` around the origin from direction ``a`` to ``b`` (3D, along their
+    great circle), projected; labelled at its middle at ``label_radius`` (default 1.3 radius)."""
+    a, b = (np.asarray(u, float) / np.linalg.norm(u) for u in (a, b))
+    angle = np.arccos(np.clip(a @ b, -1.0, 1.0))
+    t = np.linspace(0.0, 1.0, 60)[:, None]
+    way = (np.sin((1 - t) * angle) * a + np.sin(t * angle) * b) / np.sin(angle)  # slerp
+    ax.plot(*project(radius * way).T, color=color, lw=0.8)
+    if label:
+        mid = way[len(way) // 2]
+        ax.text(*project((label_radius or 1.3 * radius) * mid), label, color=color, ha="center", va="center", **text)
 
 
 def save(fig, path):

@@ -41,7 +41,7 @@ def plot(df: pd.DataFrame, path) -> None:
         ends = np.stack([P - tangent * A / 2, P + tangent * A / 2])
         ax.plot(*ends.T, "k", lw=3)
         ax.fill(*np.vstack([other, ends]).T, color="tab:blue", alpha=0.12, lw=0)  # the solid angle seen from `other`
-        dg.arrow(ax, P, P + 0.9 * n, f"N{name}", offset=(0.03, 0.0))
+        dg.arrow(ax, P, P + 0.9 * n, f"N{name}", gap=0.12)
         start, stop = sorted([dg.angle_of(n), dg.angle_of(other - P)])
         if stop - start > np.pi:
             start, stop = stop, start + 2 * np.pi
@@ -49,7 +49,7 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.text(*(P + ([-0.45, -0.45] if name == "1" else [0.15, -0.45])), f"A{name}", fontsize=10)
     ax.plot(*np.stack([P1, P2]).T, color="0.4", lw=0.8, ls="--")
     ax.text(r / 2, -0.15, "r", ha="center")
-    ax.text(r * 0.3, 0.42, "ω1 (A2 seen from A1)", color="tab:blue", fontsize=8)
+    ax.text(r * 0.5, 0.22, "ω1 (A2 seen from A1)", ha="center", color="tab:blue", fontsize=8)
     ax.text(r * 0.08, -0.3, "ω2 (A1 seen from A2)", color="tab:blue", fontsize=8)
     ax.set_xlim(-0.6, r + 0.8), ax.set_ylim(-0.8, 1.2)
     ax.set_title(f"Fig. 1.1: two surface elements; ω1·A1·cos Θ1 = ω2·A2·cos Θ2 = {v['omega1_A1_cos1']:.4f}", fontsize=9)

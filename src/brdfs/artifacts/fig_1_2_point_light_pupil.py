@@ -37,8 +37,8 @@ def plot(df: pd.DataFrame, path) -> None:
     dg.arrow(ax, (0, 0), (0, 1.0), "N")
     src = L
     ax.plot(*src, "*", color="tab:orange", ms=14)
-    ax.text(src[0] - 0.35, src[1] + 0.08, "point source P\n(unit distance)", fontsize=8, color="tab:orange")
-    dg.arrow(ax, src, 0.15 * src, color="tab:orange")
+    ax.text(src[0] - 0.35, src[1] + 0.12, "point source P\n(unit distance)", fontsize=8, color="tab:orange")
+    dg.arrow(ax, (0, 0), 0.88 * src, color="tab:orange")  # L points from the surface to the light
     eye = D * V
     pupil = np.array([-V[1], V[0]]) * 0.15
     ax.plot(*np.stack([eye - pupil, eye + pupil]).T, "tab:blue", lw=3)

@@ -53,9 +53,11 @@ def plot(df: pd.DataFrame, path) -> None:
     # Albedo: reflected into the whole hemisphere.
     left.plot([-1.1, 1.1], [0, 0], "k", lw=1.0)
     left.plot([-0.12, 0.12], [0, 0], "k", lw=4)
-    dg.arrow(left, 0.9 * L, 0.05 * L, "L", color="tab:orange", offset=(-0.12, 0.05))
     for ang in np.radians(df["angle_deg"]):
         dg.arrow(left, (0, 0), 0.7 * np.array([np.cos(ang), np.sin(ang)]), color="tab:blue", lw=0.7)
+    # L is drawn on top of the rays; its label sits beyond its tail, outside the fan of rays.
+    dg.arrow(left, 0.95 * L, 0.05 * L, color="tab:orange", lw=2.0, zorder=4)
+    dg.label(left, 1.05 * L, "L", color="tab:orange")
     left.text(-0.1, -0.18, "f", fontsize=10)
     left.text(-1.0, 1.0, r"$a_f(L)=\int_\Omega f(L,V)\cos\Theta_V\,d\omega_V$", fontsize=9)
     left.set_xlim(-1.15, 1.15), left.set_ylim(-0.3, 1.15)
@@ -68,13 +70,16 @@ def plot(df: pd.DataFrame, path) -> None:
         right.plot([x - 0.06, x + 0.06], [0, 0], "k", lw=4)
         right.text(x - 0.04, -0.17, name, fontsize=9)
     for row in df.itertuples():
-        right.plot([-a, row.hit_x, row.land_x], [0, row.hit_y, 0], color="tab:blue", lw=0.6)
-    dg.arrow(right, (-a, 0) + 0.6 * L, (-a, 0) + 0.04 * L, "L", color="tab:orange", offset=(-0.1, 0.05))
-    dg.arrow(right, (a, 0), (a, 0) + 0.6 * V, "V", color="tab:green")
+        right.plot([-a, row.hit_x, row.land_x], [0, row.hit_y, 0], color="tab:blue", lw=0.5, alpha=0.45, zorder=1)
+    # L and V on top of the rays, thick; their labels on an opaque ground that masks the rays only.
+    dg.arrow(right, (-a, 0) + 0.6 * L, (-a, 0) + 0.04 * L, color="tab:orange", lw=2.0, zorder=4)
+    dg.label(right, (-a, 0) + 0.72 * L, "L", color="tab:orange", masked=True)
+    dg.arrow(right, (a, 0), (a, 0) + 0.6 * V, color="tab:green", lw=2.0, zorder=4)
+    dg.label(right, (a, 0) + 0.72 * V, "V", color="tab:green", masked=True)
     right.text(-1.05, 1.02, "spherical mirror", fontsize=8, color="0.3")
-    right.text(0.05, -0.3, r"$C_{f_1,f_2}(L,V)=\int_\Omega f_1(L,X) f_2(X,V)\cos\Theta_X\,d\omega_X$",
+    right.text(0.05, -0.36, r"$C_{f_1,f_2}(L,V)=\int_\Omega f_1(L,X) f_2(X,V)\cos\Theta_X\,d\omega_X$",
                fontsize=9, ha="center")
-    right.set_xlim(-1.15, 1.15), right.set_ylim(-0.4, 1.15)
+    right.set_xlim(-1.15, 1.15), right.set_ylim(-0.48, 1.15)
     right.set_title("composition (eq. 1.21)", fontsize=9)
     fig.suptitle("Fig. 1.3: schemes of the BRDF's integral formulae", fontsize=10)
     dg.save(fig, path)

@@ -15,6 +15,10 @@ from brdfs.physics.models.patch import projected_distance
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_1_4_notation"
+#: Label positions relative to an arrow's tip where "beyond the tip" would sit on another line
+#: (H runs almost along N; V's tip is next to R's drop line) and relative to a projection's foot.
+LABEL_OFFSETS = {"H": (-0.12, -0.03), "V": (-0.05, 0.05)}
+FOOT_OFFSETS = {"L": (0.03, -0.13), "V": (0.03, -0.13), "R": (0.05, -0.03)}
 
 
 @figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
@@ -40,14 +44,19 @@ def plot(df: pd.DataFrame, path) -> None:
     colours = {"N": "k", "L": "tab:orange", "V": "tab:blue", "R": "tab:red", "H": "tab:green"}
     for name, col in colours.items():
         p = dg.get(v, name)
-        dg.arrow(ax, O, dg.project(p), name, color=col)
+        dg.arrow(ax, O, dg.project(p), name, color=col, offset=LABEL_OFFSETS.get(name), gap=0.08)
         if name in "LVR":
-            foot = dg.drop_to_base(ax, p, f"{name}$_p$", col)
+            foot = dg.drop_to_base(ax, p, f"{name}$_p$", col, label_offset=FOOT_OFFSETS[name])
             ax.plot(*np.stack([O, foot]).T, color=col, lw=0.9, ls="--")
-    text = (f"θ$_L$ = {v['theta_l_deg']:.1f}°,  θ$_V$ = {v['theta_v_deg']:.1f}°\n"
+    N, L, V, R, H = (dg.get(v, k) for k in "NLVRH")
+    dg.arc3(ax, N, L, 0.45, "θ$_L$", color="tab:orange", fontsize=8)
+    dg.arc3(ax, N, V, 0.3, "θ$_V$", color="tab:blue", label_radius=0.42, fontsize=8)
+    dg.arc3(ax, R, V, 0.55, "α", color="tab:red", label_radius=0.72, fontsize=8)
+    dg.arc3(ax, L * [1, 1, 0], V * [1, 1, 0], 0.3, "φ", color="0.3", label_radius=0.5, fontsize=8)
+    text = (f"θ$_L$ = {v['theta_l_deg']:.1f}°,  θ$_V$ = {v['theta_v_deg']:.1f}°,  "
             f"α = ∠(R, V) = {v['alpha_deg']:.1f}°,  δ = ∠(N, H) = {v['delta_deg']:.1f}°\n"
             f"|L'$_p$ − V$_p$| = |h − (N·h)N| = {v['projected_distance']:.3f}")
-    ax.text(-1.15, -0.75, text, fontsize=8, va="top")
-    ax.set_xlim(-1.2, 1.3), ax.set_ylim(-1.05, 1.15)
-    ax.set_title("Fig. 1.4: notations (R = L' mirror direction, H half vector)", fontsize=9)
+    ax.text(0.05, -0.58, text, fontsize=7.5, va="top", ha="center")
+    ax.set_xlim(-1.3, 1.4), ax.set_ylim(-0.8, 1.2)
+    ax.set_title("Fig. 1.4: notations", fontsize=9)
     dg.save(fig, path)

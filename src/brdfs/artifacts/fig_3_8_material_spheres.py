@@ -22,8 +22,9 @@ from brdfs.pipeline.registry import figure
 from brdfs.render import spectrum
 
 #: θ_V grid of the editor's albedo tables (interpolated linearly in cos θ_V) and their accuracy.
-TABLE_COS = np.linspace(0.0, 1.0, 33)
-TABLE_RTOL = 1e-5
+TABLE_COS = np.linspace(0.0, 1.0, 17)
+TABLE_RTOL = 1e-4
+TABLE_ATOL = 1e-12
 #: Samples per pixel of the noise-free editor image (one per pass: they only antialias the edges).
 EDITOR_SPP = 8
 
@@ -49,7 +50,7 @@ def albedo_spectrum(spec: dict, cos_v: np.ndarray) -> np.ndarray:
     theta = np.degrees(np.arccos(np.clip(TABLE_COS, 1e-6, 1.0)))
     eta = optical_constants.complex_index(spec["metal"], spectrum.WAVELENGTHS_NM)
     models = [PhongCosminMetal(float(spec["n"]), ior_re=float(e.real), ior_im=float(abs(e.imag))) for e in eta]
-    table = albedo_table(models, theta, rtol=TABLE_RTOL, atol=0.0).value          # (8, len(TABLE_COS))
+    table = albedo_table(models, theta, rtol=TABLE_RTOL, atol=TABLE_ATOL).value          # (8, len(TABLE_COS))
     return np.stack([np.interp(cos_v, TABLE_COS, row) for row in table], axis=-1)
 
 
@@ -60,10 +61,15 @@ def with_daylight(cfg: dict):
     def post(panel, rendered):
         specs = {label: spec for label, _, spec in panel.objects}
         ambient = np.zeros(rendered.passes.shape[1:])
+        # the spheres stand apart on the background (ID 0), so a pixel's ID is coverage × its
+        # sphere's ID, and its averaged cos θ_V is coverage × the sphere's mean cos θ_V there
+        sphere = np.ceil(rendered.ids)
+        coverage = np.where(sphere > 0, rendered.ids / np.maximum(sphere, 1.0), 0.0)
         for k, label in rendered.labels.items():
-            sel = rendered.ids == k
+            sel = (sphere == k) & (coverage > 0)
             if label in specs and sel.any():
-                ambient[sel] = sky * albedo_spectrum(specs[label], rendered.cos_v[sel])
+                cos_v = rendered.cos_v[sel] / coverage[sel]
+                ambient[sel] = sky * coverage[sel, None] * albedo_spectrum(specs[label], cos_v)
         return dataclasses.replace(rendered, passes=rendered.passes + ambient)
 
     return post

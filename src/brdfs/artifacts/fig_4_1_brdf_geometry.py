@@ -16,6 +16,10 @@ from brdfs.physics.models.patch import projected_distance
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_1_brdf_geometry"
+#: Where the projections' labels sit relative to their feet (clear of the m segment and the drops).
+FOOT_OFFSETS = {"L": (0.02, -0.1), "V": (-0.17, 0.03), "Lm": (0.05, 0.02), "Vm": (0.03, -0.1)}
+#: Where the vectors' labels sit relative to their tips (V' would sit on the dome's outline).
+TIP_OFFSETS = {"Vm": (-0.11, -0.09)}
 
 
 @figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
@@ -38,12 +42,15 @@ def plot(df: pd.DataFrame, path) -> None:
         p = dg.get(v, key)
         ls = "-" if key in ("L", "V") else (0, (4, 2))
         ax.plot(*np.stack([O, dg.project(p)]).T, color=col, lw=1.2, ls=ls)
-        ax.text(*(dg.project(p) + 0.03), label, color=col)
-        feet[key] = dg.drop_to_base(ax, p, f"{label}$_P$", col, label_offset=(0.02, -0.08))
+        tip = dg.project(p)
+        where = tip + TIP_OFFSETS.get(key, 0.09 * tip / np.linalg.norm(tip))
+        ax.text(*where, label, color=col, ha="center", va="center")
+        feet[key] = dg.drop_to_base(ax, p, f"{label}$_P$", col, label_offset=FOOT_OFFSETS[key])
         ax.plot(*feet[key], "o", color=col, ms=3)
     ax.plot(*np.stack([feet["V"], feet["Lm"]]).T, "k", lw=1.6)
     mid = 0.5 * (feet["V"] + feet["Lm"])
-    ax.text(*(mid + [0.0, -0.16]), f"m = |V$_P$ − L'$_P$| = {v['m']:.3f}", fontsize=8, ha="center")
-    ax.set_xlim(-1.2, 1.3), ax.set_ylim(-0.6, 1.15)
-    ax.set_title("Fig. 4.1: L, V, mirrors L', V' and projections onto the base plane", fontsize=9)
+    ax.text(*(mid + [-0.03, 0.04]), "m", fontsize=9, ha="right", va="bottom")
+    ax.text(0.0, -0.62, f"m = |V$_P$ − L'$_P$| = {v['m']:.3f}", fontsize=8, ha="center")
+    ax.set_xlim(-1.3, 1.4), ax.set_ylim(-0.7, 1.15)
+    ax.set_title("Fig. 4.1: L, V, their mirrors and projections", fontsize=9)
     dg.save(fig, path)

@@ -39,7 +39,8 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.plot(np.cos(t), np.sin(t), "k", lw=1.0)
         ax.plot(row.d + row.R * np.cos(t), row.R * np.sin(t), "tab:blue", lw=1.0)
         ax.plot([0, row.d], [0, 0], "k.", ms=4)
-        ax.text(-0.12, -0.18, "O", fontsize=8), ax.text(row.d + 0.03, 0.05, "L'$_P$", fontsize=8)
+        ax.text(-0.07, -0.07, "O", fontsize=8, ha="right", va="top")  # beside its dot, not on it
+        ax.text(row.d + 0.04, 0.07, "L'$_P$", fontsize=8, ha="left", va="bottom")
         ax.set_xlim(-1.6, 2.6), ax.set_ylim(-1.7, 1.7)
         ax.set_title(f"d = {row.d:g}, R = {row.R:g}\narea {row.area:.3f}, a = {row.albedo:.3f}", fontsize=8)
     fig.suptitle("Fig. 4.2: relations of C(L'$_P$, R) to the base circle", fontsize=9)

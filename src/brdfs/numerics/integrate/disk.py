@@ -46,9 +46,9 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.physics.lobes import MIRROR, SCATTERING
+from brdfs.physics.lobes import HALF, MIRROR, SCATTERING
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
-from brdfs.numerics.integrate.grouping import first_of_model
+from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
 INNER_SHARE = 0.1             # the inner integrals get this share of the tolerance
 _PIECES = 8                   # equal ψ pieces on [0, π]
@@ -89,9 +89,16 @@ ROUGH_RTOL = 1e-5
 
 
 def psi_breakpoints_many(models, theta_deg):
-    """The ψ breakpoints of every element (:func:`_psi_breakpoints`), one NaN-padded row each."""
+    """The ψ breakpoints of every element (:func:`_psi_breakpoints`), one NaN-padded row each; the
+    kink events (:func:`_kink_events`) of the elements of one model are found together."""
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    return _pad([_psi_breakpoints(m, mu[i], st[i], not m.symmetric_about_incidence_plane)
+    events = [None] * len(models)
+    for members in indices_by_model(models):
+        m = models[members[0]]
+        top = np.pi if m.symmetric_about_incidence_plane else 2 * np.pi
+        for i, ev in zip(members, _kink_events(m, mu[members], st[members], top)):
+            events[i] = ev
+    return _pad([_psi_breakpoints(m, mu[i], st[i], not m.symmetric_about_incidence_plane, events[i])
                  for i, m in enumerate(models)])
 
 
@@ -136,9 +143,10 @@ def ray_length(mu, st, cos_psi):
         return np.where(a >= 0, a + root, mu * mu / (root - a))
 
 
-def _psi_breakpoints(model, mu, st, full):
-    """ψ breakpoints of one element: equal pieces, the tangent ray and points around it, and the
-    rays tangent to the model's N·V level circles (and to the circle |p| = sin θ)."""
+def _psi_breakpoints(model, mu, st, full, events=None):
+    """ψ breakpoints of one element: equal pieces, the tangent ray and points around it, the rays
+    tangent to the model's N·V level circles (and to the circle |p| = sin θ), and the kink events
+    (:func:`_kink_events`, computed here unless given)."""
     top = 2 * np.pi if full else np.pi
     pts = [np.linspace(0.0, top, (2 if full else 1) * _PIECES + 1)]
     # every decade from μ·10⁻³ up to 1/2: beyond the tangent ray the rays shorten like μ²/(ψ − π/2)
@@ -168,7 +176,7 @@ def _psi_breakpoints(model, mu, st, full):
             pts.append([a, top - a] if full else [a])
     for phi in _half_plane_azimuths(model, mu, full):   # the ray from c to where φ_V = φ₀ meets the rim
         pts.append([np.mod(np.arctan2(np.sin(phi), np.cos(phi) + st), 2 * np.pi)])
-    pts.append(_kink_events(model, mu, st, top))
+    pts.append(_kink_events(model, np.array([mu]), np.array([st]), top)[0] if events is None else events)
     out = np.unique(np.concatenate([np.atleast_1d(np.asarray(p, float)) for p in pts]))
     return out[(out >= 0) & (out <= top)]
 
@@ -185,60 +193,73 @@ def _kink_events(model, mu, st, top):
     cross (curves that meet: eq. 2.10's two switches and N·V = N·L meet where its three terms are
     equal).  The ray integral, smooth in ψ elsewhere, has a kink, a square-root point or a jump in
     its curvature there.  Found by a scan and bisection, for every kink the model declares (the
-    closed-form tangent rays above cover the N·V circles only).  Cook–Torrance with eq. 2.10,
-    m = 1, 85°: the ray through that triple point (ψ = 1.4832) and the ray where the shadowing
-    switch leaves the disk (ψ = 1.5203) were missing, 1.2e-9 off at a reported 3.4e-11."""
-    offsets = np.geomspace(max(mu, 1e-300) * 1e-3, 0.5, _PSI_GRADED)
+    closed-form tangent rays above cover the N·V circles only), for all angles (arrays ``mu``,
+    ``st``) at once: a list of arrays, one per angle.  Cook–Torrance with eq. 2.10, m = 1, 85°: the
+    ray through that triple point (ψ = 1.4832) and the ray where the shadowing switch leaves the
+    disk (ψ = 1.5203) were missing, 1.2e-9 off at a reported 3.4e-11."""
+    mu, st = np.asarray(mu, float), np.asarray(st, float)
+    offsets = np.geomspace(np.maximum(mu, 1e-300) * 1e-3, 0.5, _PSI_GRADED, axis=-1)       # (n, G)
     centres = (np.pi / 2, 3 * np.pi / 2) if top > np.pi else (np.pi / 2,)
-    scan = np.concatenate([np.linspace(0.0, top, _PSI_SCAN + 1)] + [c + s * offsets for c in centres for s in (-1, 1)])
-    scan = np.unique(scan[(scan >= 0) & (scan <= top)])
-    radii = _kinks_inside(model, mu, st, scan)                     # (k, n), NaN outside the ray
+    uniform = np.broadcast_to(np.linspace(0.0, top, _PSI_SCAN + 1), (mu.size, _PSI_SCAN + 1))
+    scan = np.sort(np.clip(np.concatenate([uniform] + [c + sign * offsets for c in centres for sign in (-1, 1)], 1),
+                           0.0, top), 1)                                                    # (n, S)
+    mu_s, st_s = (np.broadcast_to(x[:, None], scan.shape) for x in (mu, st))
+    radii = _kinks_inside(model, mu_s, st_s, scan)                # (k, n, S), NaN outside the ray
     inside = np.isfinite(radii)
-    rho = ray_length(mu, st, np.cos(scan))
-    # an event is (first kink, second kink or −1, scan interval): a kink entering or leaving the
-    # rays, or two kinks changing order
-    first, second, where = [], [], []
-    for k in range(radii.shape[0]):
-        w = np.nonzero(inside[k, :-1] != inside[k, 1:])[0]
-        first += [k] * w.size
-        second += [-1] * w.size
-        where.append(w)
-        for j in range(k + 1, radii.shape[0]):
-            gap = radii[k] - radii[j]
-            apart = np.abs(gap) > 64 * _EPS * rho                  # duplicates and rounding ties are no crossing
-            w = np.nonzero(apart[:-1] & apart[1:] & (np.sign(gap[:-1]) != np.sign(gap[1:])))[0]
-            first += [k] * w.size
-            second += [j] * w.size
-            where.append(w)
-    where = np.concatenate(where)
-    if where.size == 0:
-        return np.empty(0)
-    first, second = np.array(first), np.array(second)
-    events = np.arange(where.size)
+    rho = ray_length(mu_s, st_s, np.cos(scan))
+    # an event is (first kink, second kink or −1, element, scan interval): a kink entering or
+    # leaving the rays, or two kinks changing order
+    found = []
+    for a in range(radii.shape[0]):
+        el, w = np.nonzero(inside[a, :, :-1] != inside[a, :, 1:])
+        found.append((np.full(el.size, a), np.full(el.size, -1), el, w))
+        for b in range(a + 1, radii.shape[0]):
+            gap = radii[a] - radii[b]
+            apart = np.abs(gap) > 64 * _EPS * rho                # duplicates and rounding ties are no crossing
+            el, w = np.nonzero(apart[:, :-1] & apart[:, 1:] & (np.sign(gap[:, :-1]) != np.sign(gap[:, 1:])))
+            found.append((np.full(el.size, a), np.full(el.size, b), el, w))
+    first, second, el, w = (np.concatenate(x) for x in zip(*found))
+    if el.size == 0:
+        return [np.empty(0)] * mu.size
+    lo, hi = scan[el, w], scan[el, w + 1]
+    mu_e, st_e = mu[el][:, None], st[el][:, None]
 
-    def state(psi):
-        r = _kinks_inside(model, mu, st, psi)
-        entered = np.isfinite(r[first, events])
-        return np.where(second < 0, entered, r[first, events] > r[np.maximum(second, 0), events])
+    def state(psi):                                                 # psi: (events, points)
+        r = _kinks_inside(model, np.broadcast_to(mu_e, psi.shape), np.broadcast_to(st_e, psi.shape), psi)
+        mine = np.take_along_axis(r, first[None, :, None], 0)[0]
+        other = np.take_along_axis(r, np.maximum(second, 0)[None, :, None], 0)[0]
+        return np.where(second[:, None] < 0, np.isfinite(mine), mine > other)
 
-    a, b = scan[where], scan[where + 1]
-    left = state(a)
-    for _ in range(52):
-        mid = 0.5 * (a + b)
-        same = state(mid) == left
-        a, b = np.where(same, mid, a), np.where(same, b, mid)
-    return 0.5 * (a + b)
+    # 16-way bisection: 13 rounds of 15 points per event narrow the bracket by 2^-52
+    left = state(lo[:, None])
+    fractions = np.arange(1, _SPLIT) / _SPLIT
+    rows = np.arange(lo.size)
+    for _ in range(13):
+        pts = lo[:, None] + (hi - lo)[:, None] * fractions
+        flipped = state(pts) != left
+        k = np.where(flipped.any(1), np.argmax(flipped, 1), _SPLIT - 1)
+        new_lo = np.where(k > 0, pts[rows, np.maximum(k - 1, 0)], lo)
+        hi = np.where(k < _SPLIT - 1, pts[rows, np.minimum(k, _SPLIT - 2)], hi)
+        lo = new_lo
+    roots = 0.5 * (lo + hi)
+    return [roots[el == i] for i in range(mu.size)]
+
+
+_SPLIT = 16
 
 
 def _kinks_inside(model, mu, st, psi):
-    """The declared radial kinks along the rays at ``psi``, shape (kinks, rays), NaN where a kink does
-    not lie inside its ray (0 < r, inside the rim)."""
+    """The declared radial kinks along the rays at ``psi`` (any shape, with ``mu``, ``st`` of the same
+    shape), shape (kinks,) + psi.shape, NaN where a kink does not lie inside its ray (0 < r, inside
+    the rim)."""
+    shape = psi.shape
+    psi, mu, st = (np.ravel(x) for x in (psi, mu, st))
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
     rho = ray_length(mu, st, cos_psi)
-    mu_a, st_a = np.full(psi.shape, mu), np.full(psi.shape, st)
     with np.errstate(invalid="ignore"):
-        return np.stack([np.where((r > 0) & (gap > 0), r, np.nan)
-                         for r, gap in _radial_kinks(model, mu_a, st_a, cos_psi, sin_psi, rho)])
+        kinks = [np.where((r > 0) & (gap > 0), r, np.nan)
+                 for r, gap in _radial_kinks(model, mu, st, cos_psi, sin_psi, rho)]
+    return np.stack(kinks).reshape((-1,) + shape)
 
 
 def _constant_radii(model):
@@ -317,8 +338,9 @@ def _rays(models, index, elem, psi, mu, st, rtol, atol):
 def _rounding_ulps(model):
     """Relative rounding of f in ulps beyond what a move of V_x shows: the lobe's declared rounding
     (cos^n β carries n ulps of cos β, which here is R·V from the rounded V: Phong-type lobes of
-    n = 1e4 at normal incidence were 1.1e-12 off, a bias, at a reported 7.7e-13), at least 4."""
-    return max(4.0, float(model.lobe.rounding)) if model.lobe is not None else 4.0
+    n = 1e4 at normal incidence were 1.1e-12 off, a bias, at a reported 7.7e-13), at least 4.  Only
+    the lobes around R or the half vector declare one; the scattering-frame lobes carry none."""
+    return max(4.0, float(model.lobe.rounding)) if _frame(model) in (MIRROR, HALF) else 4.0
 
 
 def _x_of(frac):
@@ -408,45 +430,27 @@ def _torrance_sparrow_kinks(mu, a):
     4 r³ − 12 a r² + (9 a² − 3 μ²) r + 4 a μ² = 0 (with z² = μ² + 2 a r − r²).
     Roots of the squared equations are kept only where the unsquared sign holds.
 
-    The cubic is solved in s = 2r − 3a, s³ + 3a s² − 3μ² s − a μ² = 0: near grazing its r-form has a
-    near-double root at r = 3a/2 (the two roots 1e-11 apart at 90° − 1e-9, below the √ε resolution
-    of a double root, so that they came and went between neighbouring rays), which in s are ±μ/√3,
-    well separated.  The root near r = 0 (s ≈ −3a) is taken from the product of the roots, −a μ²."""
+    The cubic has three real roots for μ > 0 (in s = 2r − 3a it is s³ + 3a s² − 3μ² s − a μ² = 0,
+    depressed by s = y − a to y³ − 3(a² + μ²) y + 2a(a² + μ²) = 0, discriminant 108 μ² (a² + μ²)²),
+    in closed form r_k = √(a² + μ²) cos((φ₀ − 2πk)/3) + a, φ₀ = atan2(μ, −a).  Near grazing two of
+    them are 1e-11 apart at r ≈ 3a/2 (a near-double root, which companion-matrix eigenvalues resolved
+    only to √ε, so that they came and went between neighbouring rays); the angle form keeps them.
+    The root near r = 0 is taken from the product of the roots, −a μ².  Each k keeps its root from
+    one ray to the next (:func:`_kink_events` follows the roots by their slots)."""
     out = []
     with np.errstate(invalid="ignore", divide="ignore"):
         r_s = 4 * a * mu * mu / (mu * mu + a * a)
         out.append(np.where(a * r_s - mu * mu >= 0, r_s, np.nan))
-        coef = np.stack([np.ones_like(a), 3 * a, -3 * mu * mu, -a * mu * mu], -1)
-        s_roots = np.stack(_cubic_roots(coef, complex_roots=True), -1)          # (m, 3) complex
-        r_roots = 0.5 * (s_roots + 3 * a[:, None])
+        reach = np.sqrt(a * a + mu * mu)
+        phi0 = np.arctan2(mu, -a)
+        r_roots = reach[:, None] * np.cos((phi0[:, None] - 2 * np.pi * np.arange(3)) / 3) + a[:, None]
         near_zero = np.argmin(np.abs(r_roots), -1)
         others = np.prod(np.where(np.arange(3) == near_zero[:, None], 1.0, r_roots), -1)
         np.put_along_axis(r_roots, near_zero[:, None], (-a * mu * mu / others)[:, None], -1)
-        # in ascending order, so that a root keeps its slot from ray to ray (:func:`_kink_events`)
-        r_roots = np.take_along_axis(r_roots, np.argsort(r_roots.real, -1), -1)
         for k in range(3):
-            z = r_roots[:, k]
-            real = np.abs(z.imag) <= 1e-7 * np.maximum(np.abs(z.real), 1e-300)
-            r = np.where(real, z.real, np.nan)
+            r = r_roots[:, k]
             sv = 2 * r - 3 * a
             rhs = r * sv - mu * mu
             ok = rhs >= -8 * _EPS * (np.abs(r * sv) + mu * mu)
             out.append(np.where(ok, r, np.nan))
     return out
-
-
-def _cubic_roots(coef, complex_roots=False):
-    """Real roots (NaN where complex; all three as complex numbers with ``complex_roots``) of
-    c0 r³ + c1 r² + c2 r + c3, vectorised via companion matrices."""
-    c = coef / coef[:, :1]
-    comp = np.zeros((c.shape[0], 3, 3))
-    comp[:, 0, :] = -c[:, 1:]
-    comp[:, 1, 0] = comp[:, 2, 1] = 1.0
-    good = np.all(np.isfinite(comp), axis=(1, 2))
-    ev = np.full((c.shape[0], 3), np.nan + 0j)
-    if good.any():
-        ev[good] = np.linalg.eigvals(comp[good])
-    if complex_roots:
-        return list(ev.T)
-    real = np.abs(ev.imag) <= 1e-7 * np.maximum(np.abs(ev.real), 1e-300)
-    return list(np.where(real, ev.real, np.nan).T)

@@ -13,8 +13,9 @@ sRGB through the CIE 1931 colour-matching functions of colour-science
 Choice (against Mitsuba's ``llvm_ad_spectral``, which samples four wavelengths per path from the
 continuous spectrum and converts with its own CIE tables): the thesis's colour is eight bins through
 colour-science, which three RGB passes reproduce exactly; the spectral variant would add wavelength
-noise to every pixel's colour and would not use colour-science. The cost is three passes per seed
-(measured: a spectral panel takes three times an r, g, b panel of the same scene, 3 × 1 pass).
+noise to every pixel's colour and would not use colour-science. The cost is three RGB passes per
+seed instead of eight monochrome ones (each pass costs what one r, g, b render of the scene costs;
+the ``llvm_ad_spectral`` variant, one pass, was not measured against it).
 """
 from __future__ import annotations
 

@@ -1,0 +1,73 @@
+"""A seeded subset of the independent sweep (``sweep/``, issue 24) in the suite: the engine and the
+certifier (``method="disk"``) against truths computed once by a third route that shares no code with
+:mod:`brdfs.numerics` (``tests/data/sweep_truths.csv``; ``make sweep`` runs all of them).
+
+The subset: :data:`N_CELLS` cells drawn with config.yaml's seed, spread over the families (one per
+family first, then grazing cells 90° − 10⁻ᵏ), among the cells whose truth is accurate enough to judge
+an error bound at :data:`RTOL` (truth_err ≤ 1e-12 |truth|).
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+from sweep.cells import TRUTHS            # noqa: E402
+from sweep.check import classify, run_group  # noqa: E402
+from sweep.config import config_seed     # noqa: E402
+
+N_CELLS = 40
+RTOL = 1e-8
+#: Families the engine refuses (no lobe of its own and no albedo route, or not symmetric about
+#: the plane of incidence): only the disk is held to them.
+METHODS = ("engine", "disk")
+
+
+def subset(truths: pd.DataFrame, n: int = N_CELLS, seed: int | None = None) -> pd.DataFrame:
+    """``n`` judgeable cells: one per family first, then the rest, grazing ones preferred, seeded."""
+    rng = np.random.default_rng(config_seed() if seed is None else seed)
+    ok = truths[np.isfinite(truths["truth"]) & (truths["truth_err"] <= 1e-12 * truths["truth"].abs())]
+    picks = [g.index[rng.integers(len(g))] for _, g in ok.groupby("family", sort=True)]
+    rest = ok.drop(index=picks)
+    grazing = rest[rest["theta_deg"] > 89.9]
+    more = rng.choice(grazing.index, size=min(max(n - len(picks), 0) // 2, len(grazing)), replace=False)
+    rest = rest.drop(index=more)
+    fill = rng.choice(rest.index, size=max(n - len(picks) - len(more), 0), replace=False)
+    return ok.loc[sorted([*picks, *more, *fill])]
+
+
+def sweep_rows(cells: pd.DataFrame) -> pd.DataFrame:
+    groups = [(fam, par, list(g["theta_deg"]), METHODS, (RTOL,)) for (fam, par), g in cells.groupby(["family", "params"])]
+    rows = pd.DataFrame([row for g in groups for row in run_group(g)])
+    merged = rows.merge(cells[["family", "params", "theta_deg", "truth", "truth_err"]],
+                        on=["family", "params", "theta_deg"])
+    return classify(merged)
+
+
+@pytest.fixture(scope="module")
+def cells():
+    if not TRUTHS.exists():
+        pytest.skip("tests/data/sweep_truths.csv not computed (python -m sweep.compute_truths)")
+    return subset(pd.read_csv(TRUTHS))
+
+
+def test_the_subset_spreads_over_every_family_and_reaches_grazing_angles(cells):
+    truths = pd.read_csv(TRUTHS)
+    assert len(cells) == N_CELLS
+    assert set(cells["family"]) == set(truths[truths["truth_err"] <= 1e-12 * truths["truth"].abs()]["family"])
+    assert (cells["theta_deg"] > 90 - 1e-6).sum() >= 5
+
+
+def test_engine_and_disk_are_honest_on_a_seeded_subset_of_the_independent_sweep(cells):
+    rows = sweep_rows(cells)
+    answered = rows[rows["verdict"] != "refused"]
+    assert len(answered[answered["method"] == "disk"]) >= 0.9 * N_CELLS
+    bad = rows[rows["dishonest"]]
+    assert bad.empty, "dishonest (true error above reported error + truth error):\n" + bad[
+        ["method", "family", "params", "theta_deg", "value", "error", "truth", "truth_err", "ratio"]].to_string()
