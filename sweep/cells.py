@@ -266,7 +266,9 @@ def _patch_truth(family: Family, params: dict, model, theta: float) -> Truth:
         return disk_albedo(lambda rho, psi: xi(rho), theta, radial_kinks=(model.m_clip,))
     if name == "patch_mixture":
         xi = ind.patch_mixture_xi(params["weight"], params["p_diffuse"])
-        return disk_albedo(lambda rho, psi: xi(rho), theta, radial_kinks=(1.0,))
+        # ξ ~ 1/m + ln(m)/2 at m → 0: ρ ξ(ρ) has a ρ ln ρ end, taken by cuts geometric toward 0
+        return disk_albedo(lambda rho, psi: xi(rho), theta, radial_kinks=(1.0,),
+                           radial_scales=tuple(10.0 ** -np.arange(1, 13)))
     if name == "patch_elliptical":
         rho_e = ind.ellipse_radius(params["b"], params["ratio"], params["u_angle_deg"])
         C = model.C

@@ -119,7 +119,9 @@ def summarise(r: pd.DataFrame) -> pd.DataFrame:
             "refused": int((g["verdict"] == "refused").sum()), "no_truth": int((g["verdict"] == "no_truth").sum()),
             "worst_ratio": float(judged["ratio"].max()) if len(judged) else np.nan,
             "median_ratio": float(judged["ratio"].median()) if len(judged) else np.nan})
-    return r.groupby(["method", "family"], sort=False).apply(one, include_groups=False).reset_index()
+    out = r.groupby(["method", "family"], sort=False).apply(one, include_groups=False).reset_index()
+    counts = ["rows", "cells", "judged", "dishonest", "unjudged", "no_answer", "refused", "no_truth"]
+    return out.astype({c: int for c in counts})
 
 
 def markdown(summary: pd.DataFrame, rows: pd.DataFrame, default: str) -> str:
@@ -132,11 +134,11 @@ def markdown(summary: pd.DataFrame, rows: pd.DataFrame, default: str) -> str:
         lines += [f"## {method}: {int(tot['rows'])} rows, {int(tot['judged'])} judged, "
                   f"{int(tot['dishonest'])} dishonest, {int(tot['unjudged'])} unjudged, "
                   f"{int(tot['no_answer'])} no answer, {int(tot['refused'])} refused", "",
-                  "| family | cells | rows | judged | dishonest | unjudged | no answer | refused | worst true/reported |",
-                  "|---|---|---|---|---|---|---|---|---|"]
+                  "| family | cells | rows | judged | dishonest | unjudged | no answer | refused | no truth | worst true/reported |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
         for _, x in s.iterrows():
             lines.append(f"| {x['family']} | {x['cells']} | {x['rows']} | {x['judged']} | {x['dishonest']} | "
-                         f"{x['unjudged']} | {x['no_answer']} | {x['refused']} | {x['worst_ratio']:.3g} |")
+                         f"{x['unjudged']} | {x['no_answer']} | {x['refused']} | {x['no_truth']} | {x['worst_ratio']:.3g} |")
         lines.append("")
     bad = rows[rows["dishonest"]].sort_values("ratio", ascending=False)
     lines += [f"## Dishonest rows ({len(bad)})", "",

@@ -53,13 +53,24 @@ def main(argv=None):
     parser.add_argument("--out", default=str(TRUTHS))
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--family", default=None)
+    parser.add_argument("--resume", default=None, help="a CSV of truths already computed: kept, not recomputed")
     args = parser.parse_args(argv)
     seed = config_seed()
     todo = cells(seed)
+    order_of = {(f, json.dumps(p, sort_keys=True), float(t)): i for i, (f, p, t) in enumerate(todo)}
     if args.family:
         todo = [c for c in todo if c[0] == args.family]
     if args.limit:
         todo = pilot(todo, args.limit, seed)
+    kept = []
+    if args.resume:
+        old = pd.read_csv(args.resume)
+        done = {(f, p, float(t)) for f, p, t in zip(old["family"], old["params"], old["theta_deg"])}
+        key = lambda c: (c[0], json.dumps(c[1], sort_keys=True), float(c[2]))
+        kept = [r for r in old.to_dict("records") if (r["family"], r["params"], float(r["theta_deg"]))
+                in {key(c) for c in todo}]
+        todo = [c for c in todo if key(c) not in done]
+        print(f"resuming: {len(kept)} kept, {len(todo)} to compute", flush=True)
     # the slow cells first, so that the pool's tail is short
     order = sorted(range(len(todo)), key=lambda i: ("he_torrance" not in todo[i][0], i))
     rows = [None] * len(todo)
@@ -69,7 +80,9 @@ def main(argv=None):
             rows[i] = row
             if k % 50 == 0:
                 print(f"{k}/{len(todo)} {time.time() - t0:.0f}s {row['family']} {row['seconds']}s", flush=True)
-                _write([r for r in rows if r is not None], args.out + ".partial")
+                _write(kept + [r for r in rows if r is not None], args.out + ".partial")
+    rows = kept + rows
+    rows.sort(key=lambda r: order_of.get((r["family"], r["params"], float(r["theta_deg"])), 0))
     _write(rows, args.out)
     print(f"{len(rows)} cells in {time.time() - t0:.0f}s -> {args.out}")
 

@@ -13,13 +13,15 @@ import importlib
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.figure  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 from matplotlib.patches import FancyArrowPatch  # noqa: E402
 from matplotlib.text import Annotation  # noqa: E402
 
-from brdfs.pipeline import plotting, registry  # noqa: E402
+from brdfs.pipeline import registry  # noqa: E402
 from brdfs.pipeline.config import load_config  # noqa: E402
 
 #: The diagrams of issue 23's "Diagrams fit to print" (Figs. 1.1–1.4, 4.1, 4.2, 4.4, 4.7, 4.8, 5.1).
@@ -37,12 +39,14 @@ def cfg():
 
 
 def drawn_figure(name, cfg, monkeypatch):
-    """The figure an artifact's ``plot`` saves (captured instead of written), drawn."""
+    """The figure an artifact's ``plot`` saves (captured instead of written, after
+    :func:`brdfs.pipeline.plotting.savefig` has added its automatic legends), drawn."""
     captured = []
-    monkeypatch.setattr(plotting, "savefig", lambda fig, path: captured.append(fig))
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", lambda fig, *args, **kw: captured.append(fig))
     df = registry.get_artifact(name).compute(cfg, {})
     importlib.import_module(f"brdfs.artifacts.{name}").plot(df, "unused.png")
     (fig,) = captured
+    FigureCanvasAgg(fig)  # savefig closed the figure; a fresh canvas draws it again
     fig.canvas.draw()
     return fig
 
@@ -143,5 +147,20 @@ def test_diagram_labels_sit_clear_of_lines_markers_and_each_other(name, cfg, mon
     fig = drawn_figure(name, cfg, monkeypatch)
     try:
         assert layout_faults(fig) == []
+    finally:
+        plt.close(fig)
+
+
+def test_fig_1_2_light_arrow_points_from_the_surface_to_the_light(cfg, monkeypatch):
+    fig = drawn_figure("fig_1_2_point_light_pupil", cfg, monkeypatch)
+    try:
+        (ax,) = fig.axes
+        source = [ln for ln in ax.get_lines() if ln.get_marker() == "*"][0].get_xydata()[0]
+        orange = [t for t in ax.texts if isinstance(t, Annotation) and t.arrow_patch is not None
+                  and t.arrow_patch.get_edgecolor()[:3] == matplotlib.colors.to_rgb("tab:orange")]
+        (light,) = orange
+        tail, head = np.asarray(light.xyann, float), np.asarray(light.xy, float)
+        assert np.linalg.norm(tail) < 1e-12                               # starts at the surface point
+        assert np.linalg.norm(source - head) < np.linalg.norm(source - tail)  # and ends toward the source
     finally:
         plt.close(fig)

@@ -117,3 +117,18 @@ def test_fig_5_1_patch_and_slice_follow_the_projected_distance(cfg):
     hi = np.degrees(np.arcsin(min(d + c["patch_radius"], 1.0)))
     step = c["slice_step_deg"]
     assert lit.min() == pytest.approx(lo, abs=step) and lit.max() == pytest.approx(hi, abs=step)
+
+
+def test_fig_5_1_character_is_one_over_cos_of_the_bisector_of_r_and_v_across_the_patch(cfg):
+    # Sec. 5.2.2: H bisects R and V; in the plane of incidence (mirror side) N·H = cos((θ_L + θ_V)/2).
+    df = _compute("fig_5_1_patch_based_brdf", cfg)
+    c = cfg["diagrams"]["fig_5_1"]
+    lit = df[(df.kind == "slice") & (df.value > 0)]
+    expected = 1.0 / np.cos(np.radians(0.5 * (c["theta_l_deg"] + lit.theta_v_deg)))
+    np.testing.assert_allclose(lit.value, expected, rtol=1e-12)
+    assert lit.value.max() / lit.value.min() > 1.4            # visibly 1/cos, not flat at 1.00–1.04
+    v = dg.values(df[df.kind == "point"])
+    L = geo.light_direction(c["theta_l_deg"])
+    V = geo.direction(c["theta_v_deg"], c["phi_v_deg"])
+    h = geo.mirror(L) + V
+    np.testing.assert_allclose(dg.get(v, "H_P", 2), (h / np.linalg.norm(h))[:2], atol=1e-15)

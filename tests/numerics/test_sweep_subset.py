@@ -71,3 +71,31 @@ def test_engine_and_disk_are_honest_on_a_seeded_subset_of_the_independent_sweep(
     bad = rows[rows["dishonest"]]
     assert bad.empty, "dishonest (true error above reported error + truth error):\n" + bad[
         ["method", "family", "params", "theta_deg", "value", "error", "truth", "truth_err", "ratio"]].to_string()
+
+
+def test_every_rewritten_brdf_of_the_sweep_agrees_with_the_package_model_at_random_directions():
+    from sweep.cells import FAMILIES, family_parameters, load_tables, pointwise_agreement, needs_table, table_key
+    tables = load_tables()
+    rng = np.random.default_rng(config_seed())
+    worst = {}
+    for family in FAMILIES:
+        params = [p for p in family_parameters(family, rng)
+                  if not needs_table(family) or table_key(family, p) in tables][:1]
+        worst[family.name] = max(pointwise_agreement(family.name, p, n=200, tables=tables) for p in params)
+    assert max(worst.values()) < 1e-11, {k: v for k, v in worst.items() if v >= 1e-11}
+
+
+def test_the_third_route_reproduces_closed_form_albedos_in_both_frames_and_on_the_disk():
+    from sweep import independent as ind
+    from sweep.third_route import Integrand, disk_albedo, hemisphere_albedo
+    n = 20.0
+    phong = Integrand(ind.phong(n), "mirror", [0.25, 0.5, 1.0, 0.5 * np.pi])
+    new_model = Integrand(ind.phong(n, divide="max"), "mirror", [0.25, 0.5, 1.0, 0.5 * np.pi], nv_levels=lambda nl: (nl,))
+    lambert = Integrand(lambda L, V, nl, nv, geo: np.full(nv.shape, 1 / np.pi), "half")
+    cases = [(hemisphere_albedo(phong, 0.0), 1.0),                                    # eq. 3.6
+             (hemisphere_albedo(new_model, 90 - 1e-9), (n + 2) / (2 * (n + 1))),      # eq. 3.27, up to O(cos θ)
+             (hemisphere_albedo(lambert, 37.0), 1.0),
+             (disk_albedo(lambda rho, psi: np.full(rho.shape, 1 / np.pi), 63.0), 1.0)]
+    for truth, exact in cases:
+        assert abs(truth.value - exact) <= truth.error + 1e-9 * (exact == (n + 2) / (2 * (n + 1))), (truth, exact)
+    assert all(t.error < 1e-12 for t, _ in cases)

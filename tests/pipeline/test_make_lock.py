@@ -32,7 +32,8 @@ if [ "$1" = --unlock ]; then rm -rf .snakemake/locks; fi
 @pytest.fixture
 def tree(tmp_path: Path) -> Path:
     """A checkout with only what the Makefile reads, and a stand-in for snakemake."""
-    for name in ("Makefile", "requirements.lock", "pyproject.toml"):
+    for name in ("Makefile", "requirements.lock", "pyproject.toml", "workflow/scripts/ensure_llvm.sh"):
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(REPO_ROOT / name, tmp_path / name)
     (tmp_path / ".venv").symlink_to(Path(sys.executable).parent.parent)
     fake = tmp_path / "fake-snakemake"

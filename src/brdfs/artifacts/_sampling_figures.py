@@ -40,29 +40,52 @@ def sample_points(theta_deg: float, R: float, strategies, n_points: int, seed) -
 
 
 def plot_points(df: pd.DataFrame, path, title: str) -> None:
-    fig, ax = plotting.new_axes("x on the base plane", "y on the base plane", title)
-    t = np.linspace(0.0, 2.0 * np.pi, 721)
-    ax.plot(np.cos(t), np.sin(t), color="k", label="unit circle C(O, 1)")
+    """One panel per strategy (so the samplers do not overprint): its points under the circles, the
+    common chord, the centre V'_P of C(V'_P, R) and the base circle's centre O; one legend beside
+    the panels."""
+    import matplotlib.pyplot as plt
+
+    strategies = list(dict.fromkeys(df["strategy"]))
+    fig, axes = plt.subplots(1, len(strategies), figsize=(3.6 * len(strategies) + 1.6, 3.9), squeeze=False,
+                             sharey=True)
     first = df.iloc[0]
     cx, cy, R = float(first["centre_x"]), float(first["centre_y"]), float(first["R"])
-    ax.plot(cx + R * np.cos(t), cy + R * np.sin(t), color="C3", label=f"C(V'_P, R = {R:g})")
-    alpha = float(first["lens_alpha_rad"])
+    reach = max(1.15, np.hypot(cx, cy) + R + 0.05)
+    for ax, strategy in zip(axes.ravel(), strategies):
+        _panel(ax, df[df["strategy"] == strategy], strategy, cx, cy, R, float(first["lens_alpha_rad"]), reach)
+    axes[0, 0].set_ylabel("y on the base plane")
+    handles = {label: h for ax in axes.ravel() for h, label in zip(*ax.get_legend_handles_labels())}
+    for line in (line for ax in axes.ravel() for line in ax.get_lines()):
+        line.set_label("_" + line.get_label())  # one legend for all panels: no panel gets its own
+    axes[0, -1].legend(list(handles.values()), list(handles), loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                       fontsize=7, markerscale=1.5)
+    fig.suptitle(title, fontsize=10)
+    plotting.savefig(fig, path)
+
+
+def _panel(ax, group, strategy, cx, cy, R, alpha, reach) -> None:
+    t = np.linspace(0.0, 2.0 * np.pi, 721)
+    markers = {"exact": ("C0", "."), "russian_roulette": ("C2", "+")}
+    color, marker = markers.get(strategy, ("C1", "."))
+    acc = group["accepted"].to_numpy(bool)
+    name = strategy.replace("_", " ")
+    ax.plot(group["x"][acc], group["y"][acc], marker, color=color, markersize=2, linestyle="none", alpha=0.6,
+            zorder=1, label=f"{name}: accepted")
+    if (~acc).any():
+        ax.plot(group["x"][~acc], group["y"][~acc], "x", color="C1", markersize=2, linestyle="none", alpha=0.6,
+                zorder=1, label=f"{name}: rejected")
+    # The circles, the chord and the centres are drawn above the points, so no point hides them.
+    ax.plot(np.cos(t), np.sin(t), color="k", zorder=3, label="unit circle C(O, 1)")
+    ax.plot(cx + R * np.cos(t), cy + R * np.sin(t), color="C3", zorder=3, label=f"C(V'_P, R = {R:g})")
     if 0.0 < alpha < np.pi:                  # the common chord, from the lens geometry (eq. 4.10)
         phi0 = np.arctan2(cy, cx)
         ends = np.array([[np.cos(phi0 - alpha), np.cos(phi0 + alpha)], [np.sin(phi0 - alpha), np.sin(phi0 + alpha)]])
-        ax.plot(ends[0], ends[1], color="C3", linestyle=":", label="common chord")
-    markers = {"exact": ("C0", "."), "russian_roulette": ("C2", "+")}
-    for strategy, group in df.groupby("strategy", sort=False):
-        color, marker = markers.get(strategy, ("C1", "."))
-        acc = group["accepted"].to_numpy(bool)
-        ax.plot(group["x"][acc], group["y"][acc], marker, color=color, markersize=3, linestyle="none",
-                label=f"{strategy.replace('_', ' ')}: accepted")
-        if (~acc).any():
-            ax.plot(group["x"][~acc], group["y"][~acc], "x", color="C1", markersize=3, linestyle="none",
-                    label=f"{strategy.replace('_', ' ')}: rejected")
+        ax.plot(ends[0], ends[1], color="k", linestyle=(0, (2, 1.5)), lw=1.6, zorder=4, label="common chord")
+    ax.plot([0.0], [0.0], "o", color="k", ms=4, zorder=5, label="O (centre of the base circle)")
+    ax.plot([cx], [cy], "P", color="C3", mec="w", mew=0.5, ms=7, zorder=5, label="V'_P (centre of C(V'_P, R))")
+    ax.text(0.05, -0.05, "O", ha="left", va="top", zorder=5)
     ax.set_aspect("equal")
-    reach = max(1.15, np.hypot(cx, cy) + R + 0.05)
     ax.set_xlim(-reach, reach)
     ax.set_ylim(-reach, reach)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7)
-    plotting.savefig(fig, path)
+    ax.set_xlabel("x on the base plane")
+    ax.set_title(f"{name} sampler", fontsize=9)

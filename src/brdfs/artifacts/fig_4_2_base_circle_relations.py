@@ -31,7 +31,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    fig, axes = dg.new_canvas(2.3 * len(df), 2.8, ncols=len(df))
+    fig, axes = dg.new_canvas(3.0 * len(df), 3.4, ncols=len(df))
     t = np.linspace(0, 2 * np.pi, 300)
     for ax, row in zip(axes, df.itertuples()):
         poly = dg.lens_polygon(row.d, row.R)
@@ -39,9 +39,11 @@ def plot(df: pd.DataFrame, path) -> None:
         ax.plot(np.cos(t), np.sin(t), "k", lw=1.0)
         ax.plot(row.d + row.R * np.cos(t), row.R * np.sin(t), "tab:blue", lw=1.0)
         ax.plot([0, row.d], [0, 0], "k.", ms=4)
-        ax.text(-0.07, -0.07, "O", fontsize=8, ha="right", va="top")  # beside its dot, not on it
-        ax.text(row.d + 0.04, 0.07, "L'$_P$", fontsize=8, ha="left", va="bottom")
-        ax.set_xlim(-1.6, 2.6), ax.set_ylim(-1.7, 1.7)
+        # O below its dot, L'_P above left of its dot: there the circles are farthest from the dots.
+        ax.text(0.0, -0.06, "O", fontsize=8, ha="center", va="top")
+        ax.text(row.d - 0.02, 0.06, "L'$_P$", fontsize=8, ha="right", va="bottom")
+        reach = max(1.0, row.R) + 0.12   # each panel framed to its circles (the scales differ)
+        ax.set_xlim(min(-1.0, row.d - row.R) - 0.12, max(1.0, row.d + row.R) + 0.12), ax.set_ylim(-reach, reach)
         ax.set_title(f"d = {row.d:g}, R = {row.R:g}\narea {row.area:.3f}, a = {row.albedo:.3f}", fontsize=8)
     fig.suptitle("Fig. 4.2: relations of C(L'$_P$, R) to the base circle", fontsize=9)
     dg.save(fig, path)

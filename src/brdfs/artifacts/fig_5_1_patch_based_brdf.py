@@ -3,9 +3,13 @@
 Left, on the base plane: the base circle, the projection R_P = L'_P of the mirror direction, the
 patch {V : d(R, V) = |V_P − R_P| ≤ p} ∩ base circle (the lens of
 :func:`brdfs.physics.patch_geometry.circle_intersection`, d = sin θ_L, R = p), a V inside it
-with its distance and the half vector's projection H_P. Right: f in the plane of incidence for
-χ(H) = (N·H)^a (a = −1: the "patch-based metallic" character of Sec. 5.2.3) and F the patch's
-indicator, unnormalised (c_p omitted). θ_L, p, a and V are choices (config ``diagrams.fig_5_1``).
+with its distance and the projection H_P of the bisecting vector. H is Sec. 5.2.2's "bisecting
+vector function": the bisector of R and V, H = (R + V)/|R + V| (not the half vector of L and V —
+"H and H are generally not the same"); N·H is symmetric in L and V because mirroring both L and V
+maps R + V onto L + R(V). Right: f in the plane of incidence for χ(H) = (N·H)^a (a = −1: the
+"patch-based metallic" character of Sec. 5.2.3) and F the patch's indicator, unnormalised (c_p
+omitted); in that plane N·H = cos((θ_L + θ_V)/2) on the mirror side, so χ rises as 1/cos across
+the patch. θ_L, p, a and V are choices (config ``diagrams.fig_5_1``).
 """
 from __future__ import annotations
 
@@ -21,10 +25,18 @@ from brdfs.pipeline.registry import figure
 NAME = "fig_5_1_patch_based_brdf"
 
 
+def bisector(L, V):
+    """Sec. 5.2.2's bisecting vector H(L, V) = (R + V)/|R + V|, R = L' the mirror of L (arrays (..., 3))."""
+    h = geo.mirror(L) + V
+    return h / np.linalg.norm(h, axis=-1, keepdims=True)
+
+
 def patch_brdf(L, V, p, a):
-    """χ(N·H) · 1[d(R, V) ≤ p] with χ(x) = x^a, unnormalised (Sec. 5.2.2/5.2.3)."""
+    """χ(N·H) · 1[d(R, V) ≤ p] with χ(x) = x^a and H the :func:`bisector` of R and V, unnormalised
+    (eq. 5.9 without c_p; Sec. 5.2.3)."""
     inside = projected_distance(L, V) <= p
-    return np.where(inside & (V[..., 2] > 0), geo.n_dot_h(L, V) ** a, 0.0)
+    n_dot_h = np.clip(bisector(L, V)[..., 2], 1e-300, None)  # H is on the upper hemisphere inside the patch
+    return np.where(inside & (V[..., 2] > 0), n_dot_h ** a, 0.0)
 
 
 @figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
@@ -36,7 +48,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     V = geo.direction(c["theta_v_deg"], c["phi_v_deg"])
     R = geo.mirror(L)
     lens = circle_intersection(float(np.hypot(*R[:2])), p)
-    points = dg.frame({**dg.vec("R_P", R[:2]), **dg.vec("V_P", V[:2]), **dg.vec("H_P", geo.half_vector(L, V)[:2]),
+    points = dg.frame({**dg.vec("R_P", R[:2]), **dg.vec("V_P", V[:2]), **dg.vec("H_P", bisector(L, V)[:2]),
                        "patch_radius": p, "character_exponent": a, "distance": float(projected_distance(L, V)),
                        "patch_area": float(lens.area), "f": float(patch_brdf(L, V, p, a))}).assign(kind="point")
     # Signed viewing angle in the plane of incidence: positive toward the mirror side (φ = 180°).
@@ -61,19 +73,23 @@ def plot(df: pd.DataFrame, path) -> None:
     d = float(np.hypot(*Rp))
     poly = dg.rotate2(dg.lens_polygon(d, p), dg.angle_of(Rp)) if d > 0 else dg.lens_polygon(0.0, p)
     ax.fill(poly[:, 0], poly[:, 1], color="tab:blue", alpha=0.3, lw=0, label=f"patch, area {v['patch_area']:.3f}")
-    for q, name, col in ((Rp, "R$_P$ = L'$_P$", "tab:red"), (Vp, "V$_P$", "tab:blue"), (Hp, "H$_P$", "tab:green"),
-                         (-Rp, "L$_P$", "tab:orange")):
+    labels = {"R": (Rp, "R$_P$ = L'$_P$", "tab:red", (0.0, -0.07), "top"),
+              "V": (Vp, "V$_P$", "tab:blue", (0.0, 0.07), "bottom"),
+              "H": (Hp, "H$_P$", "tab:green", (0.13, 0.0), "center"),
+              "L": (-Rp, "L$_P$", "tab:orange", (0.0, 0.07), "bottom")}
+    for q, name, col, offset, va in labels.values():
         ax.plot(*q, "o", color=col, ms=4)
-        ax.text(q[0] + 0.04, q[1] + 0.04, name, color=col, fontsize=8)
+        ax.text(q[0] + offset[0], q[1] + offset[1], name, color=col, fontsize=8, ha="center", va=va)
     ax.plot(*np.stack([Rp, Vp]).T, "k", lw=1.0)
-    ax.text(-1.0, -1.12, f"d(R, V) = |V$_P$ − R$_P$| = {v['distance']:.3f} ≤ p = {p:g}", fontsize=8)
-    ax.plot(0, 0, "k.", ms=4), ax.text(-0.1, -0.12, "O", fontsize=8)
-    ax.legend(loc="upper left", fontsize=8)
-    ax.set_xlim(-1.05, 1.05), ax.set_ylim(-1.2, 1.1)
+    ax.text(0.0, -1.1, f"d(R, V) = |V$_P$ − R$_P$| = {v['distance']:.3f} ≤ p = {p:g}", fontsize=8, ha="center",
+            va="top")
+    ax.plot(0, 0, "k.", ms=4), ax.text(0.0, -0.06, "O", fontsize=8, ha="center", va="top")
+    ax.legend(loc="upper left", bbox_to_anchor=(0.0, 1.02), fontsize=8)  # above the circle, not on it
+    ax.set_xlim(-1.05, 1.05), ax.set_ylim(-1.3, 1.35)
     ax.set_title("base plane", fontsize=9)
     ax2 = fig.add_axes([0.58, 0.14, 0.4, 0.7])
     ax2.plot(s["theta_v_deg"], s["value"], color="tab:blue")
     ax2.set(xlabel="signed θ$_V$ in the plane of incidence [deg] (mirror side > 0)",
-            ylabel="f / c$_p$ [1/sr]", xlim=(-90, 90), title=f"χ(N·H) = (N·H)^{v['character_exponent']:g}, F = 1[d ≤ p]")
-    fig.suptitle("Fig. 5.1: patch-based BRDF f(L, V) = χ(H) · F(d(R, V))", fontsize=10)
+            ylabel="f / c$_p$ [1/sr]", xlim=(-90, 90), title=f"χ(N·H) = (N·H)$^{{{v['character_exponent']:g}}}$, H = bisector of R and V")
+    fig.suptitle("Fig. 5.1: patch-based BRDF f = χ(H) · F(d(R, V))", fontsize=10)
     dg.save(fig, path)

@@ -118,8 +118,9 @@ def head(x, y, scale=1.0) -> tuple:
 
 
 def teapot(x, y, scale=1.0) -> tuple:
-    """Stand-in for the Utah teapot (a sphere of the teapot's height on the floor)."""
-    return sphere((x, y, 0.8 * scale), 0.8 * scale)
+    """The Utah teapot tessellated from Newell's patches (:func:`.geometry.teapot_part`)."""
+    from brdfs.render.mitsuba.geometry import teapot_part
+    return teapot_part(x, y, scale)
 
 
 # --- assembly -------------------------------------------------------------------------------------
