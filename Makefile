@@ -41,7 +41,7 @@ UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
   out=$$($(SNAKEMAKE) --unlock 2>&1) || { echo "$$out" >&2; exit 1; }; fi
 
-.PHONY: all test venv llvm benchmark clean baseline lock report report-check chromium lint \
+.PHONY: all test venv llvm renders-final check-mutations benchmark clean baseline lock report report-check chromium lint \
         check-reproducible check-crash check-cluster check-slurm-plan check-wheel checks
 
 # Exact versions and hashes of every (transitive) dependency of the pipeline, cluster, render, docs
@@ -83,12 +83,25 @@ all: llvm $(STAMP)
 test: llvm $(STAMP) lint
 	$(BIN)/python -m pytest -n 2
 
-benchmark: $(STAMP)
+benchmark: llvm $(STAMP)
+	$(BIN)/python benchmarks/bench_engine_speed.py
+	$(BIN)/python benchmarks/bench_mitsuba_plugins.py
+	$(BIN)/python benchmarks/bench_patch_plugins.py
+	$(BIN)/python benchmarks/render_old_vs_new.py
 	$(BIN)/python benchmarks/bench_tables.py
 	$(BIN)/python benchmarks/bench_model_cost.py
 	$(BIN)/python benchmarks/bench_albedo_curves.py
 	$(BIN)/python benchmarks/bench_work_precision.py
 	$(BIN)/python benchmarks/bench_sampling.py
+
+# The renders at the publication preset (config.yaml renders.final): a changed config section reruns
+# the render jobs, and only them.
+renders-final: llvm $(STAMP)
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full --config "renders={preset: final}" $(TARGETS))
+
+# The six deliberate renderer faults of issue 23, each in a temporary copy; a named test must fail.
+check-mutations: llvm $(STAMP)
+	bash workflow/scripts/check_mutations.sh
 
 # Re-record the regression baseline after a deliberate, reviewed change of numbers.
 baseline: $(STAMP)

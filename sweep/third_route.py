@@ -478,6 +478,10 @@ def disk_albedo(xi, theta_deg, radial_kinks=(), radial_scales=(), ellipse_radius
     if ellipse_radius is not None:
         grid = np.linspace(0.0, top, 20001)
         points += _roots(lambda p: disk_rho_max(s, p) - np.array([ellipse_radius(x) for x in np.atleast_1d(p)]), grid)
+    if s > 0.5:     # toward ψ = π the disk's chord ρ_max → 1 − s shrinks: its scale √(2(1 − s)) geometric
+        w = math.sqrt(2.0 * max(1.0 - s, 1e-300))
+        near = [math.pi - w * k for k in (0.25, 0.5, 1, 2, 4, 8, 16, 32, 64) if w * k < 1.0]
+        points += near + ([math.pi + (math.pi - x) for x in near] if not symmetric else [])
     edges = np.unique(np.concatenate([[0.0], [p for p in points if 0 < p < top], [top]]))
     value, error, notes = _outer_quad(lambda psis: np.array([inner(p) for p in psis]), edges, epsrel)
     factor = 2.0 if symmetric else 1.0

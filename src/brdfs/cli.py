@@ -291,7 +291,9 @@ def main(argv=None) -> int:
         if hasattr(args, "param"):
             args.param = _key_values(args.param, "--param")
         if hasattr(args, "option"):
-            args.option = _key_values(args.option, "--option")
+            # 1e5 samples is an integer option's value: an integral number is passed as an int
+            args.option = {k: int(v) if isinstance(v, float) and v.is_integer() else v
+                           for k, v in _key_values(args.option, "--option").items()}
         return args.run(args)
     except (argparse.ArgumentTypeError, ValueError, TypeError) as err:
         message = str(err).splitlines()[0] if str(err) else type(err).__name__

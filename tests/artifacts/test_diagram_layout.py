@@ -47,7 +47,7 @@ def drawn_figure(name, cfg, monkeypatch):
     importlib.import_module(f"brdfs.artifacts.{name}").plot(df, "unused.png")
     (fig,) = captured
     FigureCanvasAgg(fig)  # savefig closed the figure; a fresh canvas draws it again
-    fig.canvas.draw()
+    fig.draw_without_rendering()  # lays out texts and arrows without rasterising
     return fig
 
 

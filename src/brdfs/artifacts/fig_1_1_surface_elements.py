@@ -51,6 +51,7 @@ def plot(df: pd.DataFrame, path) -> None:
     ax.text(r / 2, -0.15, "r", ha="center")
     ax.text(r * 0.5, 0.22, "ω1 (A2 seen from A1)", ha="center", color="tab:blue", fontsize=8)
     ax.text(r * 0.08, -0.3, "ω2 (A1 seen from A2)", color="tab:blue", fontsize=8)
+    ax.text(r / 2, -0.72, f"ω1·A1·cos Θ1 = ω2·A2·cos Θ2 = {v['omega1_A1_cos1']:.4f}", fontsize=8, ha="center")
     ax.set_xlim(-0.6, r + 0.8), ax.set_ylim(-0.8, 1.2)
-    ax.set_title(f"Fig. 1.1: two surface elements; ω1·A1·cos Θ1 = ω2·A2·cos Θ2 = {v['omega1_A1_cos1']:.4f}", fontsize=9)
+    ax.set_title("Fig. 1.1: two small surface elements", fontsize=9)
     dg.save(fig, path)

@@ -48,7 +48,8 @@ def plot(df: pd.DataFrame, path) -> None:
     ax.text(*(0.5 * L + [-0.22, -0.05]), "L", color="tab:orange")
     dg.arc(ax, (0, 0), 0.35, np.pi / 2, dg.angle_of(L), "Θ$_L$", label_radius=0.48, fontsize=8)
     dg.arc(ax, (0, 0), 0.45, dg.angle_of(V), np.pi / 2, "Θ$_2$", label_radius=0.58, fontsize=8)
-    ax.set_xlim(-1.4, eye[0] + 0.6), ax.set_ylim(-0.3, max(eye[1], 1.1) + 0.3)
-    ax.set_title(f"Fig. 1.2: point light toward the observer's pupil (cos Θ$_L$ = {v['cos_theta_l']:.3f}, "
-                 f"cos Θ$_2$ = N·V = {v['cos_theta_2']:.3f})", fontsize=8)
+    ax.text(0.0, -0.12, f"cos Θ$_L$ = N·L = {v['cos_theta_l']:.3f},  cos Θ$_2$ = N·V = {v['cos_theta_2']:.3f}",
+            fontsize=8, ha="center", va="top")
+    ax.set_xlim(-1.4, eye[0] + 0.6), ax.set_ylim(-0.35, max(eye[1], 1.1) + 0.3)
+    ax.set_title("Fig. 1.2: a point light seen through the observer's pupil", fontsize=9)
     dg.save(fig, path)
