@@ -41,7 +41,7 @@ UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
   out=$$($(SNAKEMAKE) --unlock 2>&1) || { echo "$$out" >&2; exit 1; }; fi
 
-.PHONY: all test venv llvm renders-final check-mutations benchmark clean baseline lock report report-check chromium lint \
+.PHONY: all test venv llvm docs docs-check renders-final check-mutations benchmark clean baseline lock report report-check chromium lint \
         check-reproducible check-crash check-cluster check-slurm-plan check-wheel checks
 
 # Exact versions and hashes of every (transitive) dependency of the pipeline, cluster, render, docs
@@ -103,6 +103,18 @@ renders-final: llvm $(STAMP)
 check-mutations: llvm $(STAMP)
 	bash workflow/scripts/check_mutations.sh
 
+# The documentation (README "Documentation"): Sphinx on docs/, built from results/ (the whole build
+# first), warnings as errors; -E re-reads every page so that no warning hides in a cached one.
+DOCS_HTML := docs/_build/html
+docs: all
+	$(BIN)/sphinx-build -E -W --keep-going -q -b html docs $(DOCS_HTML)
+	@echo "docs: $(CURDIR)/$(DOCS_HTML)/index.html"
+
+# The built docs in headless Chromium (`make chromium` installs it): every image loads, no internal
+# link is broken; screenshots go to docs/_build/check.
+docs-check: docs chromium
+	$(BIN)/python workflow/scripts/docs_check.py $(DOCS_HTML) docs/_build/check
+
 # Re-record the regression baseline after a deliberate, reviewed change of numbers.
 baseline: $(STAMP)
 	$(BIN)/python -m brdfs.pipeline.regression --write tests/data/regression_baseline.csv
@@ -141,4 +153,4 @@ checks: check-reproducible check-crash check-cluster check-slurm-plan check-whee
 
 # Under the build lock (not while a build runs), and keeping the lock file itself.
 clean:
-	@$(call locked,set -x; rm -rf results .cluster-jobs; find .snakemake -mindepth 1 -maxdepth 1 ! -name $(notdir $(BUILD_LOCK)) -exec rm -rf {} +)
+	@$(call locked,set -x; rm -rf results .cluster-jobs docs/_build docs/recomputed docs/api; find .snakemake -mindepth 1 -maxdepth 1 ! -name $(notdir $(BUILD_LOCK)) -exec rm -rf {} +)

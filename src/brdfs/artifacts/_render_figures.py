@@ -194,7 +194,7 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
 
 def pass_seed(seed: int, p: int) -> int:
     """Mitsuba's 32-bit seed of pass ``p`` (the same in every wavelength pass and panel)."""
-    return (1009 + p) % 2 ** 32
+    return (int(seed) * 1009 + p) % 2 ** 32
 
 
 def _plugin_costs(scene) -> dict:
