@@ -8,30 +8,14 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-#: The README's snippet ("Rendering the models in your own Mitsuba scene"), run as the user would.
-README_SNIPPET = '''
-import mitsuba as mi
-from brdfs.render.mitsuba import use_variant, register_plugins
+def readme_snippet() -> str:
+    """The README's snippet ("Rendering the models in your own Mitsuba scene"), run as the user would."""
+    from brdfs.pipeline.io import REPO_ROOT
+    text = (REPO_ROOT / "README.md").read_text()
+    section = text[text.index("## Rendering the models in your own Mitsuba scene"):]
+    start = section.index("```python\n") + len("```python\n")
+    return section[start:section.index("```", start)]
 
-use_variant("llvm_ad_rgb")          # sets DRJIT_LIBLLVM_PATH to Debian's libllvm19 if unset
-register_plugins()                  # brdfs_phong, brdfs_phong_cosmin, brdfs_ward, ..., brdfs_model
-
-scene = mi.load_dict({
-    "type": "scene",
-    "integrator": {"type": "path", "max_depth": 8},
-    "sensor": {"type": "perspective", "fov": 30,
-               "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 4], target=[0, 0, 0], up=[0, 1, 0]),
-               "film": {"type": "hdrfilm", "width": 64, "height": 48},
-               "sampler": {"type": "independent", "sample_count": 16}},
-    "sky": {"type": "constant", "radiance": {"type": "rgb", "value": 1.0}},
-    "ball": {"type": "sphere",
-             "bsdf": {"type": "brdfs_phong_cosmin", "n": 20,            # the new model's gold (eq. 3.29)
-                      "eta": {"type": "rgb", "value": [0.18, 0.42, 1.37]},
-                      "k": {"type": "rgb", "value": [3.42, 2.35, 1.77]}}},
-})
-image = mi.render(scene)
-mi.Bitmap(image).write("ball.exr")
-'''
 
 #: The names the plugins' docstring (``brdfs.render.mitsuba.plugins``) documents for R1a's plugins.
 DOCUMENTED = ("brdfs_lambert", "brdfs_phong", "brdfs_phong_cosmin", "brdfs_blinn", "brdfs_blinn_cosmin", "brdfs_ward", "brdfs_cook_torrance",
@@ -64,7 +48,7 @@ def test_every_documented_plugin_loads_from_a_scene_dict(mitsuba, name, params):
 def test_readme_snippet_renders_a_users_own_scene(mitsuba, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     namespace = {}
-    exec(compile(README_SNIPPET, "README", "exec"), namespace)
+    exec(compile(readme_snippet(), "README", "exec"), namespace)
     image = np.asarray(namespace["image"])
     assert image.shape == (48, 64, 3)
     assert np.all(np.isfinite(image)) and image.min() >= 0
