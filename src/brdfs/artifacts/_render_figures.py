@@ -131,8 +131,8 @@ def _scene(panel: Panel, cfg: dict, channels):
                      point_lights=panel.point_lights)
 
 
-def _integrator(panel: Panel, count: bool = False) -> dict:
-    out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count)}
+def _integrator(panel: Panel, count: bool = False, passes: int = 1) -> dict:
+    out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count), "passes": int(passes)}
     if panel.background is not None:
         out.update(hide_emitters=True, background=float(panel.background))
     return out
@@ -159,8 +159,25 @@ class RenderedPanel:
         return self.passes @ spectrum.luminance_weights(channels)
 
 
+#: Most samples (lanes) in one ``mi.render`` launch: W·H·spp of a preview panel fits (640 × 400 × 64).
+MAX_LANES = 1 << 24
+
+
+def launches(width: int, height: int, spp_per_pass: int, passes: int) -> list[int]:
+    """Samples per pass of each ``mi.render`` launch: all passes in every launch, at most
+    :data:`MAX_LANES` samples each, the pass's samples split as evenly as possible."""
+    per_launch = max(MAX_LANES // (width * height * passes), 1)
+    count = -(-spp_per_pass // per_launch)
+    return [spp_per_pass // count + (c < spp_per_pass % count) for c in range(count)]
+
+
 def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, count: bool = False) -> RenderedPanel:
-    """Render ``panel``: ``passes`` seeds × (three wavelength passes or one rgb pass)."""
+    """Render ``panel``: ``passes`` independent passes × (three wavelength passes or one rgb pass).
+
+    All passes ride in the same launch (the integrator's ``passes`` AOVs, one random stream per
+    sample), so the integrator and the plugins are traced once per launch, not once per pass; a
+    launch has at most :data:`MAX_LANES` samples (:func:`launches`; one for the preview preset).
+    """
     mi = _mitsuba(setup["variant"])
     cam = panel.camera
     camera = msc.Camera(tuple(cam["eye"]), tuple(cam["target"]), width, height, cam.get("fov_deg", 30.0))
@@ -176,25 +193,29 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     for group in groups:
         for lights in light_sets:
             part = Panel(**{**panel.__dict__, "lights": lights})
-            scene = msc.load(_scene(part, cfg, group), camera, _integrator(panel, count))
-            for p in range(passes):
-                image = np.asarray(mi.render(scene, spp=spp, seed=pass_seed(cfg["seed"], p)))
-                if group is None:
-                    out[p] += image[..., :3]
-                else:
-                    for c, wavelength in enumerate(pass_channels(group)):
-                        out[p, ..., wavelength] += image[..., c]
+            scene = msc.load(_scene(part, cfg, group), camera, _integrator(panel, count, passes))
+            per_pass = np.zeros((passes, height, width, 3))
+            for c, chunk in enumerate(launches(width, height, spp, passes)):
+                image = np.asarray(mi.render(scene, spp=chunk * passes, seed=pass_seed(cfg["seed"], c)))
+                # the film averages each pass's AOV over all chunk·passes samples of a pixel
+                per_pass += chunk * np.moveaxis(image[..., 5:].reshape(height, width, passes, 3), 2, 0)
                 if ids is None:
                     ids, labels, cos_v = image[..., 3].astype(float), msc.object_labels(scene), image[..., 4]
+            per_pass /= spp
+            if group is None:
+                out += per_pass
+            else:
+                for k, wavelength in enumerate(pass_channels(group)):
+                    out[..., wavelength] += per_pass[..., k]
         costs = _plugin_costs(scene)
         if count:
             rays = int(np.asarray(scene.integrator().rays)[0])
     return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v)
 
 
-def pass_seed(seed: int, p: int) -> int:
-    """Mitsuba's 32-bit seed of pass ``p`` (the same in every wavelength pass and panel)."""
-    return (int(seed) * 1009 + p) % 2 ** 32
+def pass_seed(seed: int, launch: int) -> int:
+    """Mitsuba's 32-bit seed of launch ``launch`` of a panel (the same in every wavelength pass and panel)."""
+    return (int(seed) * 1009 + launch) % 2 ** 32
 
 
 def _plugin_costs(scene) -> dict:

@@ -94,7 +94,9 @@ class _BrdfsPathMethods:
     number of scattering events, 1 = direct lighting), ``rr_depth`` (int, default 4: the first depth
     at which Russian roulette may end a path), ``hide_emitters`` (bool, default False: camera rays
     that miss see ``background`` instead of the sky or a light), ``background`` (float, default 0) and
-    ``count_rays`` (bool, default False: count camera, shadow and continuation rays in ``rays``).
+    ``count_rays`` (bool, default False: count camera, shadow and continuation rays in ``rays``) and
+    ``passes`` (int, default 1: with P > 1, AOVs ``p<k>_<c>`` carry each sample's radiance in the
+    AOV of its pass k = P·(i mod spp)/spp, i the sample's lane; see :func:`pass_index`).
     """
 
     def __init__(self, props):
@@ -104,6 +106,9 @@ class _BrdfsPathMethods:
         self.hide_emitters = bool(props.get("hide_emitters", False))
         self.background = float(props.get("background", 0.0))
         self.count_rays = bool(props.get("count_rays", False))
+        self.passes = int(props.get("passes", 1))
+        if self.passes < 1:
+            raise ValueError(f"brdfs_path: passes = {self.passes}: must be >= 1")
         self.rays = dr.zeros(mi.UInt32, 1)          # rays cast so far (count_rays), cumulative
         if self.max_depth < -1 or self.max_depth == 0:
             raise ValueError(f"brdfs_path: max_depth = {self.max_depth}: must be -1 (unlimited) or >= 1")
@@ -115,7 +120,7 @@ class _BrdfsPathMethods:
         self.bounce_limit = self.bounce_limit  # MUTATION:depth3 self.bounce_limit = min(self.bounce_limit, 3)
 
     def aov_names(self):
-        return ["id", "cos_v"]
+        return ["id", "cos_v"] + pass_aov_names(self.passes)
 
     def _count(self, active):
         if self.count_rays:
@@ -180,7 +185,42 @@ class _BrdfsPathMethods:
             survive = sampler.next_1d(roulette) < q
             beta = dr.select(roulette, beta / dr.maximum(q, 1e-30), beta)
             active &= ~roulette | survive
-        return L, mi.Bool(True), [object_id, cos_v]
+        return L, mi.Bool(True), [object_id, cos_v] + self._pass_aovs(sampler, L)
+
+    def _pass_aovs(self, sampler, L) -> list:
+        """Per pass k and colour channel, L where the sample belongs to pass k, else 0."""
+        if self.passes == 1:
+            return []
+        k = pass_index(dr.width(L), sampler.sample_count(), self.passes)
+        return [dr.select(k == p, channel, 0.0) for p in range(self.passes) for channel in _channels(L)]
+
+
+def pass_index(lanes: int, spp: int, passes: int):
+    """The pass (0 … passes − 1) of each of ``lanes`` samples of one ``mi.render`` launch.
+
+    Mitsuba's ``SamplingIntegrator.render`` (one wavefront, ``samples_per_pass`` unset) gives lane i
+    to pixel i // spp, so i mod spp numbers the pixel's samples; each sample has its own random
+    stream, and the spp samples of a pixel split into ``passes`` independent passes of spp / passes.
+    """
+    if spp % passes:
+        raise ValueError(f"brdfs_path: spp = {spp} is not a multiple of passes = {passes}")
+    return (dr.arange(mi.UInt32, lanes) % spp) // (spp // passes)
+
+
+def _channels(L) -> tuple:
+    if mi.is_rgb:
+        return (L[0], L[1], L[2])
+    if mi.is_monochromatic:
+        return (L[0],)
+    raise ValueError(f"brdfs_path: passes > 1 needs an rgb or mono variant, not {mi.variant()!r}")
+
+
+def pass_aov_names(passes: int) -> list[str]:
+    """AOV names of the per-pass radiance: ``p<k>_<channel>`` (none for one pass)."""
+    if passes == 1:
+        return []
+    channels = "RGB" if mi.is_rgb else ("Y" if mi.is_monochromatic else "")
+    return [f"p{p}_{c}" for p in range(passes) for c in channels]
 
 
 def register() -> None:
