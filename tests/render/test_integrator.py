@@ -192,8 +192,9 @@ def test_inside_a_glowing_diffuse_sphere_the_radiance_is_the_geometric_series(mi
 def test_the_passes_of_one_launch_are_independent_unbiased_renders_averaging_to_the_film(mi):
     """``passes = P``: each sample's radiance goes to the AOVs of its pass (the film averages them
     over the pixel's spp samples, so a pass is P × its AOV); inside the glowing sphere every pass
-    alone is L_e / (1 − ρ) within 5 standard errors of the pass-to-pass spread, the passes differ
-    (independent streams) and their mean is the film's radiance."""
+    alone covers every pixel (each sample sees L ≥ L_e) and is L_e / (1 − ρ) within 5 standard
+    errors of the pass-to-pass spread, the passes differ (independent streams) and their mean is the
+    film's radiance."""
     rho, emitted, pixels = 0.6, 1.0, 8
     scene = mi.load_dict({
         "type": "scene", "integrator": {"type": "brdfs_path", "passes": PASSES},
@@ -209,6 +210,7 @@ def test_the_passes_of_one_launch_are_independent_unbiased_renders_averaging_to_
     per_pass = PASSES * np.moveaxis(image[..., 5:].reshape(pixels, pixels, PASSES, 3), 2, 0)
     got, err = _mean_and_error(per_pass[..., 0].mean(axis=(1, 2)))
     expected = emitted / (1.0 - rho)
+    assert np.all(per_pass >= emitted * (1 - 1e-5))          # every pass has samples in every pixel
     assert np.allclose(per_pass.mean(axis=0), image[..., :3], rtol=1e-5, atol=1e-6)
     assert np.all(np.abs(per_pass[..., 0].mean(axis=(1, 2)) - expected) <= 5 * err * np.sqrt(PASSES)), per_pass.mean(axis=(1, 2, 3))
     assert 0 < err < 0.01 * expected and abs(got - expected) <= 5 * err, (got, expected, err)

@@ -198,7 +198,7 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
             for c, chunk in enumerate(launches(width, height, spp, passes)):
                 image = np.asarray(mi.render(scene, spp=chunk * passes, seed=pass_seed(cfg["seed"], c)))
                 # the film averages each pass's AOV over all chunk·passes samples of a pixel
-                per_pass += chunk * np.moveaxis(image[..., 5:].reshape(height, width, passes, 3), 2, 0)
+                per_pass += passes * chunk * np.moveaxis(image[..., 5:].reshape(height, width, passes, 3), 2, 0)
                 if ids is None:
                     ids, labels, cos_v = image[..., 3].astype(float), msc.object_labels(scene), image[..., 4]
             per_pass /= spp

@@ -1,7 +1,7 @@
 """The Utah teapot as a triangle mesh, tessellated from Newell's bicubic Bézier patches.
 
 The data are Martin Newell's 1975 teapot, 32 bicubic patches over 306 control points
-(``data/teapot/teapot.bpt``; source and licence in ``data/teapot/README.md``), in Newell's own
+(``data/teapot.bpt`` beside this module, shipped in the wheel; source and licence in ``data/TEAPOT.md``), in Newell's own
 coordinates: **z up**, the teapot standing on z = 0, x ∈ [−3, 3.434] (handle at −x, spout at +x),
 y ∈ [−2, 2], z ∈ [0, 3.15]. A patch with control points C_ij (i, j = 0..3) is the surface
 
@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 #: Newell's patch data as shipped in the repository (nothing is downloaded).
-DATA = Path(__file__).resolve().parents[4] / "data" / "teapot" / "teapot.bpt"
+DATA = Path(__file__).resolve().parent / "data" / "teapot.bpt"
 #: Height of Newell's teapot (z of the knob's top) in his units.
 NEWELL_HEIGHT = 3.15
 #: Triangles' grid resolution per patch side used by the scenes (32 · 2 · n² triangles).

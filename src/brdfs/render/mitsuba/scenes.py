@@ -136,9 +136,12 @@ def _mesh(mi, name, part, bsdf):
     props["bsdf"] = bsdf
     vertices = np.asarray(part["vertices"], np.float32)
     faces = np.asarray(part["faces"], np.uint32)
-    mesh = mi.Mesh(name, len(vertices), len(faces), props=props, has_vertex_normals=False)
+    normals = part.get("normals")          # smooth shading where the part has them (the teapot)
+    mesh = mi.Mesh(name, len(vertices), len(faces), props=props, has_vertex_normals=normals is not None)
     params = mi.traverse(mesh)
     params["vertex_positions"] = mi.Float(vertices.ravel())
+    if normals is not None:
+        params["vertex_normals"] = mi.Float(np.asarray(normals, np.float32).ravel())
     params["faces"] = mi.UInt32(faces.ravel())
     params.update()
     return mesh
