@@ -41,7 +41,7 @@ UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
   out=$$($(SNAKEMAKE) --unlock 2>&1) || { echo "$$out" >&2; exit 1; }; fi
 
-.PHONY: all test venv llvm docs docs-check renders-final check-mutations benchmark clean baseline lock report report-check chromium lint \
+.PHONY: all test venv llvm docs docs-check sweep sweep-truths renders-final check-mutations benchmark clean baseline lock report report-check chromium lint \
         check-reproducible check-crash check-cluster check-slurm-plan check-wheel checks
 
 # Exact versions and hashes of every (transitive) dependency of the pipeline, cluster, render, docs
@@ -114,6 +114,17 @@ docs: all
 # link is broken; screenshots go to docs/_build/check.
 docs-check: docs chromium
 	$(BIN)/python workflow/scripts/docs_check.py $(DOCS_HTML) docs/_build/check
+
+# The independent sweep of issue 24 (sweep/: a third route importing nothing from brdfs.numerics):
+# albedo() by its default method, the engine and the disk against tests/data/sweep_truths.csv;
+# per-family report in results/benchmarks/sweep_summary.{csv,md}. sweep-truths computes the truths
+# still missing (resumable; on a quiet machine).
+sweep: $(STAMP)
+	nice -n 10 $(BIN)/python -m sweep.check --out results/benchmarks --workers 2
+
+sweep-truths: $(STAMP)
+	nice -n 10 $(BIN)/python -m sweep.tables
+	nice -n 10 $(BIN)/python -m sweep.compute_truths --resume tests/data/sweep_truths.csv
 
 # Re-record the regression baseline after a deliberate, reviewed change of numbers.
 baseline: $(STAMP)

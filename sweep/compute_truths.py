@@ -45,6 +45,11 @@ def _one(cell):
     return row
 
 
+def _indexed(item):
+    i, cell = item
+    return i, _one(cell)
+
+
 def pilot(all_cells, limit, seed):
     """A seeded subset of ``limit`` cells, the same share of every family."""
     rng = np.random.default_rng(seed + 1)
@@ -81,7 +86,7 @@ def main(argv=None):
     rows = [None] * len(todo)
     t0 = time.time()
     with Pool(args.workers) as pool:
-        for k, (i, row) in enumerate(zip(order, pool.imap(_one, [todo[i] for i in order], chunksize=1))):
+        for k, (i, row) in enumerate(pool.imap_unordered(_indexed, [(i, todo[i]) for i in order], chunksize=1)):
             rows[i] = row
             if k % 50 == 0:
                 print(f"{k}/{len(todo)} {time.time() - t0:.0f}s {row['family']} {row['seconds']}s", flush=True)

@@ -5,6 +5,9 @@
 #   2. Python 3.10 (the requires-python floor) with the lower bounds of pyproject.toml (numpy 1.26,
 #      scipy 1.11), when a python3.10 is on this machine (else said and skipped).
 set -eu
+# The Makefile exports PYTHONPATH=src, where the editable install's metadata would make pip take
+# the package for installed already: the fresh environments see none of this tree.
+unset PYTHONPATH
 PYTHON=${PYTHON:-python3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -33,8 +36,8 @@ run() {  # run PYTHON PIP_ARGS...: a fresh venv with the wheel (and the given re
   py=$1; shift
   env="$work/venv-$(basename "$py")"
   "$py" -m venv "$env"
-  "$env/bin/pip" install --quiet "$@" "$wheel" 2>&1 | grep -v "^WARNING: Location" || true
-  (cd "$work" && PYTHONPATH= "$env/bin/python" "$smoke")
+  "$env/bin/pip" install --quiet "$@" "$wheel" > "$work/pip.log" 2>&1 || { grep -v "^WARNING: Location" "$work/pip.log" >&2; exit 1; }
+  (cd "$work" && "$env/bin/python" "$smoke")
   echo "check-wheel: environment $(du -sm "$env" | cut -f1) MB: $("$env/bin/pip" list --format=freeze 2>/dev/null | grep -v '^pip=' | tr '\n' ' ')"
 }
 run "$(command -v $PYTHON)"

@@ -204,7 +204,7 @@ def pass_index(lanes: int, spp: int, passes: int):
     """
     if spp % passes:
         raise ValueError(f"brdfs_path: spp = {spp} is not a multiple of passes = {passes}")
-    return dr.arange(mi.UInt32, lanes) * 0
+    return (dr.arange(mi.UInt32, lanes) % spp) // (spp // passes)
 
 
 def _channels(L) -> tuple:
