@@ -41,7 +41,11 @@ run() {  # run PYTHON PIP_ARGS...: a fresh venv with the wheel (and the given re
   echo "check-wheel: environment $(du -sm "$env" | cut -f1) MB: $("$env/bin/pip" list --format=freeze 2>/dev/null | grep -v '^pip=' | tr '\n' ' ')"
 }
 run "$(command -v $PYTHON)"
-if py310=$(command -v python3.10); then
+py310=
+for candidate in python3.10 "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.10*/bin/python3.10; do
+  if "$candidate" -c "" 2>/dev/null; then py310=$(command -v "$candidate"); break; fi
+done
+if [ -n "$py310" ]; then
   run "$py310" "numpy==1.26.4" "scipy==1.11.4"
 else
   echo "check-wheel: no python3.10 here; the Python 3.10 / lower-bound run is skipped"
