@@ -62,13 +62,13 @@ def _built(name, params):
         return None
 
 
-def _assert_answered(brdf, label, rtol=RTOL):
-    """Every angle of :data:`ANGLES` answered: finite, or +inf and diverged at 90°, or reported short."""
+def _assert_answered(brdf, label, rtol=RTOL, angles=ANGLES):
+    """Every angle of ``angles`` answered: finite, or +inf and diverged at 90°, or reported short."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        est = albedo(brdf, ANGLES, rtol=rtol)
+        est = albedo(brdf, angles, rtol=rtol)
     warned = any(issubclass(w.category, NotConvergedWarning) for w in caught)
-    for theta, value, error, status in zip(ANGLES, est.value, est.error, est.status):
+    for theta, value, error, status in zip(angles, est.value, est.error, est.status):
         where = f"{label} at {theta} deg: {value} +- {error} ({status})"
         if status == DIVERGED:
             assert value == np.inf and error == 0.0 and theta == 90.0, where
@@ -94,6 +94,12 @@ def test_every_printed_parameter_value_answers_or_says_why_not():
         brdf = _built(name, {**MODELS[name].examples["typical"], param: value})
         if brdf is not None:
             _assert_answered(brdf, f"{name} {param}={value}")
+
+
+def test_the_mixture_of_basic_patches_at_90_degrees_answers():
+    # the slow model (SLOW) at the one angle every model must answer at, its typical weight (~25 s)
+    _assert_answered(_built("patch_mixture", MODELS["patch_mixture"].examples["typical"]), "patch_mixture",
+                     angles=np.array([90.0]))
 
 
 @pytest.mark.parametrize("name", ["phong", "blinn"])
