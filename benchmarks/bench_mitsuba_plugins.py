@@ -4,7 +4,6 @@
 model's ``model(L, V)`` and ``model.sample(L, u)``, and the generic plugin ``brdfs_model`` (numpy behind
 Dr.Jit).  Writes ``results/benchmarks/mitsuba_plugin_throughput.csv``; compare runs as ratios.
 """
-import time
 
 import numpy as np
 import pandas as pd
@@ -13,6 +12,7 @@ from brdfs.numerics.tables import pump
 from brdfs.physics.models import model
 from brdfs.pipeline.io import REPO_ROOT
 from brdfs.render.mitsuba import register_plugins, use_variant
+from _timing import best_time  # benchmarks/_timing.py (run as a script: its folder is on sys.path)
 
 N = 1_000_000
 CASES = [
@@ -24,16 +24,6 @@ CASES = [
     ({"type": "brdfs_beckmann", "alpha": 0.3}, lambda: model("beckmann", alpha=0.3)),
     ({"type": "brdfs_model", "model": "phong_cosmin", "n": 20}, lambda: model("phong_cosmin", n=20)),
 ]
-
-
-def _best(fn, repeats=3):
-    fn()
-    best = np.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def main():
@@ -66,8 +56,8 @@ def main():
             dr.eval(bs.wo, bs.pdf, weight)
             dr.sync_thread()
 
-        timings = {"plugin_eval": _best(plugin_eval), "plugin_sample": _best(plugin_sample),
-                   "numpy_eval": _best(lambda: brdf(Ls, V)), "numpy_sample": _best(lambda: brdf.sample(Ls, u))}
+        timings = {"plugin_eval": best_time(plugin_eval), "plugin_sample": best_time(plugin_sample),
+                   "numpy_eval": best_time(lambda: brdf(Ls, V)), "numpy_sample": best_time(lambda: brdf.sample(Ls, u))}
         for what, seconds in timings.items():
             rows.append({"plugin": bsdf_dict["type"], "params": str({k: v for k, v in bsdf_dict.items() if k != "type"}),
                          "what": what, "per_second": N / seconds})

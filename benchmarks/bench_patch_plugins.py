@@ -11,7 +11,6 @@
 Writes ``results/benchmarks/patch_plugin_throughput.csv`` and ``patch_plugin_acceptance.csv``; compare
 runs as ratios.
 """
-import time
 
 import numpy as np
 import pandas as pd
@@ -21,6 +20,7 @@ from brdfs.physics.models import model
 from brdfs.physics.sampling import disk_to_direction, lens_point_by_rejection
 from brdfs.pipeline.io import REPO_ROOT
 from brdfs.render.mitsuba import register_plugins, use_variant
+from _timing import best_time  # benchmarks/_timing.py (run as a script: its folder is on sys.path)
 
 N = 1_000_000
 THROUGHPUT = [("patch_basic", {"R": 0.2}, ("normal", "accept_reject", "cosine")),
@@ -32,16 +32,6 @@ ACCEPTANCE = [("patch_exponential", {"s": 2.0}, ("accept_reject", "normal")),
               ("patch_basic", {"R": 0.2}, ("accept_reject", "normal")),
               ("patch_basic", {"R": 0.5}, ("accept_reject", "normal"))]
 ANGLES = (0.0, 30.0, 60.0, 75.0, 85.0)
-
-
-def _best(fn, repeats=3):
-    fn()
-    best = np.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def _inputs(mi, dr, wi, u):
@@ -80,7 +70,7 @@ def throughput(mi, dr, rng):
                     x, y, _ = lens_point_by_rejection(-L[0], -L[1], R, np.random.default_rng(2))
                     disk_to_direction(x, y), patch.basic_albedo(60.0, R)
 
-            t_plugin, t_numpy = _best(plugin_sample), _best(numpy_sample, repeats=1) * N / m
+            t_plugin, t_numpy = best_time(plugin_sample), best_time(numpy_sample, repeats=1) * N / m
             rows.append({"model": name, **{"params": repr(params)}, "strategy": strategy,
                          "plugin_samples_per_s": N / t_plugin, "numpy_samples_per_s": N / t_numpy,
                          "speedup": t_numpy / t_plugin})

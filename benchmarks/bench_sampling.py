@@ -4,7 +4,6 @@ Times, per sample, the three strategies of Figure 4.9 (cosine, Russian roulette,
 patch BRDFs at a few incidence angles, and the default sampler of every model in MODELS, and writes
 ``results/benchmarks/sampling_wall_time.csv``.  Run with ``make benchmark``; compare runs as ratios.
 """
-import time
 
 import numpy as np
 import pandas as pd
@@ -14,17 +13,9 @@ from brdfs.artifacts.sampling_chi2 import build, parameters
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.models import MODELS, model
 from brdfs.pipeline.io import REPO_ROOT
+from _timing import best_time  # benchmarks/_timing.py (run as a script: its folder is on sys.path)
 
 N = 200_000
-
-
-def _time(fn, repeats=3):
-    best = np.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def main():
@@ -33,7 +24,7 @@ def main():
         brdf = model(name, **params)
         for theta in (0.0, 60.0, 85.0):
             for strategy in STRATEGIES:
-                t = _time(lambda: draw(brdf, strategy, theta, N, np.random.default_rng(1)))
+                t = best_time(lambda: draw(brdf, strategy, theta, N, np.random.default_rng(1)), warm_up=False)
                 rows.append({"benchmark": "fig_4_9", "model": name, "strategy": strategy, "theta_deg": theta,
                              "ns_per_sample": 1e9 * t / N})
     L = light_direction(60.0)
@@ -41,7 +32,7 @@ def main():
         brdf = build(name, parameters(name)[0])
         for strategy in brdf.strategies:
             u = np.random.default_rng(2).random((N // 10, brdf.sample_dimension(strategy)))
-            t = _time(lambda: brdf.sample(L, u, strategy), repeats=1)
+            t = best_time(lambda: brdf.sample(L, u, strategy), repeats=1, warm_up=False)
             rows.append({"benchmark": "sample", "model": name, "strategy": strategy, "theta_deg": 60.0,
                          "ns_per_sample": 1e9 * t / (N // 10)})
     df = pd.DataFrame(rows)

@@ -20,23 +20,15 @@ from __future__ import annotations
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
 import urllib.parse
 from pathlib import Path
 
-CHROMIUM_FLAGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--no-first-run",
-    "--hide-scrollbars",
-]
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # the shared _chromium module beside this script
+import _chromium  # noqa: E402
+
 
 DRIVER_NAME = "_docs_check_driver.html"
 
@@ -82,17 +74,8 @@ window.addEventListener("load", () => { run(); });
 """
 
 
-def chromium() -> str:
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    sys.exit("docs-check: no chromium found; run `make chromium` first")
-
-
 def run_chromium(args: list[str], profile: Path, budget_ms: int) -> subprocess.CompletedProcess:
-    command = [chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={profile}", f"--virtual-time-budget={budget_ms}", *args]
-    return subprocess.run(command, capture_output=True, text=True, timeout=900)
+    return _chromium.run_chromium("docs-check", args, profile, budget_ms, timeout=900)
 
 
 def pages_of(build: Path) -> list[str]:

@@ -20,22 +20,14 @@ from __future__ import annotations
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
-CHROMIUM_FLAGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--no-first-run",
-    "--hide-scrollbars",
-]
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # the shared _chromium module beside this script
+import _chromium  # noqa: E402
+
 
 PROBE = r"""
 <script>
@@ -84,17 +76,8 @@ PROBE = r"""
 """
 
 
-def chromium() -> str:
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    sys.exit("report-check: no chromium found; run `make chromium` first")
-
-
 def run_chromium(args: list[str], profile: Path) -> subprocess.CompletedProcess:
-    command = [chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--virtual-time-budget=60000", *args]
-    return subprocess.run(command, capture_output=True, text=True, timeout=300)
+    return _chromium.run_chromium("report-check", args, profile, 60000, timeout=300)
 
 
 def strip_tags(markup: str) -> str:
