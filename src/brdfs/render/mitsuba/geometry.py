@@ -15,7 +15,7 @@ triangles that collapse at the poles are dropped, so the mesh renders without cr
 normals. The surface is Newell's, not a closed solid: the spout's mouth is open, the lid leaves
 the thin gap 1.3 < r < 1.4 to the rim at z = 2.4, handle and spout pierce the body untrimmed.
 
-Nothing here imports Mitsuba except :func:`to_mitsuba`.
+Nothing here imports Mitsuba except :func:`to_mitsuba` and :func:`mitsuba_mesh`.
 """
 from __future__ import annotations
 
@@ -180,13 +180,21 @@ def teapot_part(x, y, scale=1.0, n: int = SUBDIVISIONS) -> tuple:
 def to_mitsuba(mesh: TriangleMesh, name: str = "teapot", props=None):
     """An ``mi.Mesh`` with the mesh's positions, faces and vertex normals (a variant must be set);
     ``props`` (an ``mi.Properties``, e.g. with a ``bsdf``) is passed to the constructor."""
+    return mitsuba_mesh(name, mesh.vertices, mesh.faces, mesh.normals, props)
+
+
+def mitsuba_mesh(name: str, vertices, faces, normals=None, props=None):
+    """An ``mi.Mesh`` from arrays: positions (V, 3), triangles (F, 3) and, where given, vertex normals
+    (V, 3) for smooth shading (flat without them: the pyramids)."""
     import mitsuba as mi
 
-    out = mi.Mesh(name, len(mesh.vertices), len(mesh.faces), props=props if props is not None else mi.Properties(),
-                  has_vertex_normals=True)
+    vertices, faces = np.asarray(vertices, np.float32), np.asarray(faces, np.uint32)
+    out = mi.Mesh(name, len(vertices), len(faces), props=props if props is not None else mi.Properties(),
+                  has_vertex_normals=normals is not None)
     params = mi.traverse(out)
-    params["vertex_positions"] = mi.Float(np.asarray(mesh.vertices, np.float32).ravel())
-    params["vertex_normals"] = mi.Float(np.asarray(mesh.normals, np.float32).ravel())
-    params["faces"] = mi.UInt32(np.asarray(mesh.faces, np.uint32).ravel())
+    params["vertex_positions"] = mi.Float(vertices.ravel())
+    if normals is not None:
+        params["vertex_normals"] = mi.Float(np.asarray(normals, np.float32).ravel())
+    params["faces"] = mi.UInt32(faces.ravel())
     params.update()
     return out

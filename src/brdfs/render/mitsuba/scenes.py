@@ -23,6 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from brdfs.render.mitsuba import geometry
+
 #: Radius of the spherical emitter a point light becomes (scene size ~ 1-10).
 LIGHT_RADIUS = 0.12
 #: Shape types Mitsuba builds from a dictionary; "mesh" parts are built by :func:`_mesh`.
@@ -119,8 +121,7 @@ def head(x, y, scale=1.0) -> tuple:
 
 def teapot(x, y, scale=1.0) -> tuple:
     """The Utah teapot tessellated from Newell's patches (:func:`.geometry.teapot_part`)."""
-    from brdfs.render.mitsuba.geometry import teapot_part
-    return teapot_part(x, y, scale)
+    return geometry.teapot_part(x, y, scale)
 
 
 # --- assembly -------------------------------------------------------------------------------------
@@ -134,17 +135,7 @@ def _transform(part):
 def _mesh(mi, name, part, bsdf):
     props = mi.Properties()
     props["bsdf"] = bsdf
-    vertices = np.asarray(part["vertices"], np.float32)
-    faces = np.asarray(part["faces"], np.uint32)
-    normals = part.get("normals")          # smooth shading where the part has them (the teapot)
-    mesh = mi.Mesh(name, len(vertices), len(faces), props=props, has_vertex_normals=normals is not None)
-    params = mi.traverse(mesh)
-    params["vertex_positions"] = mi.Float(vertices.ravel())
-    if normals is not None:
-        params["vertex_normals"] = mi.Float(np.asarray(normals, np.float32).ravel())
-    params["faces"] = mi.UInt32(faces.ravel())
-    params.update()
-    return mesh
+    return geometry.mitsuba_mesh(name, part["vertices"], part["faces"], part.get("normals"), props)
 
 
 def _shape(mi, name, part, bsdf):
