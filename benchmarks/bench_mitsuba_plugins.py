@@ -12,7 +12,11 @@ from brdfs.numerics.tables import pump
 from brdfs.physics.models import model
 from brdfs.pipeline.io import REPO_ROOT
 from brdfs.render.mitsuba import register_plugins, use_variant
-from _timing import best_time  # benchmarks/_timing.py (run as a script: its folder is on sys.path)
+import sys as _sys
+from pathlib import Path as _Path
+
+_sys.path.insert(0, str(_Path(__file__).resolve().parent))  # benchmarks/_timing.py, however this file is loaded
+from _timing import best_time  # noqa: E402
 
 N = 1_000_000
 CASES = [

@@ -13,7 +13,11 @@ from brdfs.artifacts.sampling_chi2 import build, parameters
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.models import MODELS, model
 from brdfs.pipeline.io import REPO_ROOT
-from _timing import best_time  # benchmarks/_timing.py (run as a script: its folder is on sys.path)
+import sys as _sys
+from pathlib import Path as _Path
+
+_sys.path.insert(0, str(_Path(__file__).resolve().parent))  # benchmarks/_timing.py, however this file is loaded
+from _timing import best_time  # noqa: E402
 
 N = 200_000
 
