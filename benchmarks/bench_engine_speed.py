@@ -8,7 +8,8 @@ machine's load hits all alike:
 * ``curve_ms_per_point``: one ``albedo`` call on the 100-point curve θ = 0 … 89°, divided by 100;
 * ``single_ms_1e-10`` / ``single_ms_1e-6``: the mean over 12 angles of one ``albedo`` call per angle;
 * ``single_over_curve`` = single (1e-10) / per-point (target ≤ 5) and ``loose_over_tight`` =
-  single (1e-6) / single (1e-10) (target ≤ ½).
+  single (1e-6) / single (1e-10) (target ≤ ½);
+* ``single_evals_1e-10`` / ``single_evals_1e-06``: the mean evaluations of those single calls (exact).
 
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
@@ -61,6 +62,13 @@ def _curve_runs(brdf):
     }
 
 
+def _single_evaluations(brdf):
+    """Mean ``Estimate.evaluations`` of the single calls at each rtol: the work the times measure,
+    exact where the times are noisy (on a loaded machine a ratio of times can move by 20 %)."""
+    return {f"single_evals_{rtol:g}": float(np.mean([albedo(brdf, float(t), rtol=rtol).evaluations for t in SINGLE_THETA]))
+            for rtol in (TIGHT, LOOSE)}
+
+
 def curve_ratios():
     """Best-of-``ROUNDS`` times of every curve model, all models interleaved in each round."""
     brdfs = {_label(n, p): model(n, **p) for n, p in CURVES}
@@ -78,6 +86,7 @@ def curve_ratios():
         row["single_over_curve"] = b["single_ms_1e-10"] / b["curve_ms_per_point"]
         row["loose_over_tight"] = b["single_ms_1e-6"] / b["single_ms_1e-10"]
         row["meets_targets"] = bool(row["single_over_curve"] <= SINGLE_TARGET and row["loose_over_tight"] <= LOOSE_TARGET)
+        row |= _single_evaluations(brdfs[label])
         rows.append(row)
     return pd.DataFrame(rows)
 

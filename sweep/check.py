@@ -176,12 +176,18 @@ def main(argv=None):
     parser.add_argument("--limit", type=int, default=None, help="a seeded subset of this many cells")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--methods", default=",".join(METHODS))
+    parser.add_argument("--merge", nargs="+", default=None, metavar="ROWS_CSV",
+                        help="summarise the sweep_rows.csv of earlier runs (disjoint cells) instead of running")
     args = parser.parse_args(argv)
-    truths = pd.read_csv(args.truths)
-    if args.limit:
-        truths = truths.sample(n=min(args.limit, len(truths)), random_state=1).sort_index()
     t0 = time.time()
-    rows = check(truths, methods=tuple(args.methods.split(",")), workers=args.workers)
+    if args.merge:
+        rows = classify(pd.concat([pd.read_csv(f) for f in args.merge], ignore_index=True)
+                        .drop(columns=["true_err", "ratio", "dishonest", "judged", "verdict"], errors="ignore"))
+    else:
+        truths = pd.read_csv(args.truths)
+        if args.limit:
+            truths = truths.sample(n=min(args.limit, len(truths)), random_state=1).sort_index()
+        rows = check(truths, methods=tuple(args.methods.split(",")), workers=args.workers)
     summary = summarise(rows)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

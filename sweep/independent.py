@@ -165,6 +165,37 @@ def smith_microfacet(distribution, alpha, G2="height_correlated", ior_re=None, i
     return f
 
 
+# --- Oren–Nayar (qualitative model, Oren & Nayar 1994, eq. 30) --------------------------------------
+
+def oren_nayar(rho, sigma):
+    """(ρ/π)(A + B max(0, cos(φ_L − φ_V)) sin α tan β) from the polar angles and azimuths of L and V."""
+    s2 = sigma * sigma
+    A, B = 1.0 - 0.5 * s2 / (s2 + 0.33), 0.45 * s2 / (s2 + 0.09)
+
+    def f(L, V, nl=None, nv=None, geo=None):
+        theta_l = np.arccos(np.clip(L[..., 2], -1.0, 1.0))
+        theta_v = np.arccos(np.clip(V[..., 2], -1.0, 1.0))
+        dphi = np.arctan2(L[..., 1], L[..., 0]) - np.arctan2(V[..., 1], V[..., 0])
+        alpha, beta = np.maximum(theta_l, theta_v), np.minimum(theta_l, theta_v)
+        return rho / np.pi * (A + B * np.maximum(0.0, np.cos(dphi)) * np.sin(alpha) * np.tan(beta))
+    return f
+
+
+def oren_nayar_albedo(rho, sigma, theta_deg):
+    """a(θ) of :func:`oren_nayar` in closed form.  The azimuth gives ∫ max(0, cos Δφ) dΔφ = 2, so
+    a = ρA + (2ρB/π) ∫₀^{π/2} sin α tan β cos θ_V sin θ_V dθ_V, split at θ_V = θ:
+    below, sin θ ∫₀^θ sin²θ_V dθ_V = sin θ (θ/2 − sin 2θ/4); above, tan θ ∫_θ^{π/2} sin²θ_V cos θ_V dθ_V
+    = tan θ (1 − sin³θ)/3 = sin θ cos θ (1 + s + s²)/(3(1 + s)), s = sin θ (1 − s = cos²θ/(1 + s): no
+    cancellation at grazing, and the limit at 90° is 0)."""
+    s2 = sigma * sigma
+    A, B = 1.0 - 0.5 * s2 / (s2 + 0.33), 0.45 * s2 / (s2 + 0.09)
+    t = np.radians(theta_deg)
+    s, c = np.sin(t), np.sin(np.radians(90.0 - theta_deg))
+    below = s * (0.5 * t - 0.25 * np.sin(2.0 * t))
+    above = s * c * (1.0 + s + s * s) / (3.0 * (1.0 + s))
+    return float(rho * A + 2.0 * rho * B / np.pi * (below + above))
+
+
 # --- patch models on the projected disk: ξ(m) with m = |L_xy + V_xy| ---------------------------
 
 def basic_constant(R):

@@ -56,6 +56,7 @@ def test_pumping_brightens_every_object_of_figure_2_8(tiny_cfg):
     cfg = copy.deepcopy(tiny_cfg)
     cfg["renders"]["pumping"]["n"] = [20]
     df = registry.get_artifact("fig_2_8_pumping_render").compute(cfg, {})
+    profile, df = df[df["theta_v_deg"].notna()], df[df["theta_v_deg"].isna()]
     plain = df[df["level"] == 0].set_index("object")
     pumped = df[df["level"] == 1].set_index("object")
     metals = [o for o in plain.index if o != "floor"]
@@ -63,7 +64,11 @@ def test_pumping_brightens_every_object_of_figure_2_8(tiny_cfg):
     assert np.all(pumped.loc[metals, "luminance"] >= plain.loc[metals, "luminance"]
                   - 5 * np.hypot(pumped.loc[metals, "luminance_err"], plain.loc[metals, "luminance_err"]))
     assert (pumped.loc[metals, "luminance"] > plain.loc[metals, "luminance"] * 1.01).any()
-    assert len(df.attrs["images"]) == 4            # two panels and the silver sphere's two rim crops
+    assert len(df.attrs["images"]) == 4            # two panels, the silver sphere's rim crops and profile
+    # the rim profile (Y per θ_V bin of the silver sphere's right half): pumped brighter at the rim
+    outer = profile.loc[profile.groupby("level")["theta_v_deg"].idxmax()].set_index("level")
+    assert set(outer.index) == {0, 1} and (profile["object"] == "silver sphere").all()
+    assert outer.loc[1, "luminance"] > outer.loc[0, "luminance"] + 2 * np.hypot(*outer["luminance_err"])
 
 
 def test_the_d_1_sphere_under_a_light_at_the_eye_is_a_full_moon(tiny_cfg):

@@ -45,8 +45,9 @@ def test_fill_zero_is_plain_bisection():
 
 
 def test_multisection_finds_the_torrance_sparrow_switch_radii_bisection_finds():
-    """The radii where eq. 2.10's switches start or stop cutting the circles, by multisection,
-    against bisection of the same gap functions to rounding (60 halvings)."""
+    """The radii where eq. 2.10's switches start or stop cutting the circles, by multisection (to
+    ``ROOT_RTOL`` of their distance from the ends of [0, 1]), against bisection of the same gap
+    functions to rounding (60 halvings)."""
     brdf = model("cook_torrance", m=0.1)
     theta = np.linspace(0.0, 89.99, 40)
     mu, st = np.cos(np.radians(theta)), np.sin(np.radians(theta))
@@ -69,4 +70,49 @@ def test_multisection_finds_the_torrance_sparrow_switch_radii_bisection_finds():
         hemisphere._multisection = original
     assert sum(r.size for r in found) > 40
     for a, b in zip(found, bisected):
-        np.testing.assert_allclose(a, b, rtol=8 * np.finfo(float).eps, atol=0)
+        slack = np.maximum(8 * np.finfo(float).eps * b, hemisphere.ROOT_RTOL * np.minimum(b, 1.0 - b))
+        assert np.all(np.abs(a - b) <= slack)
+
+
+@pytest.mark.parametrize("index", range(len(PROBLEMS)))
+@pytest.mark.parametrize("rtol", [1e-10, 1e-6])
+def test_a_single_element_takes_the_batched_drivers_decisions(index, rtol):
+    """Alone, an element's rounds are decided on Python floats (the single-element fast path); in a
+    batch, on arrays.  Without ``fill`` the elements are refined independently, so the element must
+    take the same intervals either way (its nodes counted), and its sums agree to rounding (the
+    rules' dot products may round differently in a larger batch, and K − G cancels)."""
+    f, bp, _ = PROBLEMS[index]
+    nodes = {}
+
+    def counted(key):
+        def integrand(x, elem):
+            nodes[key] = nodes.get(key, 0) + int(np.sum(elem == 0)) * x.shape[1]
+            return f(x)
+        return integrand
+
+    alone = integrate(counted("alone"), np.array([bp]), rtol=rtol, atol=1e-300)
+    batch = integrate(counted("batch"), np.array([bp, [0.0, 0.5]]), rtol=rtol, atol=1e-300)
+    assert nodes["alone"] == nodes["batch"] == alone.evaluations
+    assert alone.status[0] == batch.status[0] == "converged"
+    np.testing.assert_allclose(alone.value[0], batch.value[0], rtol=1e-14)
+    np.testing.assert_allclose(alone.error[0], batch.error[0], rtol=1e-4)      # Σ|K − G| of near-equal sums
+
+
+def test_few_brackets_take_the_roots_the_gathered_gap_functions_take():
+    """A single angle's brackets (one or two) evaluate every gap function and pick their own; many
+    brackets gather each one's own function (``selected_gap``): the same radii to the bit."""
+    brdf = model("cook_torrance", m=0.1)
+    theta = np.array([30.0, 61.0, 88.5])
+    mu, st = np.cos(np.radians(theta)), np.sin(np.radians(theta))
+    levels = [np.zeros_like(mu)] + [np.broadcast_to(c, mu.shape) for c in brdf.nv_levels(mu)]
+    t_max = brdf.lobe.t_of(0.5 * (np.pi / 2 + np.radians(theta)))
+    picked = hemisphere._lh_radial_breakpoints(brdf, mu, st, levels, t_max)
+    few = hemisphere._FEW_BRACKETS
+    try:
+        hemisphere._FEW_BRACKETS = 0
+        gathered = hemisphere._lh_radial_breakpoints(brdf, mu, st, levels, t_max)
+    finally:
+        hemisphere._FEW_BRACKETS = few
+    assert sum(r.size for r in picked) >= 3
+    for a, b in zip(picked, gathered):
+        assert np.array_equal(a, b)

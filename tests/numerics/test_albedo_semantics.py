@@ -208,3 +208,52 @@ def test_a_models_own_route_without_a_status_is_judged_by_its_error():
     with pytest.warns(NotConvergedWarning):
         est = albedo(Rough(n=1.0), [30.0], "engine")
     assert list(est.status) != [CONVERGED] and list(est.route) == ["engine/own"]
+
+
+# --- the tables' error of a compensated model, and the batch doors' meaning -------------------------
+
+def _shifted(table, delta):
+    """The same Chebyshev table with every node raised by ``delta`` (the interpolant is raised by
+    exactly delta) and its error bound widened by it: an honest, coarser E table."""
+    return type(table)(table.edges, np.asarray(table.values) + delta, table.error + delta, table.model_rtol)
+
+
+def test_a_kulla_conty_albedo_includes_its_e_tables_error():
+    """With F = 1 the exact compensated albedo is E + (1 − E) = 1 at every angle; a model built with
+    E + δ (δ = 1e-6, inside the table's declared error) has albedo 1 − δ(1 − …) ≈ 1 − δ, which the reported
+    error must cover (before: the integration's 1e-11 alone, 1e5 times short)."""
+    exact = model("ggx", alpha=0.3, compensation="kulla_conty")
+    built = type(exact)(alpha=0.3, compensation="kulla_conty", energy=_shifted(exact.energy, 1e-6))
+    est = albedo(built, [0.0, 60.0, 89.0], rtol=1e-10, warn=False)
+    true_error = np.abs(est.value - 1.0)
+    assert np.all(true_error > 5e-7)                              # the table's doing, not the integration's
+    assert np.all(true_error <= est.error), (true_error, est.error)
+    assert list(est.status) == [STALLED] * 3                       # no refinement of the integral helps
+
+
+#: A divergent model, one with a grazing limit model, a pumped one (its tables' error) and a plain one.
+def _batch_models():
+    base = model("phong", n=20)
+    table = pumping.tabulate_albedo(base, target_rtol=1e-3, engine_rtol=1e-9, degree=2)
+    return [model("ward", m=0.1), model("cook_torrance", m=0.3, G="smith"),
+            pumping.pumped_models(base, [table], "g1")[-1], base]
+
+
+def test_albedo_table_and_albedo_pairs_answer_as_albedo_does_elementwise_on_a_grid_including_90_degrees():
+    """One code path (``_at_the_ends``): +inf/0/diverged, the grazing limit's albedo and the tables'
+    error at the same elements, with the same statuses and routes, by all three doors."""
+    models, grid = _batch_models(), np.array([0.0, 45.0, 89.99, 90.0])
+    table = albedo_module.albedo_table(models, grid, rtol=1e-8)
+    pairs = albedo_module.albedo_pairs([m for m in models for _ in grid], np.tile(grid, len(models)), rtol=1e-8)
+    for i, m in enumerate(models):
+        one = albedo(m, grid, "engine", rtol=1e-8, warn=False)
+        for est in (table[i], Estimate(pairs.value[4 * i:4 * i + 4], pairs.error[4 * i:4 * i + 4], 0,
+                                       pairs.status[4 * i:4 * i + 4], pairs.route[4 * i:4 * i + 4])):
+            assert list(est.status) == list(one.status) and list(est.route) == list(one.route), m.name
+            finite = np.isfinite(one.value)
+            assert np.array_equal(np.isfinite(est.value), finite) and np.all(est.error[~finite] == 0)
+            assert np.all(np.abs(est.value[finite] - one.value[finite]) <= est.error[finite] + one.error[finite])
+            assert np.all(est.error[finite] >= m.evaluation_error(grid[finite], est.value[finite]))
+    assert table.value[0, 3] == np.inf and table.status[0, 3] == DIVERGED
+    assert table.route[1, 3].endswith(":grazing_limit") and np.isfinite(table.value[1, 3])
+    assert table.status[2, 0] == STALLED                          # 1e-8 asked of a model known to ~1e-3

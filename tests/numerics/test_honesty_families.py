@@ -116,3 +116,40 @@ def test_cook_torrance_smith_2d_engine_splits_at_the_circle_through_the_normal(m
 ])
 def test_cook_torrance_engine_is_honest_at_the_reported_reproducers(G, m, theta, truth):
     _honest(albedo(model("cook_torrance", m=m, G=G), np.array([theta]), rtol=1e-10), truth)
+
+
+# --- a lobe about R that does not say f vanishes beyond it ---------------------------------------------
+
+from dataclasses import dataclass                                        # noqa: E402
+
+from brdfs.numerics.albedo import EngineCannotIntegrate                  # noqa: E402
+from brdfs.physics.lobes import MIRROR, PowerCosine                      # noqa: E402
+from brdfs.physics.models.base import BRDF, Interval                     # noqa: E402
+
+
+@dataclass(frozen=True)
+class LambertAboutR(BRDF):
+    """ρ/π everywhere, with an exponent-0 lobe about the mirror direction: the lobe's coordinates reach
+    only R·V ≥ 0, f does not stop there (a(θ) = ρ exactly)."""
+
+    rho: float = 1.0
+    name = "lambert_about_r_in_a_test"
+    param_ranges = {"rho": Interval(0.0, 1.0)}
+
+    def _eval(self, L, V, nl, nv):
+        return np.full(np.broadcast_shapes(nl.shape, nv.shape), self.rho / np.pi)
+
+    @property
+    def lobe(self):
+        return PowerCosine(0.0, MIRROR)
+
+
+def test_a_lobe_about_r_that_does_not_declare_f_zero_beyond_it_is_not_cut_at_r_dot_v_zero():
+    """Was 0.75 ± 7e-11, 'converged', at 60° (the cap R·V ≥ 0 only): the engine now refuses a model whose
+    lobe stops short of the hemisphere unless it declares ``zero_beyond_lobe``, and ``auto`` takes the disk."""
+    brdf = LambertAboutR()
+    with pytest.raises(EngineCannotIntegrate, match="zero_beyond_lobe"):
+        albedo(brdf, [60.0], "engine")
+    est = albedo(brdf, [0.0, 30.0, 60.0, 85.0])
+    assert np.all(np.abs(est.value - 1.0) <= est.error) and set(est.route) == {"disk"}
+    assert model("phong", n=0).zero_beyond_lobe                              # (R·V)⁺⁰ does stop there

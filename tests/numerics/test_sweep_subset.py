@@ -99,3 +99,21 @@ def test_the_third_route_reproduces_closed_form_albedos_in_both_frames_and_on_th
     for truth, exact in cases:
         assert abs(truth.value - exact) <= truth.error + 1e-9 * (exact == (n + 2) / (2 * (n + 1))), (truth, exact)
     assert all(t.error < 1e-12 for t, _ in cases)
+
+
+def test_the_oren_nayar_closed_form_truth_agrees_with_a_nested_quad_of_its_rewrite():
+    """The sweep's Oren–Nayar truths are a closed form (``independent.oren_nayar_albedo``); here it is
+    held to scipy's dblquad of the rewritten BRDF, split at its kinks θ_V = θ and Δφ = π/2."""
+    from scipy.integrate import dblquad
+    from sweep import independent as ind
+    rho, sigma, theta = 0.8, 1.1, 70.0
+    f, t = ind.oren_nayar(rho, sigma), np.radians(theta)
+    L = np.array([np.sin(t), 0.0, np.cos(t)])
+
+    def g(phi, tv):
+        V = np.array([np.sin(tv) * np.cos(phi), np.sin(tv) * np.sin(phi), np.cos(tv)])
+        return float(f(L, V)) * np.cos(tv) * np.sin(tv)
+    value = sum(2.0 * dblquad(g, a, b, pa, pb, epsabs=1e-13, epsrel=1e-11)[0]
+                for a, b in ((0.0, t), (t, np.pi / 2)) for pa, pb in ((0.0, np.pi / 2), (np.pi / 2, np.pi)))
+    assert abs(value - ind.oren_nayar_albedo(rho, sigma, theta)) < 1e-11
+    assert ind.oren_nayar_albedo(rho, 0.0, theta) == rho                       # σ = 0: Lambert

@@ -62,6 +62,8 @@ class KinkedLobe(BRDF):
     accuracy_families = {"kinked_lobe_n": ("n", {})}
     #: its own sampler: V from the cosine-power lobe about R, (n+1)/2π (R·V)ⁿ (below the horizon: rejected)
     strategies = ("lobe", "cosine")
+    #: (R·V)⁺ⁿ: nothing where R·V < 0, beyond the reach of its lobe about R (the engine integrates it)
+    zero_beyond_lobe = True
 
     def _eval(self, L, V, nl, nv):
         cos_phi = _cos_relative_azimuth(L, V, np.cos(self.phi0))

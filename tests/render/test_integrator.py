@@ -271,3 +271,51 @@ def test_a_far_light_on_a_metal_plate_gives_f_times_fresnel_at_theta_min_times_e
     (got, err), E = _direct_radiance(mi, _metal_plugin(4.0), L, V)
     expected = float(PhongCosminMetal(4.0, ior_re=eta, ior_im=k)(L, V)) * E
     assert abs(got - expected) <= 5 * err + 3e-3 * expected, (got, expected, err)
+
+
+def test_every_light_is_sampled_at_every_vertex_so_a_blocked_light_leaves_the_others_lit(mi):
+    """Next-event estimation takes one sample of every light at every vertex (no random choice of
+    one): with two far sphere lights and a blocker in front of the first, the plate shows exactly
+    the second light's ρ E₂ / π, with no noise from a light choice."""
+    lambert = {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [0.8] * 3}}
+    radiance, radius, distance = 50.0, 0.4, 40.0
+    first, second = (np.array(d) / np.linalg.norm(d) for d in ((0.3, 0.2, 1.0), (-0.5, 0.3, 1.0)))
+    V = np.array([0.1, -0.4, 1.0]) / np.linalg.norm([0.1, -0.4, 1.0])
+    scene = {"type": "scene", "integrator": {"type": "brdfs_path", "max_depth": 1, "hide_emitters": True},
+             "sensor": _ortho(mi, 10.0 * V, (0.0, 0.0, 0.0), 0.01, 4),
+             "plate": _plate(lambert), "first": _light(distance * first, radius, radiance),
+             "second": _light(distance * second, radius, radiance),
+             "blocker": {"type": "sphere", "center": list(0.5 * distance * first), "radius": 2.0,
+                         "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.5] * 3}}}}
+    image = _passes(mi, mi.load_dict(scene), spp=16, passes=PASSES)
+    got, err = _mean_and_error(image.mean(axis=(1, 2)))
+    expected = 0.8 / np.pi * radiance * np.pi * radius ** 2 * second[2] / distance ** 2
+    assert abs(got - expected) <= 5 * err + 2e-3 * expected, (got, expected, err)
+    assert np.ptp(image) <= 0.02 * expected, np.ptp(image)       # no light-choice noise
+
+
+def _caustic_scene(mi, caustics: bool):
+    """A small Lambert plate (z = 0) that only a glossy metal mirror above it lights: a black ball
+    hides the low light from the plate, the mirror (phong_cosmin, n = 20, at z = 2, facing down)
+    reflects it onto the plate."""
+    lambert = {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [0.8] * 3}}
+    black = {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.0] * 3}}
+    T = mi.ScalarTransform4f
+    mirror = T().translate([0.0, 0.0, 2.0]) @ T().rotate([1, 0, 0], 180) @ T().scale([3.0, 3.0, 1.0])
+    return mi.load_dict({
+        "type": "scene", "integrator": {"type": "brdfs_path", "caustics": caustics, "hide_emitters": True},
+        "sensor": _ortho(mi, (0.0, 0.0, 0.5), (0.0, 0.0, 0.0), 0.2, 4, up=(0.0, 1.0, 0.0)),
+        "plate": _plate(lambert, half=0.25),
+        "mirror": {"type": "rectangle", "to_world": mirror, "bsdf": {"type": "brdfs_phong_cosmin", "n": 20.0}},
+        "light": {**_light((1.5, 0.0, 0.5), 0.15, 500.0), "bsdf": black},
+        "blocker": {"type": "sphere", "center": [0.9, 0.0, 0.3], "radius": 0.25, "bsdf": black}})
+
+
+def test_without_caustics_a_plate_lit_only_through_a_metal_mirror_is_black(mi):
+    """``caustics = False`` drops the paths diffuse → glossy metal → light (the stated treatment of
+    the caustics): the plate that only the mirror's reflection of the light reaches is black, and
+    lit when caustics are on."""
+    lit = _passes(mi, _caustic_scene(mi, True), spp=64, passes=PASSES)
+    dark = _passes(mi, _caustic_scene(mi, False), spp=32, passes=PASSES)
+    assert lit.mean() > 5 * lit.mean(axis=(1, 2)).std(ddof=1) / np.sqrt(PASSES) > 0, lit.mean()
+    assert dark.max() == 0.0, dark.max()

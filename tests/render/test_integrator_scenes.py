@@ -110,3 +110,42 @@ def test_the_id_buffer_names_each_object(mi):
     image = _sphere_on_floor(mi, 4, 0)
     ids = set(np.unique(image[..., 3]))
     assert {1.0, 2.0} <= ids                       # floor and ball both in view, integer where uniform
+
+
+@pytest.mark.parametrize("sampler", ["independent", "multijitter", "stratified", "ldsampler"])
+def test_a_pass_is_split_into_launches_of_counts_the_sampler_renders_exactly(sampler):
+    """Mitsuba's stratified samplers round other sample counts up: every launch's count is one the
+    sampler takes, no launch exceeds MAX_LANES samples, and the launches add up to the pass's spp."""
+    from brdfs.artifacts import _render_figures as rf
+
+    for spp in (1, 2, 13, 105, 555):
+        chunks = rf.launches(640, 400, spp, sampler)
+        assert sum(chunks) == spp and all(rf.sampler_takes(sampler, c) for c in chunks), (spp, chunks)
+        assert max(chunks) * 640 * 400 <= rf.MAX_LANES
+    assert not rf.sampler_takes("multijitter", 13) and rf.sampler_takes("multijitter", 12)
+    assert not rf.sampler_takes("ldsampler", 8) and rf.sampler_takes("ldsampler", 16)
+
+
+def test_a_figures_spp_entry_overrides_the_presets_and_must_be_a_multiple_of_passes():
+    from brdfs.artifacts import _render_figures as rf
+
+    cfg = {"renders": {"preset": "preview", "variant": "llvm_ad_rgb", "sampler": "multijitter", "caustics": False,
+                       "preview": {"min_width": 64, "min_height": 40, "spp": 64, "passes": 8,
+                                   "figure_spp": {"fig_2_8_pumping_render": 104}}}}
+    setup = rf.settings(cfg)
+    assert rf.figure_setup(setup, "fig_2_8_pumping_render")["spp"] == 104
+    assert rf.figure_setup(setup, "fig_3_9_metals_new_model")["spp"] == 64
+    cfg["renders"]["preview"]["figure_spp"]["fig_2_8_pumping_render"] = 100
+    with pytest.raises(ValueError, match="figure_spp.fig_2_8_pumping_render = 100"):
+        rf.settings(cfg)
+
+
+def test_the_dim_third_wavelength_pass_takes_an_eighth_of_the_samples_of_the_others():
+    from brdfs.artifacts import _render_figures as rf
+    from brdfs.render import spectrum
+    from brdfs.render.mitsuba.spectral import WAVELENGTH_PASSES
+
+    assert [rf.pass_spp(128, 8, g) for g in WAVELENGTH_PASSES] == [16, 16, 2]
+    assert rf.pass_spp(128, 8, None) == 16 and rf.pass_spp(8, 8, WAVELENGTH_PASSES[2]) == 1
+    weights = spectrum.luminance_weights(8)
+    assert weights[list(WAVELENGTH_PASSES[2][:2])].sum() < 0.005 * weights.sum()   # why it may

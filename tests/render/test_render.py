@@ -7,7 +7,6 @@ import pytest
 from scipy import stats
 
 import brdfs
-from brdfs.physics import patch_geometry
 from brdfs.render import materials, sampling, shapes, spectrum, tracer
 from brdfs.render.shapes import normalize
 
@@ -162,9 +161,8 @@ def test_direct_image_of_a_sphere_is_the_closed_form_shading():
 @pytest.mark.parametrize("name, params, theta", [
     ("phong_cosmin", {"n": 5000}, 60.0),
     ("phong", {"n": 20}, 30.0),
-    ("patch_exponential", {"s": 10.0}, 45.0),
     ("patch_elliptical", {"b": 0.3, "ratio": 0.5, "u_angle_deg": 20.0}, 50.0),
-])
+])   # (patch_exponential: test_the_renderer_draws_a_lobe_with_its_models_own_sampler)
 def test_material_sampling_weights_average_to_the_engine_albedo(name, params, theta):
     """E[weight] of the proposal mixture is the albedo a(θ_V) = ∫ f cos θ_L dω (independent engine)."""
     model = brdfs.model(name, **params)
@@ -174,9 +172,7 @@ def test_material_sampling_weights_average_to_the_engine_albedo(name, params, th
     V = np.broadcast_to([np.sin(np.radians(theta)), 0.0, np.cos(np.radians(theta))], (n, 3))
     _, weight = material.sample(V, rng.random((n, material.sample_dimension)), rng.random(n))
     mean, err = weight[:, 0].mean(), weight[:, 0].std() / np.sqrt(n)
-    if name == "patch_exponential":
-        expected, expected_err = patch_geometry.mixture_albedo(patch_geometry.ExponentialProfile(model.s), theta, C=model.C).value, 0.0
-    elif name == "patch_elliptical":   # no closed form: plain cosine sampling, 10^6 samples
+    if name == "patch_elliptical":   # no closed form: plain cosine sampling, 10^6 samples
         _, plain, _ = model.sample(V[0], rng.random((1_000_000, 2)), "cosine")
         expected, expected_err = plain.mean(), plain.std() / 1000.0
     else:
@@ -247,7 +243,7 @@ def test_the_renderer_draws_a_lobe_with_its_models_own_sampler(name, params, met
     material = materials.specular(model, 1)
     assert [p.strategy for p in material.proposals] == [base.strategies[0], "cosine"]
     rng = np.random.default_rng(2)
-    n, theta = 100_000, 40.0
+    n, theta = 50_000, 40.0
     V = np.broadcast_to([np.sin(np.radians(theta)), 0.0, np.cos(np.radians(theta))], (n, 3))
     _, weight = material.sample(V, rng.random((n, material.sample_dimension)), rng.random(n))
     drawn = sum(model.calls)

@@ -35,7 +35,7 @@ import pandas as pd
 from brdfs.render import spectrum
 from brdfs.render.mitsuba import metrics
 from brdfs.render.mitsuba import scenes as msc
-from brdfs.render.mitsuba.spectral import WAVELENGTH_PASSES, metal_constants, pass_channels
+from brdfs.render.mitsuba.spectral import PASS_SPP_FRACTION, WAVELENGTH_PASSES, metal_constants, pass_channels
 
 SECTION = "renders"
 PRESETS = ("preview", "final")
@@ -67,11 +67,20 @@ def settings(cfg: dict) -> dict:
     preset = section["preset"]
     if preset not in PRESETS:
         raise ValueError(f"renders.preset = {preset!r}: must be one of {PRESETS}")
-    setup = {"preset": preset, "variant": section["variant"], **section[preset]}
+    setup = {"preset": preset, "variant": section["variant"], "sampler": section["sampler"],
+             "caustics": section["caustics"], "figure_spp": {}, **section[preset]}
     if setup["passes"] < metrics.MIN_PASSES or setup["spp"] % setup["passes"]:
         raise ValueError(f"renders.{preset}: spp = {setup['spp']} must be a multiple of passes = "
                          f"{setup['passes']} >= {metrics.MIN_PASSES}")
+    for name, spp in setup["figure_spp"].items():
+        if spp % setup["passes"]:
+            raise ValueError(f"renders.{preset}.figure_spp.{name} = {spp}: must be a multiple of passes = {setup['passes']}")
     return setup
+
+
+def figure_setup(setup: dict, name: str) -> dict:
+    """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp``."""
+    return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"])}
 
 
 def panel_size(setup: dict, aspect: float) -> tuple[int, int]:
@@ -135,8 +144,8 @@ def _scene(panel: Panel, cfg: dict, channels):
                      point_lights=panel.point_lights)
 
 
-def _integrator(panel: Panel, count: bool = False, passes: int = 1) -> dict:
-    out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count), "passes": int(passes)}
+def _integrator(panel: Panel, count: bool = False, caustics: bool = True) -> dict:
+    out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count), "caustics": bool(caustics)}
     if panel.background is not None:
         out.update(hide_emitters=True, background=float(panel.background))
     return out
@@ -163,24 +172,55 @@ class RenderedPanel:
         return self.passes @ spectrum.luminance_weights(channels)
 
 
-#: Most samples (lanes) in one ``mi.render`` launch: W·H·spp of a preview panel fits (640 × 400 × 64).
+#: Most samples (lanes) in one ``mi.render`` launch: W·H·spp of a preview pass fits easily.
 MAX_LANES = 1 << 24
 
 
-def launches(width: int, height: int, spp_per_pass: int, passes: int) -> list[int]:
-    """Samples per pass of each ``mi.render`` launch: all passes in every launch, at most
-    :data:`MAX_LANES` samples each, the pass's samples split as evenly as possible."""
-    per_launch = max(MAX_LANES // (width * height * passes), 1)
-    count = -(-spp_per_pass // per_launch)
-    return [spp_per_pass // count + (c < spp_per_pass % count) for c in range(count)]
+def sampler_takes(sampler: str, spp: int) -> bool:
+    """Whether Mitsuba's ``sampler`` renders exactly ``spp`` samples per pixel (the stratified ones
+    round other counts up, with a warning): multijitter x·⌈n/x⌉ = n for x = ⌊√n⌋, stratified a
+    square, ldsampler a power of 4."""
+    root = int(np.sqrt(spp))
+    if sampler == "multijitter":
+        return root * -(-spp // root) == spp
+    if sampler == "stratified":
+        return root * root == spp
+    if sampler == "ldsampler":
+        return spp & (spp - 1) == 0 and (spp.bit_length() - 1) % 2 == 0
+    return True
+
+
+def launches(width: int, height: int, spp: int, sampler: str = "independent") -> list[int]:
+    """Samples per pixel of each ``mi.render`` launch of one pass: at most :data:`MAX_LANES`
+    samples each, each a count the sampler takes exactly (:func:`sampler_takes`), largest first."""
+    per_launch = max(MAX_LANES // (width * height), 1)
+    out = []
+    while spp > 0:
+        chunk = min(spp, per_launch)
+        while not sampler_takes(sampler, chunk):
+            chunk -= 1
+        out.append(chunk)
+        spp -= chunk
+    return out
+
+
+def pass_spp(panel_spp: int, passes: int, group) -> int:
+    """Samples per pixel of one pass of wavelength pass ``group`` (``None``: an rgb panel):
+    ``panel_spp / passes`` scaled by the group's :data:`~brdfs.render.mitsuba.spectral.PASS_SPP_FRACTION`."""
+    spp = max(panel_spp // passes, 1)
+    if group is None:
+        return spp
+    return max(int(round(spp * PASS_SPP_FRACTION[WAVELENGTH_PASSES.index(group)])), 1)
 
 
 def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, count: bool = False) -> RenderedPanel:
-    """Render ``panel``: ``passes`` independent passes × (three wavelength passes or one rgb pass).
+    """Render ``panel``: ``passes`` independently seeded passes × (three wavelength passes or one rgb pass).
 
-    All passes ride in the same launch (the integrator's ``passes`` AOVs, one random stream per
-    sample), so the integrator and the plugins are traced once per launch, not once per pass; a
-    launch has at most :data:`MAX_LANES` samples (:func:`launches`; one for the preview preset).
+    Each pass is its own ``mi.render`` launch (or a few, :func:`launches`) with its own seed
+    (:func:`pass_seed`), so that a stratified sampler (``renders.sampler``) stratifies each pass
+    alone and the passes stay independent; Dr.Jit traces the integrator anew per launch but
+    compiles its kernel once (the kernel cache). The wavelength passes share the seeds (the same
+    paths: the colour carries no extra noise), the dim third at fewer samples (:func:`pass_spp`).
     """
     mi = _mitsuba(setup["variant"])
     cam = panel.camera
@@ -189,37 +229,45 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     channels = SPECTRAL if panel.channels == "spectral" else 3
     passes = setup["passes"]
     total_spp = setup["spp"] if panel.spp is None else panel.spp
-    spp = max(total_spp // passes, 1)
     out = np.zeros((passes, height, width, channels))
-    ids, labels, costs, rays, cos_v = None, None, {}, None, None
+    # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a pixel's
+    # ID is an object's only where all its samples hit that object
+    ids, cos_v = np.zeros((height, width)), np.zeros((height, width))
+    labels, costs, rays, first = None, {}, None, True
     # point lights: one scene per light (an emitter sample then picks no light at random)
     light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
     for group in groups:
+        spp = pass_spp(total_spp, passes, group)
         for lights in light_sets:
             part = Panel(**{**panel.__dict__, "lights": lights})
-            scene = msc.load(_scene(part, cfg, group), camera, _integrator(panel, count, passes))
+            scene = msc.load(_scene(part, cfg, group), camera, _integrator(panel, count, setup["caustics"]), setup["sampler"])
             per_pass = np.zeros((passes, height, width, 3))
-            for c, chunk in enumerate(launches(width, height, spp, passes)):
-                image = np.asarray(mi.render(scene, spp=chunk * passes, seed=pass_seed(cfg["seed"], c)))
-                # the film averages each pass's AOV over all chunk·passes samples of a pixel
-                per_pass += passes * chunk * np.moveaxis(image[..., 5:].reshape(height, width, passes, 3), 2, 0)
-                if ids is None:
-                    ids, labels, cos_v = image[..., 3].astype(float), msc.object_labels(scene), image[..., 4]
-            per_pass /= spp
+            for p in range(passes):
+                for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
+                    image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
+                    per_pass[p] += chunk / spp * image[..., :3]
+                    if first:
+                        ids += chunk / (spp * passes) * image[..., 3]
+                        cos_v += chunk / (spp * passes) * image[..., 4]
+            if first:
+                labels, first = msc.object_labels(scene), False
+                ids = np.where(np.abs(ids - np.round(ids)) < 1e-5, np.round(ids), ids)   # float sums of integers
             if group is None:
                 out += per_pass
             else:
                 for k, wavelength in enumerate(pass_channels(group)):
                     out[..., wavelength] += per_pass[..., k]
-        costs = _plugin_costs(scene)
-        if count:
+        if count and group == groups[0]:
+            costs = _plugin_costs(scene)
             rays = int(np.asarray(scene.integrator().rays)[0])
-    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v)
+    spp_full = pass_spp(total_spp, passes, groups[0])
+    return RenderedPanel(out, ids, labels, spp_full * passes, costs, rays, cos_v)
 
 
-def pass_seed(seed: int, launch: int) -> int:
-    """Mitsuba's 32-bit seed of launch ``launch`` of a panel (the same in every wavelength pass and panel)."""
-    return (int(seed) * 1009 + launch) % 2 ** 32
+def pass_seed(seed: int, pass_index: int, launch: int = 0) -> int:
+    """Mitsuba's 32-bit seed of launch ``launch`` of pass ``pass_index`` (the same in every
+    wavelength pass and panel: common random numbers)."""
+    return (int(seed) * 1009 + pass_index * 65537 + launch) % 2 ** 32
 
 
 def _plugin_costs(scene) -> dict:
@@ -277,7 +325,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``count``: columns ``rays`` (the panel's) and ``plugin_samples``, ``plugin_tries``,
     ``plugin_evaluations`` (per object whose plugin counts), for one wavelength pass set.
     """
-    setup = settings(cfg)
+    setup = figure_setup(settings(cfg), name)
     rows, images, id_buffers, scale = [], [], [], None
     for k, panel in enumerate(panels):
         width, height = panel_size(setup, panel.aspect)

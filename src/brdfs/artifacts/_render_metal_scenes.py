@@ -41,7 +41,7 @@ def row_of_objects(cfg, entries, title, shapes_of, model="phong_cosmin"):
 
 def three_teapots():
     """Three teapots in a row, the middle one a little behind (it mirrors the other two);
-    :func:`brdfs.render.mitsuba.scenes.teapot` (a stand-in until the tessellated teapot lands)."""
+    :func:`brdfs.render.mitsuba.scenes.teapot` (Newell's teapot, tessellated)."""
     return [("teapot", msc.teapot(-1.9, -0.6, 1.0)), ("teapot", msc.teapot(0.0, 0.4, 1.1)),
             ("teapot", msc.teapot(1.9, -0.6, 1.0))]
 

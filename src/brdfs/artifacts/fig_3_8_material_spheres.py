@@ -37,7 +37,7 @@ def panels(cfg: dict) -> list:
     for k, n in enumerate(section["material_spheres"]["gold_n"]):
         objects.append((f"gold n={n:g}", rf.sphere(-1.1 + 2.2 * k, 0.0, 1.0),
                         {"metal": "gold", "model": "phong_cosmin", "n": n}))
-    camera = {"eye": (0.0, -14.0, 1.0), "target": (0.0, 0.0, 1.0), "fov_deg": 12.0}
+    camera = {"eye": (0.0, -14.0, 1.0), "target": (0.0, 0.0, 1.0), "fov_deg": 13.0}   # the outer spheres clear of the edges
     return [rf.Panel("gray (Lambert) and gold n = " + ", ".join(f"{n:g}" for n in section["material_spheres"]["gold_n"]),
                      objects, rf.TWO_LIGHTS, camera, sky=False, background=0.08, reference=("gray",), aspect=3.0,
                      max_depth=1, point_lights=True, spp=EDITOR_SPP)]

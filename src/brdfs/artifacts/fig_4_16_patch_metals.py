@@ -5,7 +5,7 @@ import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
-from brdfs.render import shapes  # noqa: F401  (scene shapes)
+from brdfs.artifacts.fig_4_11_anisotropic_metals import SYMBOL
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_16_patch_metals"
@@ -13,7 +13,15 @@ NAME = "fig_4_16_patch_metals"
 
 def panels(cfg: dict) -> list:
     s = cfg[rf.SECTION]
-    return ms.tank_and_spheres(cfg, s['patch_exponential']['fig_4_16'][:1] + s['patch_exponential']['fig_4_16'][2:], 'patch_exponential', 'tank, plate, spheres: ' + ms.describe(s['patch_exponential']['fig_4_16'], 'patch_exponential'), base=s['patch_exponential']['fig_4_16'][1])
+    entries = s["patch_exponential"]["fig_4_16"]
+    tank, plate, spheres = entries[0], entries[1], entries[2:]
+    title = (f"tank {_short(tank)} s={tank['s']:g}, plate {_short(plate)} s={plate['s']:g}, spheres s = "
+             + ", ".join(f"{e['s']:g} ({_short(e)})" for e in spheres))
+    return ms.tank_and_spheres(cfg, [tank] + spheres, "patch_exponential", title, base=plate)
+
+
+def _short(entry):
+    return SYMBOL.get(entry["metal"], entry["metal"])
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapter_4")

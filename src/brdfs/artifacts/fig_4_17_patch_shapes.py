@@ -1,5 +1,11 @@
-"""Fig. 4.17: cube, cylinder and sphere with the exponential patch model: see the caption (workflow/report/captions/fig_4_17_patch_shapes.rst) for the substituted scene."""
+"""Fig. 4.17: cube, cylinder and sphere with the exponential patch model: see the caption (workflow/report/captions/fig_4_17_patch_shapes.rst) for the substituted scene.
+
+The camera stands back from the street camera of the other metal scenes and the panel is wider
+(aspect 1.6), so that the cube's front corner, the cylinder's lid and the sphere are all in frame.
+"""
 from __future__ import annotations
+
+import dataclasses
 
 import pandas as pd
 
@@ -9,11 +15,17 @@ from brdfs.render.mitsuba import scenes as msc
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_17_patch_shapes"
+CAMERA = {"eye": (0.0, -7.6, 3.0), "target": (0.0, 0.0, 0.55), "fov_deg": 34.0}
 
 
 def panels(cfg: dict) -> list:
-    s = cfg[rf.SECTION]
-    return ms.row_of_objects(cfg, s['patch_exponential']['fig_4_17'], 'cube, cylinder, sphere: ' + ms.describe(s['patch_exponential']['fig_4_17'], 'patch_exponential'), [('cube', msc.box((-2.0, -0.3, 0.6), (0.6, 0.6, 0.6))), ('cylinder', msc.capped_cylinder((0.0, 0.5, 0.0), 0.6, 1.3)), ('sphere', rf.sphere(2.0, -0.3, 0.7))], model='patch_exponential')
+    entries = cfg[rf.SECTION]["patch_exponential"]["fig_4_17"]
+    shapes = [("cube", msc.box((-2.0, -0.3, 0.6), (0.6, 0.6, 0.6))),
+              ("cylinder", msc.capped_cylinder((0.0, 0.5, 0.0), 0.6, 1.3)),
+              ("sphere", rf.sphere(2.0, -0.3, 0.7))]
+    title = "cube, cylinder, sphere: " + ms.describe(entries, "patch_exponential")
+    return [dataclasses.replace(p, camera=CAMERA, aspect=1.6)
+            for p in ms.row_of_objects(cfg, entries, title, shapes, model="patch_exponential")]
 
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapter_4")
@@ -22,4 +34,4 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    rf.plot_panels(df, path, "Fig. 4.17: cube, cylinder and sphere with the exponential patch model")
+    rf.plot_panels(df, path, "Fig. 4.17: cube, cylinder, sphere (exponential patch model)")

@@ -15,7 +15,7 @@ from brdfs.artifacts import _render_figures as rf
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_18_generalized_lambert"
-CAMERA = {"eye": (0.0, -12.0, 0.8), "target": (0.0, 0.0, 0.8), "fov_deg": 14.0}
+CAMERA = {"eye": (0.0, -12.0, 1.0), "target": (0.0, 0.0, 1.0), "fov_deg": 15.5}    # the outer spheres in frame
 #: The light at the eye (a delta point light: nothing there for the camera rays to hit).
 LIGHT_AT_EYE = CAMERA["eye"]
 #: Jittered samples per pixel: direct light from delta point lights, each rendered alone, has no

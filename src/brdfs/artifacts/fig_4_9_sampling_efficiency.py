@@ -4,7 +4,8 @@ the thesis's three samplers (section 4.2.4): cosine, the 0/1 accept/reject sampl
 
 One panel per strategy (the plugins' ``strategy``: ``cosine``, ``accept_reject``, ``normal``), the
 same scene, seeds and samples per pixel in each; the CSV holds per panel the samples, BRDF
-evaluations and rays per pixel (the patch plugins' and the integrator's counters) and the measured
+evaluations and rays per pixel (the patch plugins' and the integrator's counters; the evaluations
+include next-event estimation's, one per light sample that reaches a sphere) and the measured
 noise (p95 of the relative standard error, fireflies). Wall times go to ``results/benchmarks/``
 only (the rule's benchmark file). The efficiency chart of the strategies (variance × cost per
 sample) is the extra ``extra_sampling_efficiency``.
@@ -17,7 +18,7 @@ from brdfs.artifacts import _render_figures as rf
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_9_sampling_efficiency"
-CAMERA = {"eye": (0.0, -9.0, 2.2), "target": (0.0, 0.0, 0.6), "fov_deg": 22.0}
+CAMERA = {"eye": (0.0, -9.0, 2.2), "target": (0.0, 0.0, 0.7), "fov_deg": 25.0}    # all three spheres in frame
 
 
 def panels(cfg: dict) -> list:
@@ -50,5 +51,4 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    rf.plot_panels(df, path, "Fig. 4.9: patch-model metal spheres at equal samples per pixel, three samplers",
-                   columns=1)
+    rf.plot_panels(df, path, "Fig. 4.9: three samplers at equal samples per pixel", columns=1)

@@ -148,74 +148,102 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     bp = np.atleast_2d(np.asarray(breakpoints, float))
     n_el = bp.shape[0]
     elem, lo, hi = _initial_intervals(bp)
-    vals = np.stack(_evaluate(integrand, elem, lo, hi, chunk))      # high, low, extra, |f|
-    stalls = np.zeros(elem.size, int)
+    vals = _evaluate(integrand, elem, lo, hi, chunk)           # rows: high, low, extra, |f|
+    err = np.abs(vals[0] - vals[1])
+    fixed = _unrefinable(lo, hi, err, vals[2])
+    stalls = np.zeros(elem.size, np.intp)
     evaluations = elem.size * NODES.size
     exhausted = True
     for _ in range(max_rounds):
-        err = np.abs(vals[0] - vals[1])
-        tol_el = np.maximum(rtol * np.abs(np.bincount(elem, vals[0], n_el)), atol)
-        tiny = (hi - lo) <= 64 * _EPS * np.maximum(np.abs(lo), np.abs(hi))
-        # an interval whose rules agree within its known, unrefinable error (rounding of the
-        # integrand, an inner integral's error) cannot gain from a split
-        frozen = (stalls >= STALL_LIMIT) | tiny | ~np.isfinite(err) | (err <= vals[2])
+        frozen = fixed | (stalls >= STALL_LIMIT)
         total = np.bincount(elem, err, n_el)
-        movable = np.bincount(elem[~frozen], err[~frozen], n_el)
-        # The reported error is SAFETY · total plus what no split removes (known and rounding errors):
-        # the discretisation gets what the tolerance leaves of those, at least an eighth of it.
-        floor = np.bincount(elem, vals[2], n_el) + 50 * _EPS * np.bincount(elem, vals[3], n_el)
-        budget = np.maximum(tol_el - floor, 0.25 * tol_el) / SAFETY
-        # Refine while the tolerance is missed and splitting can still make a difference.
-        open_el = (total > budget) & (movable > np.maximum(budget - (total - movable), 0.05 * total))
-        cand = open_el[elem] & ~frozen
+        movable = np.bincount(elem, np.where(frozen, 0.0, err), n_el)
+        high, extra, absval = (np.bincount(elem, v, n_el) for v in (vals[0], vals[2], vals[3]))
+        if n_el == 1:          # the same arithmetic on Python floats: a single element's round is mostly overhead
+            (total_1,), (movable_1,), (high_1,), (extra_1,), (absval_1,) = (
+                x.tolist() for x in (total, movable, high, extra, absval))
+            budget_1 = _budget(max(rtol * abs(high_1), atol), extra_1 + 50 * _EPS * absval_1)
+            budget = np.array([budget_1])
+            cand = ~frozen if _still_open(total_1, movable_1, budget_1) else np.zeros(elem.size, bool)
+        else:
+            budget = _budget(np.maximum(rtol * np.abs(high), atol), extra + 50 * _EPS * absval)
+            cand = _still_open(total, movable, budget)[elem] & ~frozen
         if not cand.any():
             exhausted = False
             break
         if elem.size > max_intervals:
             break
-        worst = np.zeros(n_el)
-        np.maximum.at(worst, elem[cand], err[cand])
-        split = cand & (err >= worst[elem] / 8)
-        if fill:
-            split |= _needed(cand, err, elem, total, budget)
+        split = _to_split(cand, err, elem, n_el, total, budget, fill)
         groups = _split_groups(np.flatnonzero(split), stalls, lo, hi, fill)
-        c_elem, c_lo, c_hi = (np.concatenate(parts) for parts in zip(*(_children(elem, lo, hi, g, s) for s, g in groups)))
-        c_vals = np.stack(_evaluate(integrand, c_elem, c_lo, c_hi, chunk))
+        c_elem, c_lo, c_hi = _children_of(elem, lo, hi, groups)
+        c_vals = _evaluate(integrand, c_elem, c_lo, c_hi, chunk)
         evaluations += c_elem.size * NODES.size
         c_err = np.abs(c_vals[0] - c_vals[1])
-        c_stalls, start = [], 0
-        for s, g in groups:
-            pieces = c_err[start:start + s * g.size].reshape(s, g.size)     # piece-major, as _children
-            start += s * g.size
-            kept = pieces.sum(0)
-            localised = pieces.max(0) >= LOCALISED * kept
-            no_gain = kept > 0.8 * err[g]
-            # a stall counts one up per level of bisection; a localised split without gain keeps the
-            # count (a boundary layer is narrowed, not frozen); only a real gain resets it.  Resetting
-            # on localised splits let rounding noise (which often sits in one half) refine for ever:
-            # Cook–Torrance, m = 0.005, at 89.9999° took 130 s.
-            parent = stalls[g]
-            level = np.where(no_gain & ~localised, parent + int(np.log2(s)), np.where(no_gain, parent, 0))
-            c_stalls.append(np.concatenate([level] * s))
-        c_stalls = np.concatenate(c_stalls)
+        c_stalls = _child_stalls(groups, c_err, err, stalls)
         keep = ~split
         elem = np.concatenate([elem[keep], c_elem])
         lo, hi = np.concatenate([lo[keep], c_lo]), np.concatenate([hi[keep], c_hi])
         vals = np.concatenate([vals[:, keep], c_vals], axis=1)
+        err = np.concatenate([err[keep], c_err])
+        fixed = np.concatenate([fixed[keep], _unrefinable(c_lo, c_hi, c_err, c_vals[2])])
         stalls = np.concatenate([stalls[keep], c_stalls])
     high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
-    spread = np.bincount(elem, np.abs(vals[0] - vals[1]), n_el)
-    error = SAFETY * spread + extra + 50 * _EPS * absval
+    error = SAFETY * np.bincount(elem, err, n_el) + extra + 50 * _EPS * absval
     met = error <= np.maximum(rtol * np.abs(low), atol)
     status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
     return Estimate(low, error, evaluations, status)
 
 
-def _needed(cand, err, elem, total, budget):
+def _budget(tol, floor):
+    """What the discretisation error Σ|K − G| may be: the reported error is SAFETY · Σ|K − G| plus what
+    no split removes (known and rounding errors, ``floor``), so it gets what the tolerance leaves of
+    those, at least a quarter of the tolerance (arrays or floats)."""
+    if isinstance(tol, float):
+        return max(tol - floor, 0.25 * tol) / SAFETY
+    return np.maximum(tol - floor, 0.25 * tol) / SAFETY
+
+
+def _still_open(total, movable, budget):
+    """Refine while the tolerance is missed and splitting can still make a difference: the movable
+    (unfrozen) error exceeds what the frozen error leaves of the budget, and 5 % of the total."""
+    if isinstance(total, float):
+        return total > budget and movable > max(budget - (total - movable), 0.05 * total)
+    return (total > budget) & (movable > np.maximum(budget - (total - movable), 0.05 * total))
+
+
+def _unrefinable(lo, hi, err, extra):
+    """Intervals no split can improve: of rounding width, with a non-finite error, or whose rules
+    agree within their known, unrefinable error (rounding of the integrand, an inner integral's error)."""
+    tiny = (hi - lo) <= 64 * _EPS * np.maximum(np.abs(lo), np.abs(hi))
+    return tiny | ~np.isfinite(err) | (err <= extra)
+
+
+def _to_split(cand, err, elem, n_el, total, budget, fill):
+    """The candidates to bisect this round: those within a factor 8 of their element's largest error
+    (and, with ``fill``, all that :func:`_needed` finds)."""
+    if n_el == 1:
+        split = cand & (err >= err[cand].max() / 8)          # cand is not empty here
+    else:
+        worst = np.zeros(n_el)
+        np.maximum.at(worst, elem[cand], err[cand])
+        split = cand & (err >= worst[elem] / 8)
+    if fill:
+        split |= _needed(cand, err, elem, n_el, total, budget)
+    return split
+
+
+def _needed(cand, err, elem, n_el, total, budget):
     """The candidates that must all be split for an element's remaining error to fall within its
     budget: its candidates by descending error, until the error of those not yet taken is within
     ``budget`` (with ``fill``: fewer rounds, each resolving all that one round can)."""
     idx = np.flatnonzero(cand)
+    if n_el == 1:
+        order = idx[np.argsort(-err[idx], kind="stable")]
+        cum = np.cumsum(err[order])
+        before = cum - err[order]
+        out = np.zeros(cand.size, bool)
+        out[order] = total[0] - before > budget[0]
+        return out
     order = idx[np.lexsort((-err[idx], elem[idx]))]
     e = elem[order]
     cum = np.cumsum(err[order])
@@ -224,6 +252,31 @@ def _needed(cand, err, elem, total, budget):
     out = np.zeros(cand.size, bool)
     out[order] = total[e] - before > budget[e]
     return out
+
+
+def _children_of(elem, lo, hi, groups):
+    """The pieces of every group of :func:`_split_groups`, concatenated: (elements, lows, highs)."""
+    if len(groups) == 1:
+        s, g = groups[0]
+        return _children(elem, lo, hi, g, s)
+    return tuple(np.concatenate(parts) for parts in zip(*(_children(elem, lo, hi, g, s) for s, g in groups)))
+
+
+def _child_stalls(groups, c_err, err, stalls):
+    """The stall counts of the pieces (ordered as :func:`_children_of`): a stall counts one up per
+    level of bisection; a localised split without gain keeps the count (a boundary layer is
+    narrowed, not frozen); only a real gain resets it.  Resetting on localised splits let rounding
+    noise (which often sits in one half) refine for ever: Cook–Torrance, m = 0.005, at 89.9999° took 130 s."""
+    out, start = [], 0
+    for s, g in groups:
+        pieces = c_err[start:start + s * g.size].reshape(s, g.size)     # piece-major, as _children
+        start += s * g.size
+        kept = pieces.sum(0)
+        localised = pieces.max(0) >= LOCALISED * kept
+        no_gain = kept > 0.8 * err[g]
+        level = (stalls[g] + int(np.log2(s)) * ~localised) * no_gain
+        out.append(np.tile(level, s))
+    return out[0] if len(out) == 1 else np.concatenate(out)
 
 
 #: Most pieces one interval is split into in one round (``fill``): four levels of bisection.
@@ -245,6 +298,8 @@ def _split_groups(idx, stalls, lo, hi, fill):
     s = int(min(MAX_PIECES, 2 ** np.ceil(np.log2(fill / k))))
     wide = (hi[idx] - lo[idx]) > s * 64 * _EPS * np.maximum(np.abs(lo[idx]), np.abs(hi[idx]))
     many = (stalls[idx] == 0) & wide
+    if many.all():
+        return [(s, idx)]
     return [(p, idx[m]) for p, m in ((2, ~many), (s, many)) if m.any()]
 
 
@@ -253,9 +308,12 @@ def _children(elem, lo, hi, idx, s):
     ones, ...): (elements, lows, highs).  The cuts lo (1 − j/s) + hi j/s are exact dyadic weights, so
     s = 2 cuts at 0.5 (lo + hi) to the bit."""
     a, b = lo[idx], hi[idx]
+    if s == 2:
+        mid = a * 0.5 + b * 0.5
+        return np.tile(elem[idx], 2), np.concatenate([a, mid]), np.concatenate([mid, b])
     f = (np.arange(1, s) / s)[:, None]
     bounds = np.vstack([a[None], a * (1.0 - f) + b * f, b[None]])
-    return np.concatenate([elem[idx]] * s), bounds[:-1].ravel(), bounds[1:].ravel()
+    return np.tile(elem[idx], s), bounds[:-1].ravel(), bounds[1:].ravel()
 
 
 def bp_span(bp):
@@ -272,15 +330,18 @@ def _initial_intervals(bp):
 
 
 def _evaluate(integrand, elem, lo, hi, chunk):
-    """Kronrod and Gauss sums on every interval, evaluated in chunks to bound memory."""
+    """Kronrod and Gauss sums on every interval, evaluated in chunks to bound memory: rows high
+    (Kronrod), low (Gauss), extra (the known error) and |f| (the Kronrod sum of |f|), shape (4, m)."""
     m = elem.size
-    high, low, extra, absval = (np.empty(m) for _ in range(4))
+    out = np.empty((4, m))
     for s in range(0, m, chunk):
         sl = slice(s, min(s + chunk, m))
-        x = nodes_on(lo[sl], hi[sl])
+        a, b = lo[sl], hi[sl]
+        half = 0.5 * (b - a)
+        x = (0.5 * (a + b))[:, None] + half[:, None] * NODES
         v_high, v_low, v_extra = node_values(integrand(x, elem[sl]))
-        half = 0.5 * (hi[sl] - lo[sl])
-        high[sl], low[sl] = gk_pair(v_high, v_low, half)
-        extra[sl] = 0.0 if v_extra is None else half * (np.abs(v_extra) @ KRONROD_WEIGHTS)
-        absval[sl] = half * (np.abs(v_high) @ KRONROD_WEIGHTS)
-    return high, low, extra, absval
+        out[0, sl] = half * (v_high @ KRONROD_WEIGHTS)
+        out[1, sl] = half * (v_low @ GAUSS_WEIGHTS)
+        out[2, sl] = 0.0 if v_extra is None else half * (np.abs(v_extra) @ KRONROD_WEIGHTS)
+        out[3, sl] = half * (np.abs(v_high) @ KRONROD_WEIGHTS)
+    return out

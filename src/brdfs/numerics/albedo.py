@@ -39,7 +39,8 @@ suffix ``:grazing_limit`` where, at exactly 90°, the model's ``grazing_limit_mo
 The ends, decided by what the model declares (never by its name), for every method: at exactly
 θ = 90° a model that ``diverges_at_grazing`` has albedo +inf (status ``diverged``), and a model whose
 BRDF is singular at N·L = 0 has the albedo of its ``grazing_limit_model()`` (the limit a(θ), θ → 90°).
-A model evaluated from tables (a pumped model) adds its ``evaluation_rtol`` × |a| to every error:
+A model evaluated from tables adds its ``evaluation_error(theta, a)`` to every error (a pumped
+model: ``evaluation_rtol`` × |a|; a Kulla–Conty model: its E table's share):
 the distance of the model evaluated to the exact model it stands for; where that takes the error
 above the tolerance, the value is ``stalled`` (no refinement of the integral can help: ask less,
 or build the model with finer tables).
@@ -49,8 +50,13 @@ own ``albedo_estimate`` (None: it has none), its ``closed_form_azimuth``, and it
 :class:`~brdfs.physics.lobes.Frame`.
 
 :func:`albedo_table` and :func:`albedo_pairs` are the engine's batch doors for the package's own
-derived quantities: they integrate f as evaluated, with none of the above (no ends, no model error,
-no warnings): read their ``status``.
+derived quantities: the same ends and model error, element by element, through the same code
+(:func:`_at_the_ends`), but no warnings: read their ``status``.  ``albedo_pairs(as_evaluated=True)``
+leaves the model error out (a table factory that carries it itself, :mod:`brdfs.numerics.pumping`).
+
+A model whose lobe's coordinates stop short of the hemisphere (a lobe about R reaches R·V ≥ 0 only)
+is integrated by the engine only if it declares ``zero_beyond_lobe`` (f vanishes beyond); otherwise
+the engine refuses it and ``auto`` takes the disk.
 """
 from __future__ import annotations
 
@@ -128,24 +134,30 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
     if asymmetric:                  # the engine integrates φ over [0, π] and doubles it
         raise EngineCannotIntegrate(f"{asymmetric[0].name!r} is not symmetric about the plane of incidence, "
                                     "which the engine assumes; use method='disk' (or 'auto')")
-    kirchhoff = np.array([not o and m.lobe.frame is SCATTERING for m, o in zip(models, own)], bool)
-    one_d = np.array([closed_form_azimuth and azimuthal.supports(m) for m in models], bool) & ~kirchhoff & ~own
-    # --- issue 24 (E3): f = D(H) S(N·L, N·V) integrates in θ_V with the azimuth in closed form
-    in_polar = np.array([closed_form_azimuth and polar.supports(m) for m in models], bool) & ~kirchhoff & ~own & ~one_d
-    one_d = one_d | in_polar
-    # ---
-    schemes = ((one_d & ~in_polar, azimuthal.albedo_many, "azimuthal"), (in_polar, polar.albedo_many, "polar"),
-               (kirchhoff, albedo_scattering, "scattering"), (~kirchhoff & ~one_d & ~own, albedo_many, "hemisphere"))
-    route = np.where(own, "engine/own", "engine/hemisphere").astype(object)
+    short_of_support = [m for m, o in zip(models, own)
+                        if not o and not m.lobe.reaches_hemisphere and not m.zero_beyond_lobe]
+    if short_of_support:            # the lobe's coordinates would silently leave part of f out
+        raise EngineCannotIntegrate(f"{short_of_support[0].name!r} has a lobe whose coordinates reach only part "
+                                    "of the hemisphere (about R: R·V ≥ 0) and does not declare "
+                                    "zero_beyond_lobe; use method='disk' (or 'auto')")
+    # the route is the model's, so it is decided once per distinct model (a single-angle call pays
+    # for the decision once, not for masks over its elements)
+    by_scheme = {}
+    for members in indices_by_model(models):
+        if not own[members[0]]:
+            by_scheme.setdefault(_engine_scheme(models[members[0]], closed_form_azimuth), []).extend(members)
+    route = np.full(theta.size, "engine/own", dtype=object)
+    one_d = np.zeros(theta.size, bool)
     closed_form_nodes = 0          # the 1-D route evaluates a closed form, not the BRDF: count its nodes
-    for chosen, scheme, name in schemes:
-        if chosen.any():
-            est = scheme([m for m, c in zip(models, chosen) if c], theta[chosen], rtol=rtol, atol=atol)
-            value[chosen], error[chosen] = est.value, est.error
-            status[chosen] = est.status
-            route[chosen] = f"engine/{name}"
-            if scheme is azimuthal.albedo_many or scheme is polar.albedo_many:
-                closed_form_nodes += est.evaluations
+    for (scheme, name), members in by_scheme.items():
+        chosen = np.sort(members) if len(by_scheme) > 1 else np.asarray(members)
+        est = scheme([models[i] for i in chosen], theta[chosen], rtol=rtol, atol=atol)
+        value[chosen], error[chosen] = est.value, est.error
+        status[chosen] = est.status
+        route[chosen] = f"engine/{name}"
+        if scheme is azimuthal.albedo_many or scheme is polar.albedo_many:
+            closed_form_nodes += est.evaluations
+            one_d[chosen] = True
     # Within ~1e-4 of grazing the 1-D route of max(N·L, N·V) models loses ε / cos θ to rounding and
     # can stop short of the tolerance: those elements are integrated in two dimensions instead.
     short = one_d & (status != CONVERGED)
@@ -160,6 +172,20 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
         value[rows] += delta.value
         error[rows] += delta.error
     return Estimate(value, error, closed_form_nodes, status.astype(str), route.astype(str))
+
+
+def _engine_scheme(model, closed_form_azimuth=True):
+    """The engine's integrator for a model without a route of its own, and its route's name: Kirchhoff
+    lobes in the scattering-vector frame, a closed-form azimuth in one dimension (``azimuthal``), or
+    f = D(H) S(N·L, N·V) in θ_V (``polar``, issue 24 E3), unless ``closed_form_azimuth`` is False;
+    the others in two dimensions around R or N."""
+    if model.lobe.frame is SCATTERING:
+        return albedo_scattering, "scattering"
+    if closed_form_azimuth and azimuthal.supports(model):
+        return azimuthal.albedo_many, "azimuthal"
+    if closed_form_azimuth and polar.supports(model):
+        return polar.albedo_many, "polar"
+    return albedo_many, "hemisphere"
 
 
 def _own_routes(models, theta, rtol, atol, value, error, status):
@@ -445,7 +471,8 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     rtol = DEFAULT_RTOL if rtol is None else rtol
     atol = DEFAULT_ATOL if atol is None else atol
     with counting_evaluations() as count:
-        est = _at_the_ends(run, model, theta.ravel(), rtol, atol, options, method)
+        est = _at_the_ends(_one_model_at_a_time(run, rtol, atol, options), [model] * theta.size, theta.ravel(),
+                           rtol, atol, method)
     shape = theta.shape
     est = Estimate(est.value.reshape(shape), est.error.reshape(shape), count[0] + est.evaluations,
                    est.status.reshape(shape), est.route.reshape(shape))
@@ -453,31 +480,66 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     return est
 
 
-def _at_the_ends(run, model, theta, rtol, atol, options, method) -> Estimate:
-    """``run`` on the 1-D angles ``theta``, with the meaning the model declares at exactly 90°:
-    +inf (``diverged``) where it ``diverges_at_grazing``, the albedo of its ``grazing_limit_model()``
-    where that is another integrand; plus its ``evaluation_rtol`` × |a| in every error."""
+def _one_model_at_a_time(run, rtol, atol, options):
+    """``run`` (a method of :data:`ALBEDO_METHODS`, one model a call) as ``run_pairs(models, theta)``:
+    one call per distinct model object (the model, and at 90° its grazing limit)."""
+    def run_pairs(models, theta):
+        groups = indices_by_model(models)
+        if len(groups) == 1:
+            return run(models[0], theta, rtol, atol, **options)
+        value, error = np.empty(theta.size), np.empty(theta.size)
+        status, route = np.empty(theta.size, object), np.empty(theta.size, object)
+        evaluations = 0
+        for rows in groups:
+            est = run(models[rows[0]], theta[rows], rtol, atol, **options)
+            value[rows], error[rows], status[rows] = est.value, est.error, est.status
+            route[rows] = None if est.route is None else np.asarray(est.route, str)
+            evaluations += est.evaluations
+        return Estimate(value, error, evaluations, status, None if any(r is None for r in route) else route)
+    return run_pairs
+
+
+def _at_the_ends(run_pairs, models, theta, rtol, atol, method, model_error=True) -> Estimate:
+    """``run_pairs(models, theta)`` (albedo of ``models[i]`` at ``theta[i]``) with the meaning each model
+    declares at exactly 90°: +inf (``diverged``) where it ``diverges_at_grazing``, the albedo of its
+    ``grazing_limit_model()`` where that is another integrand; plus its ``evaluation_error`` (the
+    error of its tables) in every error, unless ``model_error`` is False (f as evaluated).
+    :func:`albedo`, :func:`albedo_table` and :func:`albedo_pairs` all answer through here."""
     at_90 = theta == 90.0
-    diverged = at_90 & bool(model.diverges_at_grazing)
-    limit = model.grazing_limit_model() if at_90.any() and not diverged.any() else model
-    by_limit = at_90 & ~diverged & (limit is not model)
+    answered, limited = np.ones(theta.size, bool), np.zeros(theta.size, bool)
+    integrands = list(models)
+    groups = indices_by_model(models)
+    for rows in groups if at_90.any() else ():
+        rows = np.asarray(rows)
+        here, m = rows[at_90[rows]], models[rows[0]]
+        if not here.size:
+            continue
+        if m.diverges_at_grazing:
+            answered[here] = False
+        elif (limit := m.grazing_limit_model()) is not m:
+            limited[here] = True
+            for i in here:
+                integrands[i] = limit
     value, error = np.full(theta.size, np.inf), np.zeros(theta.size)
     status, route = np.full(theta.size, DIVERGED, object), np.full(theta.size, "declared", object)
     evaluations = 0
-    for rows, integrand, suffix in ((~diverged & ~by_limit, model, ""), (by_limit, limit, ":grazing_limit")):
-        if not rows.any():
-            continue
-        est = run(integrand, theta[rows], rtol, atol, **options)
+    if answered.any():
+        rows = np.flatnonzero(answered)
+        est = run_pairs(integrands if rows.size == theta.size else [integrands[i] for i in rows], theta[rows])
         value[rows], error[rows], status[rows] = est.value, est.error, est.status
-        routes = np.full(int(rows.sum()), method) if est.route is None else np.asarray(est.route, str)
-        route[rows] = np.char.add(routes.astype(str), suffix)
+        route[rows] = np.full(rows.size, method) if est.route is None else np.asarray(est.route, str)
         evaluations += est.evaluations
+    if limited.any():
+        route[limited] = np.char.add(route[limited].astype(str), ":grazing_limit")
     finite = np.isfinite(value)
-    if model.evaluation_rtol:
-        error[finite] += model.evaluation_rtol * np.abs(value[finite])
+    for rows in groups if model_error else ():
+        rows = np.asarray(rows)[finite[np.asarray(rows)]]
+        if not rows.size or not models[rows[0]].has_evaluation_error:
+            continue
+        error[rows] += models[rows[0]].evaluation_error(theta[rows], value[rows])
         # the model is known to no better than its tables: no refinement of the integral helps
-        missed = finite & (status == CONVERGED) & (error > np.maximum(rtol * np.abs(value), atol))
-        status[missed] = STALLED
+        missed = (status[rows] == CONVERGED) & (error[rows] > np.maximum(rtol * np.abs(value[rows]), atol))
+        status[rows[missed]] = STALLED
     return Estimate(value, error, evaluations, status.astype(str), route.astype(str))
 
 
@@ -493,10 +555,11 @@ def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
     ratio = np.where(np.isfinite(error), error / np.where(target > 0, target, np.inf), np.inf)
     worst = np.flatnonzero(short)[np.argmax(np.where(short, ratio, -1.0)[short])]
     kinds = ", ".join(f"{int((status == k).sum())} {k}" for k in (BUDGET_EXHAUSTED, STALLED) if (status == k).any())
-    by_tables = model.evaluation_rtol * abs(float(value.ravel()[worst])) > float(target.ravel()[worst])
-    if by_tables:
-        advice = (f"the model is known only to evaluation_rtol = {model.evaluation_rtol:.3g} (its tables): "
-                  "ask rtol above that, or build it with finer tables")
+    by_model = float(np.ravel(model.evaluation_error(np.ravel(theta)[worst:worst + 1],
+                                                     value.ravel()[worst:worst + 1]))[0]) if model.has_evaluation_error else 0.0
+    if by_model > float(target.ravel()[worst]):
+        advice = (f"the model is known only to evaluation_rtol = {model.evaluation_rtol:.3g} with its evaluation_error "
+                  f"{by_model:.3g} there (its tables): ask rtol above that, or build it with finer tables")
     else:
         advice = ("method='disk'" if method != "disk" else "method='engine'") + " or a looser rtol"
     message = (f"albedo of {model.name!r} by method {method!r}: {int(short.sum())} of {status.size} values "
@@ -512,23 +575,25 @@ def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
 def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
     """Albedo of several models on a common grid by the engine: arrays of shape (len(models), len(theta)).
 
-    The engine's batch door: f as evaluated, statuses to read (no ends, no model error, no warning)."""
+    The engine's batch door, with :func:`albedo`'s meaning element by element (the ends at 90°, the
+    models' evaluation error; no warning: read ``status``)."""
     check_table_call(models, theta_deg, rtol, atol)
     theta = _check_angles(np.atleast_1d(theta_deg)).ravel()
-    pairs = [(m, t) for m in models for t in theta]
-    with counting_evaluations() as count:
-        est = _albedo_pairs([p[0] for p in pairs], np.array([p[1] for p in pairs]),
-                            DEFAULT_RTOL if rtol is None else rtol, DEFAULT_ATOL if atol is None else atol)
+    est = albedo_pairs([m for m in models for _ in theta], np.tile(theta, len(models)), rtol, atol)
     shape = (len(models), theta.size)
-    cost = count[0] + est.evaluations
-    return Estimate(est.value.reshape(shape), est.error.reshape(shape), cost, est.status.reshape(shape))
+    return Estimate(est.value.reshape(shape), est.error.reshape(shape), est.evaluations,
+                    est.status.reshape(shape), est.route.reshape(shape))
 
 
-def albedo_pairs(models, theta_deg, rtol=None, atol=None) -> Estimate:
+def albedo_pairs(models, theta_deg, rtol=None, atol=None, as_evaluated=False) -> Estimate:
     """Albedo of ``models[i]`` at ``theta_deg[i]`` by the engine, in one adaptive run (for derived
-    quantities that need many (model, angle) pairs at once: maxima, mean albedos)."""
+    quantities that need many (model, angle) pairs at once: maxima, mean albedos), with
+    :func:`albedo`'s meaning element by element (no warning: read ``status``).  ``as_evaluated``:
+    f as evaluated, without the models' ``evaluation_error`` (a table factory that carries it itself)."""
     theta = _check_angles(theta_deg).ravel()
+    rtol = DEFAULT_RTOL if rtol is None else rtol
+    atol = DEFAULT_ATOL if atol is None else atol
     with counting_evaluations() as count:
-        est = _albedo_pairs(list(models), theta, DEFAULT_RTOL if rtol is None else rtol,
-                            DEFAULT_ATOL if atol is None else atol)
-    return Estimate(est.value, est.error, count[0] + est.evaluations, est.status)
+        est = _at_the_ends(lambda ms, th: _albedo_pairs(ms, th, rtol, atol), list(models), theta, rtol, atol,
+                           "engine", model_error=not as_evaluated)
+    return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)

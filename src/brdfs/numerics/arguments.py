@@ -19,6 +19,7 @@ brdfs.numerics.arguments.ArgumentError: model('phong'): n = '20': must be a real
 from __future__ import annotations
 
 import dataclasses
+import functools
 import inspect
 import numbers
 import typing
@@ -173,6 +174,8 @@ def check_table_call(models, theta_deg, rtol, atol) -> None:
 
 
 def _check_angles(where, theta_deg):
+    if isinstance(theta_deg, float) and 0.0 <= theta_deg <= 90.0:
+        return                                        # one angle, valid (NaN fails the comparison)
     try:
         theta = np.asarray(theta_deg)
     except Exception:                                 # a ragged list
@@ -187,15 +190,26 @@ def _check_angles(where, theta_deg):
         _fail(where, "theta_deg", theta[bad].ravel()[:5], "must be finite angles in [0, 90] degrees")
 
 
+@functools.lru_cache(maxsize=None)
 def method_options(method) -> dict[str, inspect.Parameter]:
-    """The options of an albedo method: the parameters of its function after (model, theta, rtol, atol)."""
+    """The options of an albedo method: the parameters of its function after (model, theta, rtol, atol).
+    Read once per method (``inspect.signature`` cost a single-angle call more than its integration's
+    bookkeeping); the dict returned is shared, not to be changed."""
     params = list(inspect.signature(method).parameters.values())[4:]
     return {p.name: p for p in params if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
 
 
+@functools.lru_cache(maxsize=None)
+def _option_hints(method) -> dict:
+    """The annotations of a method's options (``typing.get_type_hints``, read once per method)."""
+    return typing.get_type_hints(inspect.unwrap(method), include_extras=True)
+
+
 def _check_options(where, method, options):
+    if not options:
+        return
     valid = method_options(method)
-    hints = typing.get_type_hints(inspect.unwrap(method), include_extras=True)
+    hints = _option_hints(method)
     for key, value in options.items():
         if key not in valid:
             listed = ", ".join(valid) if valid else "none"

@@ -86,7 +86,7 @@ def _engine(model, x, rtol):
         return pumped_albedo(model, x, rtol=rtol)
     theta = np.degrees(np.arccos(np.clip(x, 0.0, 1.0)))
     # f as evaluated (its own ε is carried by model_rtol), by the engine, as it always was
-    return albedo_pairs([model] * theta.size, theta, rtol=rtol)
+    return albedo_pairs([model] * theta.size, theta, rtol=rtol, as_evaluated=True)
 
 
 def _chain(model):

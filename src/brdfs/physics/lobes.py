@@ -45,6 +45,12 @@ class PowerCosine:
     frame: Frame
 
     @property
+    def reaches_hemisphere(self):
+        """Whether t ∈ [0, 1] (β ∈ [0, π/2]) covers every V above the horizon: about N·H yes (N·H > 0
+        whenever N·L, N·V > 0); about R no, it stops at R·V = 0 (β = π/2 < π/2 + θ)."""
+        return self.frame is not Frame.MIRROR
+
+    @property
     def rounding(self):
         """Relative rounding error of the weight, in ulps: cos β carries ~1 ulp, cos^n β n of them."""
         return self.n + 1.0
@@ -77,6 +83,8 @@ class MicrofacetLobe:
 
     distribution: object
     frame: Frame = HALF
+    #: δ ∈ [0, π/2] covers every V above the horizon (:attr:`PowerCosine.reaches_hemisphere`).
+    reaches_hemisphere = True
 
     @property
     def rounding(self):
@@ -102,6 +110,8 @@ class ScatteringLobe:
     width: float
     horizon_scale: float
     frame: Frame = SCATTERING
+    #: r ∈ [0, 2] covers every V above the horizon (:attr:`PowerCosine.reaches_hemisphere`).
+    reaches_hemisphere = True
 
     def radial_levels(self):
         """width × 2^k below 2 (the largest r), ascending: the scales of a Gaussian mixture in r."""

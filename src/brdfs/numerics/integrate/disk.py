@@ -13,20 +13,21 @@ scattering vector of He–Torrance: their kinks are radii.
 
 Breakpoints, all in closed form from the disk geometry (the "no narrow feature can hide" rule):
 
-* radial: decades r = ρ·10^(−k) down to the scale of the narrowest lobe at this incidence;
-  every N·V level the model declares (circles |p|² = 1 − c²; N·V = N·L of max(N·L, N·V));
-  the masking and shadowing switches of Torrance–Sparrow's G (eq. 2.10), a quadratic and a cubic
-  in r along the ray; R·V = 0 for the mirror-frame lobes, where (R·V)⁺ is cut; the radii
-  r = |L_xy + V_xy| the model declares (the patch models', He–Torrance's radial scales); where the
-  ray crosses a half-plane φ_V = const through N that the model declares (``azimuth_levels``).
-* azimuthal: pieces of equal width, the tangent ray ψ = π/2 and points mu·10^k around it, every
-  decade up to 1/2 (the ray length ρ(ψ) changes from ~cos²θ to ~2 over |ψ − π/2| ~ cos θ near
-  grazing, and beyond the tangent ray the ray integrals fall like (ψ − π/2)⁻²), the rays
-  tangent to the kink circles, the rays through the points where a declared half-plane
-  φ_V = const meets the rim, and — by a scan and bisection, for every radial kink above — the
-  rays where a kink enters or leaves the rays or two kinks change order (a kink curve meets the
-  rim, touches a ray, or crosses another: the ray integral has a kink or a jump of its curvature
-  there).
+* radial: decades r = ρ·10^(−k) down to a tenth of the distance from c to the edge of the
+  element's own lobe along the ray (:func:`_decades`); every N·V level the model declares (circles
+  |p|² = 1 − c²; N·V = N·L of max(N·L, N·V)); the masking and shadowing switches of
+  Torrance–Sparrow's G (eq. 2.10), a quadratic and a cubic in r along the ray; R·V = 0 for the
+  mirror-frame lobes, where (R·V)⁺ is cut; the radii r = |L_xy + V_xy| the model declares (the
+  patch models', He–Torrance's radial scales); where the ray crosses a half-plane φ_V = const
+  through N that the model declares (``azimuth_levels``).
+* azimuthal: four pieces of equal width, the tangent ray ψ = π/2 and points μ·10^(k/2) around
+  it, every half decade from μ up to 1/2 (the ray length ρ(ψ) changes from ~cos²θ to ~2 over
+  |ψ − π/2| ~ cos θ near grazing, and beyond the tangent ray the ray integrals fall like
+  (ψ − π/2)⁻²), the rays tangent to the kink circles, the rays through the points where a
+  declared half-plane φ_V = const meets the rim, and — by a scan and bisection, for every radial
+  kink above (a scattering lobe's scales, smooth, excepted) — the rays where a kink enters or
+  leaves the rays or two kinks change order (a kink curve meets the rim, touches a ray, or
+  crosses another: the ray integral has a kink or a jump of its curvature there).
 
 A kink next to the rim is placed by its distance to the rim, ρ − r, in closed form where it has one
 (N·V levels: at 90° − 1e-9, N·V = N·L lies 1e-22 inside the rim, where r/ρ rounds to 1 but
@@ -38,8 +39,12 @@ model by its name.
 
 Both directions are integrated by the vectorised adaptive Gauss–Kronrod driver
 (:func:`.gauss_kronrod.integrate`): the inner radial integrals of all rays of all elements at once,
-their error carried into the outer ψ integral as a known error.  The driver is the engine's; the
-coordinates, breakpoints and initial partition are not.
+their error carried into the outer ψ integral as a known error, in one pass: each ray to
+``INNER_SHARE`` of rtol of its own value.  An element's partition is its own, whatever else runs
+with it.  The driver is the engine's; the coordinates, breakpoints and initial partition are not.
+
+What each of these choices costs or saves (the full accuracy map at rtol 1e-12,
+``benchmarks/bench_engine_speed.py --accuracy-grid``) is said in the comment where it is made.
 """
 from __future__ import annotations
 
@@ -51,7 +56,7 @@ from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
 INNER_SHARE = 0.1             # the inner integrals get this share of the tolerance
-_PIECES = 8                   # equal ψ pieces on [0, π]
+_PIECES = 4                   # equal ψ pieces on [0, π]
 _EPS = np.finfo(float).eps
 
 
@@ -71,21 +76,17 @@ def disk_albedo_many(models, theta_deg, rtol=1e-12, atol=1e-16):
     models = list(models)
     if len(models) != theta_deg.size:
         raise ValueError("disk_albedo_many needs one model per angle")
-    # Pass 1, coarse: the albedo's size, which sets the absolute tolerance of every ray in pass 2
-    # (a ray far out in the lobe's flank needs no 1e-13 of its own tiny value, and rounding noise
-    # of f — 1e-10 relative near grazing, where L + V cancels — would keep refining it).
-    bp = psi_breakpoints_many(models, theta_deg)
-    rough = _disk(models, theta_deg, ROUGH_RTOL, atol, None, bp)
-    est = _disk(models, theta_deg, rtol, atol, np.abs(rough.value) + rough.error, bp)
+    # One pass: each ray to a share of rtol of its own value.  (A coarse first pass that set the rays'
+    # absolute tolerances from the albedo's size cost 35–50 % of the time and moved no reported error
+    # by more than 2 % (Cook–Torrance m = 0.1 at 69 angles, Ward m = 0.005, He–Torrance and the
+    # exponential patch at grazing): the rounding bound of f, not the tolerance, stops the flank rays.)
+    est = _disk(models, theta_deg, rtol, atol, psi_breakpoints_many(models, theta_deg))
     value, error = np.array(est.value), np.array(est.error)
     for i, m in enumerate(models):
         delta = m.delta_albedo(theta_deg[i])          # zero unless the model has a Dirac part
         value[i] += float(delta.value)
         error[i] += float(delta.error)
-    return Estimate(value, error, status=est.status)
-
-
-ROUGH_RTOL = 1e-5
+    return Estimate(value, error, est.evaluations, est.status)
 
 
 def psi_breakpoints_many(models, theta_deg):
@@ -102,29 +103,31 @@ def psi_breakpoints_many(models, theta_deg):
                  for i, m in enumerate(models)])
 
 
-def _disk(models, theta_deg, rtol, atol, scale, bp):
-    """The disk integral of every element; rays to ``INNER_SHARE`` of the target relative to their own
-    value, or (``scale`` given: the element's albedo) at least that share of rtol · scale spread over ψ."""
+def _disk(models, theta_deg, rtol, atol, bp):
+    """The disk integral of every element over its ψ breakpoints ``bp``; rays to ``INNER_SHARE`` of the
+    target relative to their own value."""
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     full = np.array([not m.symmetric_about_incidence_plane for m in models])
     index = first_of_model(models)      # the same model object at many angles is evaluated together
     weight_el = np.where(full, 1.0, 2.0)             # [0, π] doubled by symmetry
-    span = np.where(full, 2 * np.pi, np.pi)
+    width = np.array([_lobe_width(models[k]) for k in index])
+    isotropic = np.array([_frame(models[k]) is SCATTERING for k in index])
+    nodes = []
 
     def outer(psi, elem):
         shape = psi.shape
         e = np.repeat(elem, shape[1])
-        if scale is None:
-            inner_rtol, inner_atol = INNER_SHARE * rtol, atol
-        else:
-            inner_rtol = INNER_SHARE * rtol
-            inner_atol = INNER_SHARE * np.maximum(rtol * scale[e], atol) / (weight_el[e] * span[e])
-        inner = _rays(models, index, e, psi.ravel(), mu[e], st[e], inner_rtol, inner_atol)
+        psi = psi.ravel()
+        depth = _decades(mu[e], width[e], np.cos(psi), isotropic[e])
+        inner = _rays(models, index, e, psi, mu[e], st[e], depth, INNER_SHARE * rtol, atol)
+        nodes.append(inner.evaluations)
         w = weight_el[e]
         value = (w * inner.value).reshape(shape)
         return NodeValues(value, value, (w * inner.error).reshape(shape))
 
-    return integrate(outer, bp, rtol=rtol, atol=atol, chunk=16)
+    est = integrate(outer, bp, rtol=rtol, atol=atol, chunk=16)
+    # two BRDF values a node: f and its rounding probe
+    return Estimate(est.value, est.error, 2 * int(sum(nodes)), est.status)
 
 
 def _pad(rows):
@@ -149,10 +152,14 @@ def _psi_breakpoints(model, mu, st, full, events=None):
     (:func:`_kink_events`, computed here unless given)."""
     top = 2 * np.pi if full else np.pi
     pts = [np.linspace(0.0, top, (2 if full else 1) * _PIECES + 1)]
-    # every decade from μ·10⁻³ up to 1/2: beyond the tangent ray the rays shorten like μ²/(ψ − π/2)
-    # and their integrals fall like (ψ − π/2)⁻² from μ on, which one piece [π/2 + 10³μ, 3π/8]
-    # missed at 90° − 1e-9 (Cook–Torrance, m = 0.005: 2.9e-11 of the albedo in its first 1e-7)
-    offsets = mu * 10.0 ** np.arange(-3, 4 + max(0, int(np.ceil(-np.log10(max(mu, 1e-300))))))
+    # every half decade from μ up to 1/2: beyond the tangent ray the rays shorten like μ²/(ψ − π/2)
+    # and their integrals fall like (ψ − π/2)⁻² from μ on, which one piece [π/2 + 10³μ, 3π/8] missed
+    # at 90° − 1e-9 (Cook–Torrance, m = 0.005: 2.9e-11 of the albedo in its first 1e-7).  Half
+    # decades, because the driver split nearly every whole decade once near grazing (Cook–Torrance,
+    # m = 0.1, 89.999°: 798 rays on decades, 504 on half decades).  Below μ there is no scale:
+    # ρ = a + √(a² + μ²), a = sin θ cos ψ, is analytic in ψ on |ψ − π/2| ≲ μ/sin θ (the decades
+    # μ·10⁻³ … μ/10 cost 40 % of the rays at 30° and moved no reported error by 5 %).
+    offsets = mu * 10.0 ** (0.5 * np.arange(0, 2 * (4 + max(0, int(np.ceil(-np.log10(max(mu, 1e-300))))))))
     offsets = offsets[(offsets > 0) & (offsets < 0.5)]
     for centre in ((np.pi / 2, 3 * np.pi / 2) if full else (np.pi / 2,)):
         pts.append(centre - offsets)
@@ -258,7 +265,7 @@ def _kinks_inside(model, mu, st, psi):
     rho = ray_length(mu, st, cos_psi)
     with np.errstate(invalid="ignore"):
         kinks = [np.where((r > 0) & (gap > 0), r, np.nan)
-                 for r, gap in _radial_kinks(model, mu, st, cos_psi, sin_psi, rho)]
+                 for r, gap in _radial_kinks(model, mu, st, cos_psi, sin_psi, rho, scales=False)]
     return np.stack(kinks).reshape((-1,) + shape)
 
 
@@ -289,13 +296,13 @@ def _level_radii(model, mu):
     return [float(np.sqrt(max(1.0 - c * c, 0.0))) for c in levels if 0.0 < c < 1.0]
 
 
-def _rays(models, index, elem, psi, mu, st, rtol, atol):
-    """∫₀^ρ f(L, V(c + r u)) r dr along every ray (one per entry of ``psi``)."""
+def _rays(models, index, elem, psi, mu, st, depth, rtol, atol):
+    """∫₀^ρ f(L, V(c + r u)) r dr along every ray (one per entry of ``psi``), split at the decades
+    r/ρ = 10⁻¹ … 10^(−depth) (:func:`_decades`) and at the model's radial kinks."""
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
     rho = ray_length(mu, st, cos_psi)
     cols = [np.zeros_like(psi), np.ones_like(psi)]
-    depth = _decades(mu)
-    cols += [_x_of(10.0 ** -k * np.ones_like(psi)) for k in range(1, depth + 1)]
+    cols += [np.where(k <= depth, _x_of(10.0 ** -k), np.nan) for k in range(1, int(depth.max(initial=0)) + 1)]
     for k in np.unique(index[elem]):
         rows = index[elem] == k
         for r, gap in _radial_kinks(models[k], mu[rows], st[rows], cos_psi[rows], sin_psi[rows], rho[rows]):
@@ -305,14 +312,15 @@ def _rays(models, index, elem, psi, mu, st, rtol, atol):
             cols.append(col)
     bp = np.sort(np.stack(cols, -1), axis=-1)
 
+    ulps = {k: _rounding_ulps(models[k]) for k in np.unique(index[elem])}
+
     def integrand(x, ray):
         e = index[elem[ray]]
         high, rounding = np.empty_like(x), np.empty_like(x)
         w = 1.0 - x
         w2 = w * w
         frac = x * (4.0 + x * (-6.0 + x * (4.0 - x)))     # r / ρ = 1 − (1 − x)⁴ without cancellation
-        for k in np.unique(e):
-            rows = e == k
+        for k, rows in _groups(e):
             rr = ray[rows]
             s, c, u, v, p = (a[rr, None] for a in (st, mu, cos_psi, sin_psi, rho))
             r = p * frac[rows]
@@ -326,13 +334,21 @@ def _rays(models, index, elem, psi, mu, st, rtol, atol):
             # rounding noise of f: a quarter of its change when V_x moves by 2 ulp (V_x carries ½ ulp;
             # near grazing L + V cancels in x), summed without cancellation: a bound, not a guess
             V[..., 0] += 2 * np.spacing(V[..., 0])
-            noise = 0.25 * np.abs(models[k](L, V) - f) + _rounding_ulps(models[k]) * _EPS * np.abs(f)
+            noise = 0.25 * np.abs(models[k](L, V) - f) + ulps[k] * _EPS * np.abs(f)
             jac = r * 4 * p * w2[rows] * w[rows]          # r dr/dx
             high[rows] = np.where(f == 0, 0.0, f * jac)
             rounding[rows] = np.where(np.isfinite(noise), noise * jac, 0.0)
         return NodeValues(high, high, rounding)
 
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=256)
+
+
+def _groups(e):
+    """(model index, rows) for each distinct model index in ``e``; rows is a plain slice where all
+    share one (no copies of the node arrays in the common case)."""
+    if e.size and np.all(e == e[0]):
+        return [(e[0], slice(None))]
+    return [(k, e == k) for k in np.unique(e)]
 
 
 def _rounding_ulps(model):
@@ -354,20 +370,51 @@ def _x_of_gap(gap):
     return -np.expm1(0.25 * np.log(gap))
 
 
-def _decades(mu):
-    """How many decades below ρ the radial partition goes: the narrowest lobe of the package
-    (n = 10⁴, m = 0.005: ~0.005 rad) projects to ~0.005·cos θ along the ray toward the centre."""
-    smallest = 1e-3 * np.max(np.maximum(mu, 1e-9))
-    return int(np.clip(np.ceil(-np.log10(smallest)), 3, 12))
+def _decades(mu, width, cos_psi, isotropic):
+    """How many decades below ρ the radial partition of each ray goes: down to a tenth of the
+    distance from c to the edge of its element's lobe (:func:`_lobe_width`) along the ray, at least
+    one decade, at most 12.  Around c a lobe of angular width w is an ellipse of semi-axes w cos θ
+    (along x, the plane of incidence) and w (along y), which the ray at ψ leaves at
+    w cos θ / √(cos²ψ + cos²θ sin²ψ); a scattering-frame lobe (``isotropic``), a width in
+    r = |L_xy + V_xy| itself, is a circle of radius w.  (n = 10⁴ along ψ = 0: 1.2e-3 cos θ, as the
+    package's narrowest lobe set for every model and ray before.)  Per ray, so that an element's
+    partition does not depend on the others of its run, and the rays across the plane of incidence
+    near grazing do not get the decades of the compressed direction."""
+    mu = np.maximum(mu, 1e-9)
+    along = mu / np.sqrt(cos_psi * cos_psi + mu * mu * (1.0 - cos_psi * cos_psi))
+    smallest = 0.1 * width * np.where(isotropic, 1.0, along)
+    return np.clip(np.ceil(-np.log10(smallest)), 1, 12).astype(int)
 
 
-def _radial_kinks(model, mu, st, cos_psi, sin_psi, rho):
+#: The lobe width assumed for a model without a lobe (the patch models; their kinks are declared radii):
+#: the narrowest lobe of the package, n = 10⁴ or m = 0.005 (~0.01 rad).
+_NARROWEST_WIDTH = 0.01
+
+
+def _lobe_width(model):
+    """The angular width of the model's lobe around its peak, in V: the angle β within which half its
+    radial weight lies (the lobe's own :meth:`angle` at t = ½; twice that for a lobe in the half
+    vector, which V turns at twice the rate), the radial scale of a scattering-frame lobe, or
+    :data:`_NARROWEST_WIDTH` for a model without a lobe."""
+    frame = _frame(model)
+    if frame is SCATTERING:
+        return float(model.lobe.width)
+    if frame not in (MIRROR, HALF):
+        return _NARROWEST_WIDTH
+    cos_b, sin_b = model.lobe.angle(np.float64(0.5))
+    return float(np.arctan2(sin_b, cos_b)) * (2.0 if frame is HALF else 1.0)
+
+
+def _radial_kinks(model, mu, st, cos_psi, sin_psi, rho, scales=True):
     """Where the model's integrand has a kink or a jump along the rays: a list of pairs (r, ρ − r)
-    of arrays (NaN = none), the distance to the rim free of cancellation where it is known."""
+    of arrays (NaN = none), the distance to the rim free of cancellation where it is known.  With
+    ``scales`` also the scales of a scattering-frame lobe (:class:`~brdfs.physics.lobes.ScatteringLobe`:
+    its boundary layer in N·V and its radial scales), where the integrand changes fast but smoothly:
+    breakpoints of the rays, not kinks whose crossings the ψ-scan (:func:`_kink_events`) must find."""
     a = st * cos_psi                    # c·u = −a: |p|² = sin²θ − 2 a r + r²
     levels = [np.broadcast_to(c, mu.shape) for c in model.nv_levels(mu)] + [mu]
     frame = _frame(model)
-    if frame is SCATTERING:
+    if frame is SCATTERING and scales:
         levels += [np.full(mu.shape, c) for c in model.lobe.nv_levels()]
     # ρ = a + √(a² + μ²); the level circle |p|² = 1 − c² is crossed at r = a ± √(a² + μ² − c²), the
     # smaller root from the product of the two, (c − μ)(c + μ) (exactly 0 for N·V = N·L, whose circle
@@ -384,14 +431,14 @@ def _radial_kinks(model, mu, st, cos_psi, sin_psi, rho):
         out += [(inner, reach + root), (outer, c * c / (reach + root))]
     # elsewhere ρ − r by subtraction: a kink within rounding of the rim (the cut R·V = 0 at normal
     # incidence is the rim itself) is not a kink of the ray integral
-    for r in _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame):
+    for r in _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame, scales):
         gap = rho - r
         out.append((r, np.where(gap > 4 * _EPS * rho, gap, 0.0)))
     return out
 
 
-def _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame):
-    """Radii of the kinks other than N·V levels (:func:`_radial_kinks`)."""
+def _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame, scales=True):
+    """Radii of the kinks other than N·V levels (:func:`_radial_kinks`; ``scales`` as there)."""
     out = []
     if frame is MIRROR:                 # R·V = 0: (a² + μ²) r² − 2 a r + sin²θ − μ² = 0, μ ν = a r − sin²θ ≥ 0
         q2, q1, q0 = a * a + mu * mu, -2 * a, st * st - mu * mu
@@ -400,9 +447,16 @@ def _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame):
             out += [(-q1 - root) / (2 * q2), (-q1 + root) / (2 * q2)]
     if model.torrance_sparrow_switches:
         out += _torrance_sparrow_kinks(mu, a)
-    out += list(model.scattering_radius_kinks(cos_psi, sin_psi))
+    lobe_scales = set() if scales or frame is not SCATTERING else {float(r) for r in model.lobe.radial_levels()}
+    out += [r for r in model.scattering_radius_kinks(cos_psi, sin_psi) if not _constant_in(r, lobe_scales)]
     out += _half_plane_kinks(model, mu, st, cos_psi, sin_psi)
     return out
+
+
+def _constant_in(r, values):
+    """Whether the radii ``r`` are one constant that is among ``values``."""
+    flat = np.ravel(r)
+    return bool(values) and flat.size > 0 and np.all(flat == flat[0]) and float(flat[0]) in values
 
 
 def _half_plane_kinks(model, mu, st, cos_psi, sin_psi):

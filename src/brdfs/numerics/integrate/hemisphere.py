@@ -76,43 +76,52 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=192)
 
 
-def radial_breakpoints_many(models, mu, st, theta_deg):
+def radial_breakpoints_many(models, mu, st, theta_deg, tail=None):
     """Breakpoints in t of ``models[i]`` at incidence ``theta_deg[i]`` (cos ``mu``, sin ``st``), one
     row per element, ascending and NaN-padded (:func:`.gauss_kronrod.integrate`'s ragged form):
     the range ends, the radii where N·V level sets touch the circles (closed form), the radii where
     L·H levels change how they cut the circles (found numerically, :func:`_lh_radial_breakpoints`),
-    the lobe's tail 1 − t = 10^(−k) (:data:`TAIL`), and graded points at the two ends of the range
-    where an endpoint singularity sits (:data:`HEAD`, :data:`END`).  The elements of one model are
-    handled together, and the 1-D route (:mod:`.azimuthal`) uses the same rows."""
-    rows = [None] * len(models)
-    for members in indices_by_model(models):
-        idx = np.array(members)
-        for i, row in zip(members, _radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx])):
-            rows[i] = row
-    width = max(r.size for r in rows)
-    return np.vstack([np.pad(r, (0, width - r.size), constant_values=np.nan) for r in rows])
+    the lobe's tail 1 − t = ``tail`` (:data:`TAIL` by default), and graded points at the two ends of
+    the range where an endpoint singularity sits (:data:`HEAD`, :data:`END`).  The elements of one
+    model are handled together, and the 1-D route (:mod:`.azimuthal`) uses the same rows."""
+    tail = TAIL if tail is None else tail
+    groups = indices_by_model(models)
+    if len(groups) == 1:                   # one model (a curve, or a single angle): no regrouping
+        rows = _radial_breakpoints(models[0], mu, st, theta_deg, tail)
+    else:
+        rows = [None] * len(models)
+        for members in groups:
+            idx = np.array(members)
+            for i, row in zip(members, _radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx], tail)):
+                rows[i] = row
+    if len(rows) == 1:
+        return rows[0][None]
+    out = np.full((len(rows), max(r.size for r in rows)), np.nan)
+    for out_row, row in zip(out, rows):
+        out_row[:row.size] = row
+    return out
 
 
-def _radial_breakpoints(model, mu, st, theta_deg):
+def _radial_breakpoints(model, mu, st, theta_deg, tail=None):
     """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows."""
+    tail = TAIL if tail is None else tail
     lobe = model.lobe
     theta = np.radians(theta_deg)[:, None]
     scale = 0.5 if lobe.frame is HALF else 1.0
     beta_max = scale * (np.pi / 2 + theta)
     levels = [np.zeros_like(mu)] + [np.broadcast_to(np.asarray(c, float), mu.shape)
                                      for c in model.nv_levels(np.asarray(mu, float))]
-    cand = []
-    for c in levels:
-        a = np.arccos(np.clip(c, -1, 1))[:, None]
-        cand += [scale * (a - theta), scale * (theta - a), scale * (a + theta)]
-    cand = np.concatenate(cand + [beta_max], axis=1)
+    a = np.arccos(np.clip(np.stack(levels, 1), -1, 1))
+    cand = np.concatenate([scale * (a - theta), scale * (theta - a), scale * (a + theta), beta_max], axis=1)
     cand = np.where((cand > 0) & (cand <= beta_max), cand, beta_max)
-    t_max = lobe.t_of(beta_max)
+    # t of the range's end, of the candidates and of the END points, in one call of the lobe
+    t_all = lobe.t_of(np.concatenate([beta_max, cand, beta_max * (1.0 - END)], axis=1))
+    t_max, t_cand, t_end = t_all[:, :1], t_all[:, 1:1 + cand.shape[1]], t_all[:, 1 + cand.shape[1]:]
     through_centre = any(np.array_equal(c, mu) for c in levels[1:])      # N·V = N·L passes through R
     head = t_max * HEAD if through_centre else np.empty((mu.size, 0))
     squeezed = (t_max > 1.0 - TAIL[0]) & (t_max < 1.0)
-    end = np.where(squeezed, lobe.t_of(beta_max * (1.0 - END)), np.nan)
-    t_pts = np.concatenate([np.zeros_like(t_max), lobe.t_of(cand), np.broadcast_to(1.0 - TAIL, (mu.size, TAIL.size)),
+    end = np.where(squeezed, t_end, np.nan)
+    t_pts = np.concatenate([np.zeros_like(t_max), t_cand, np.broadcast_to(1.0 - tail, (mu.size, tail.size)),
                             head, end, _cone_radius(model, theta, scale)], axis=1)
     lh = _lh_radial_breakpoints(model, mu, st, levels, t_max[:, 0])
     az = _azimuth_radial_breakpoints(model, mu, st, theta, beta_max)
@@ -181,14 +190,15 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
         a_nv, b_nv = cos2 * mu, sin2 * st
         out = []
         with np.errstate(divide="ignore", invalid="ignore"):
+            x_nv = [(c_nv - a_nv) / b_nv for c_nv in nv_levels]
+            nv_inside = [np.abs(x) <= 1 for x in x_nv]
             for c in model.lh_levels(mu, cb):
-                c = np.broadcast_to(c, t.shape)
+                c = c if np.shape(c) == t.shape else np.broadcast_to(c, t.shape)
                 out += [a_lh + b_lh - c, a_lh - b_lh - c]
                 x_lh = (c - a_lh) / b_lh
-                for c_nv in nv_levels:
-                    x_nv = (c_nv - a_nv) / b_nv
-                    inside = (np.abs(x_lh) <= 1) & (np.abs(x_nv) <= 1)
-                    out.append(np.where(inside, x_lh - x_nv, np.nan))
+                lh_inside = np.abs(x_lh) <= 1
+                for x, inside in zip(x_nv, nv_inside):
+                    out.append(np.where(lh_inside & inside, x_lh - x, np.nan))
         return np.stack(out)
 
     def selected_gap(t, mu, st, nv_levels, which):
@@ -221,25 +231,42 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     a, b = scan[row, idx], scan[row, idx + 1]
     sign_a = np.sign(g[which, row, idx])
     levels = [c[row, None] for c in nv_levels]
-    a, b = _multisection(lambda x: selected_gap(x, mu[row, None], st[row, None], levels, which), a, b, sign_a)
+    if which.size <= _FEW_BRACKETS:
+        # all gap functions on every bracket, then each bracket's own: for a few brackets the
+        # functions' points cost less than selected_gap's gathering (the same values to the bit)
+        brackets = np.arange(which.size)
+        section = lambda x: gaps(x, mu[row, None], st[row, None], levels)[which, brackets]     # noqa: E731
+    else:
+        section = lambda x: selected_gap(x, mu[row, None], st[row, None], levels, which)     # noqa: E731
+    a, b = _multisection(section, a, b, sign_a)
     roots = 0.5 * (a + b)
     return [roots[row == i] for i in range(mu.size)]
 
 
+#: Brackets up to which :func:`_lh_radial_breakpoints` evaluates every gap function in each round of the
+#: multisection (a single angle: one or two brackets) rather than gathering each bracket's own.
+_FEW_BRACKETS = 16
 #: Points per bracket and round of :func:`_multisection` (each round narrows a bracket 2^6-fold:
 #: the 60 bisections of one bracket, one call of the gap functions each, became ~8 calls).
 _SECTIONS = 64
 _SECTION_ROUNDS = 12
+#: Precision of a kink radius, relative to its distance from either end of [0, 1] (t and 1 − t).  A
+#: breakpoint off the kink by δ leaves the interval next to it a kink of slope jump J at distance δ
+#: from its end, an error of order J δ², about 1e-18 of the integral at this precision: far below the
+#: rounding floor of every estimate.  Narrowing to 4 ulps instead cost 7–9 rounds of the gap functions
+#: per call (Cook–Torrance, m = 0.1, 48°–89°) for nothing the integral can see.
+ROOT_RTOL = 1e-9
 
 
 def _multisection(fn, a, b, sign_a):
-    """Brackets [a, b] (arrays) of a sign change of ``fn`` narrowed to a few ulps: each round
-    evaluates ``fn`` on ``_SECTIONS − 1`` interior points of every bracket at once (shape (r, k) in,
-    (r, k) out) and keeps the first piece where the sign leaves ``sign_a`` (a NaN counts as a
-    change, as in bisection).  Stops when every bracket is within 4 ulps of its ends."""
+    """Brackets [a, b] (arrays) of a sign change of ``fn`` narrowed to :data:`ROOT_RTOL` of their
+    distance from the ends of [0, 1] (or to 4 ulps): each round evaluates ``fn`` on ``_SECTIONS − 1``
+    interior points of every bracket at once (shape (r, k) in, (r, k) out) and keeps the first piece
+    where the sign leaves ``sign_a`` (a NaN counts as a change, as in bisection)."""
     frac = np.arange(1, _SECTIONS) / _SECTIONS
     for _ in range(_SECTION_ROUNDS):
-        if np.all(b - a <= 4 * np.spacing(np.maximum(np.abs(a), np.abs(b)))):
+        wanted = np.maximum(4 * np.spacing(np.maximum(np.abs(a), np.abs(b))), ROOT_RTOL * np.minimum(a, 1.0 - b))
+        if np.all(b - a <= wanted):
             break
         pts = a[:, None] + (b - a)[:, None] * frac
         changed = np.sign(fn(pts)) != sign_a[:, None]
@@ -257,7 +284,7 @@ def level_cos(A, B, c):
     with np.errstate(divide="ignore", invalid="ignore"):
         x = (c - A) / B
     x = np.where(B > 0, x, np.where(A >= c, -1.0, 1.0))
-    return np.clip(x, -1.0, 1.0)
+    return np.minimum(np.maximum(x, -1.0), 1.0)        # np.clip, without its dispatch cost (a hot path)
 
 
 def level_azimuth(A, B, c):

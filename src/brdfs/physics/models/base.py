@@ -156,6 +156,12 @@ class BRDF:
     limit_albedo_90: ClassVar[float | None] = None
     #: Integrand with a cone-shaped kink at V = N (1 − c|V − N|), e.g. the thesis's Smith G* (eq. 1.38).
     kink_at_normal: ClassVar[bool] = False
+    #: f = 0 wherever the lobe's coordinates do not reach (``lobe.reaches_hemisphere`` False: a
+    #: cosine-power lobe about R maps only R·V ≥ 0, where (R·V)⁺ⁿ lives).  The engine integrates only
+    #: where the lobe reaches, so it refuses a model whose lobe stops short of the hemisphere unless the
+    #: model declares this (``auto`` then takes the disk): an exponent-0 lobe about R on a Lambertian f
+    #: came back converged at 0.75 at 60° (the cap R·V ≥ 0 only), for an albedo of 1.
+    zero_beyond_lobe: ClassVar[bool] = False
     #: (frame, kernel) of a model whose azimuthal integral is known in closed form
     #: (:mod:`brdfs.numerics.integrate.azimuthal`, with :meth:`azimuth_weight`), None otherwise.
     closed_form_azimuth: ClassVar[tuple[Frame, str] | None] = None
@@ -262,6 +268,17 @@ class BRDF:
         """The albedo of the surface's mirror (Dirac) reflection, whichever part of the BRDF this model
         evaluates (He–Torrance's ρ_s also for its term 'dd'); None for a model that describes none."""
         return None
+
+    @property
+    def has_evaluation_error(self) -> bool:
+        """Whether :meth:`evaluation_error` can be nonzero (a model built from tables)."""
+        return bool(self.evaluation_rtol)
+
+    def evaluation_error(self, theta_deg, albedo):
+        """Bound of |a as evaluated − a of the exact model| at ``theta_deg``, given the albedo ``albedo``
+        of f as evaluated: ``evaluation_rtol`` × |a| (the pumped models' tables); a model whose
+        tables enter its albedo otherwise (Kulla–Conty's E) bounds their share itself."""
+        return self.evaluation_rtol * np.abs(np.asarray(albedo, float))
 
     def truncation_error(self, L, V):
         """Bound of the error of ``f(L, V)`` beyond rounding (a truncated series): zero by default."""

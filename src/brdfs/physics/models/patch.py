@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
+from scipy.special import gammainc
 
 from brdfs.physics import patch_geometry as patch
 from brdfs.core.gauss_kronrod import Estimate, integrate
@@ -192,6 +193,95 @@ class PatchExponential(_MixtureSampling, BRDF):
     def radius_of_cdf(self, r):
         """R = F⁻¹(r) of the normalised weight (eq. 4.27, Figure 4.13: :func:`patch_geometry.inverse_cdf`)."""
         return patch.inverse_cdf(patch.ExponentialProfile(self.s), np.clip(r, 0.0, 1.0)).value
+
+    # --- "exact" ("normal importance sampling" of section 4.2.4 for the mixture, section 4.4) -------
+    #: R = F⁻¹(u₃) (eq. 4.27), then a uniform point of the lens C(V'_P, R) ∩ unit disk
+    #: (:func:`sampling.uniform_in_lens`; the thesis's "repeat ... until found" draws the same
+    #: point): mass 1, no rejection.  Its density per unit area of the base plane is
+    #: Q(m, d) = ∫_m² q(R)/A(d, R) dR + p_Diffuse/π (:meth:`exact_area_density`); pdf = Q cos θ_V.
+    strategies = ("russian_roulette", "exact", "cosine")
+    sample_dimensions = {"russian_roulette": 3, "exact": 3}
+
+    def _sample_direction(self, L, u, strategy):
+        if strategy != "exact":
+            return super()._sample_direction(L, u, strategy)
+        cx, cy = _mirrored_projection(L)
+        x, y = sampling.uniform_in_lens(cx, cy, self.radius_of_cdf(u[..., 2]), u[..., 0], u[..., 1])
+        return sampling.disk_to_direction(x, y)
+
+    def _pdf(self, L, V, strategy):
+        if strategy != "exact":
+            return super()._pdf(L, V, strategy)
+        return self.exact_area_density(np.hypot(L[..., 0], L[..., 1]), projected_distance(L, V)) * V[..., 2]
+
+    def exact_area_density(self, d, m):
+        """Q(m, d) = ∫_m² q(R)/A(d, R) dR + p_Diffuse/π: the density per unit area of the base plane of
+        the ``"exact"`` sampler at |L_P| = d, m = m(L, V) (eq. 4.1), q = F' (eq. 4.27) normalised,
+        A(d, R) the lens area (eq. 4.9).
+
+        The pieces where A is a closed form are closed: R ≤ 1 − d (the circle inside the disk,
+        A = πR², q/A = s³e^{−sR}/(2π P(2, s))) and R ≥ 1 + d (A = π, ∫ q = ΔF).  Between them the lens
+        is general; there ∫ runs over [1 − d, 1] and [1, 1 + d] (q has a kink at R = 1) in
+        w = e^{−sR} (q dR ∝ R̂² dw, R̂ = min(R, 1), so that e^{−sR} needs no nodes), with
+        w = w_a + (w_b − w_a)(3t² − 2t³) (which flattens A's (R − R_end)^{3/2} at the ends where
+        the circles touch) and :data:`EXACT_PDF_NODES` Gauss–Legendre nodes in t per piece.
+        Relative error against adaptive quadrature (scipy ``quad``, rtol 1e-12) at 480 random
+        (s, d, m), s ∈ {0.5 … 512}: ≤ 5e-5 (tests/physics/test_patch_exact_density.py); the
+        Dr.Jit twin (``brdfs_patch_exponential``, ``strategy = "normal"``) uses the same nodes.
+        """
+        d, m = np.broadcast_arrays(np.asarray(d, float), np.asarray(m, float))
+        s = float(self.s)
+        profile = patch.ExponentialProfile(s)
+        p_diffuse = 1.0 - float(profile.cdf(2.0)) if s > 0 else 1.0
+        if s == 0:                                   # all the weight is the Dirac at R = 2: cosine
+            return np.full(d.shape, 1.0 / np.pi)
+        scale = s * s / (2.0 * gammainc(2.0, s))     # q(R) = s R̂² e^{−sR} · scale
+        inside = np.where(m < 1.0 - d, scale * (np.exp(-s * m) - np.exp(-s * (1.0 - d))) / np.pi, 0.0)
+        covers = (float(profile.cdf(2.0)) - profile.cdf(np.clip(np.maximum(m, 1.0 + d), 0.0, 2.0))) / np.pi
+        total = inside + covers + p_diffuse / np.pi
+        t, weights = _exact_pdf_nodes()
+        smooth, slope = t * t * (3.0 - 2.0 * t), 6.0 * t * (1.0 - t)
+        one = np.ones_like(d)
+        for lo, hi in ((1.0 - d, one), (one, np.minimum(1.0 + d, 2.0))):
+            a = np.maximum(lo, m)
+            b = np.maximum(hi, a)
+            wa, wb = np.exp(-s * a), np.exp(-s * b)
+            w = wa[..., None] + (wb - wa)[..., None] * smooth
+            R = np.clip(-np.log(w) / s, a[..., None], b[..., None])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                h = np.minimum(R, 1.0) ** 2 / _lens_area(d[..., None], R)
+            total = total + scale * (wa - wb) * np.sum(weights * slope * np.nan_to_num(h), axis=-1)
+        return total
+
+
+#: Gauss–Legendre nodes per piece of :meth:`PatchExponential.exact_area_density` (≤ 5e-5 relative;
+#: 12 nodes give 5e-6 at 1.5× the cost).  The Dr.Jit twin reads them from here.
+EXACT_PDF_NODES = 8
+
+
+def _lens_area(d, R):
+    """Area of C(Q, R) ∩ unit disk, |Q| = d, in the general case |1 − R| < d < 1 + R (eqs. 4.9/4.10):
+    the angles of :func:`patch_geometry.circle_intersection` without its rounding bound, and the
+    segment t − sin t cos t = (x − sin x)/2, x = 2t, by Horner's scheme of its series below x = 1/4
+    (the density's quadrature evaluates it 16 times a direction)."""
+    prod = (1.0 + d + R) * (d + R - 1.0) * (1.0 - d + R) * (1.0 + d - R)
+    four_delta = np.sqrt(np.maximum(prod, 0.0))
+    alpha = np.arctan2(four_delta, d * d + (1.0 - R) * (1.0 + R))
+    beta = np.arctan2(four_delta, d * d + (R - 1.0) * (R + 1.0))
+    return _segment(alpha) + R * R * _segment(beta)
+
+
+def _segment(t):
+    x = 2.0 * t
+    x2 = x * x
+    series = x * x2 * (1 / 6 - x2 * (1 / 120 - x2 * (1 / 5040 - x2 * (1 / 362880 - x2 / 39916800))))
+    return 0.5 * np.where(x < 0.25, series, x - np.sin(x))
+
+
+def _exact_pdf_nodes():
+    """Gauss–Legendre nodes t ∈ [0, 1] and weights (summing to 1) of :data:`EXACT_PDF_NODES` points."""
+    x, w = np.polynomial.legendre.leggauss(EXACT_PDF_NODES)
+    return 0.5 * (x + 1.0), 0.5 * w
 
 
 @dataclass(frozen=True)

@@ -62,6 +62,9 @@ class _PhongFamily(BRDF):
             object.__setattr__(self, "C", float(phong_constant(self.n)))
         check_positive("C", self.C)
 
+    #: (R·V)⁺ⁿ: nothing where R·V < 0, beyond the reach of its lobe about R.
+    zero_beyond_lobe = True
+
     @property
     def lobe(self):
         return PowerCosine(self.n, MIRROR)

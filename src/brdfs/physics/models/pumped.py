@@ -108,6 +108,10 @@ class Pumped(BRDF):
         return self.base.kink_at_normal
 
     @property
+    def zero_beyond_lobe(self):
+        return self.base.zero_beyond_lobe
+
+    @property
     def symmetric_about_incidence_plane(self):
         return self.base.symmetric_about_incidence_plane
 

@@ -40,6 +40,7 @@ from brdfs.physics.lobes import MicrofacetLobe
 from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.sampling import REJECTED
 from brdfs.physics.fresnel import unpolarised_reflectance
+from brdfs.physics.geometry import cos_incidence
 from brdfs.physics.models.base import BRDF, check_positive, exact, non_negative, positive, table_field, register
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
 
@@ -262,6 +263,26 @@ class _SmithMicrofacet(BRDF):
         f_avg = self.fresnel_average()
         e_avg = self.energy_table()[1].value
         return f_avg ** 2 * e_avg / (1.0 - f_avg * (1.0 - e_avg))
+
+    @property
+    def has_evaluation_error(self):
+        return self.compensation == "kulla_conty" or super().has_evaluation_error
+
+    def evaluation_error(self, theta_deg, albedo):
+        """The E table's share of the compensated albedo's error.  With Ẽ the table (|Ẽ − E| ≤ ε) and
+        Ẽ_avg its exact cosine-weighted average, ∫ f̃_ms μ_V dω_V = F̃_ms (1 − Ẽ(μ_L)) exactly (module
+        docstring), against F_ms (1 − E(μ_L)) for the exact E:
+        |Δ| ≤ F_ms ε + (1 − Ẽ_L + ε) |ΔF_ms|, |ΔF_ms| ≤ ε F_avg² (1 − F_avg) / (1 − F_avg (1 − Ẽ_avg + ε))²
+        (dF_ms/dE_avg, zero for F = 1)."""
+        out = super().evaluation_error(theta_deg, albedo)
+        if self.compensation != "kulla_conty":
+            return out
+        table, e_avg = self.energy_table()
+        eps = table.error
+        one_minus_el = np.clip(1.0 - table(cos_incidence(np.asarray(theta_deg, float))), 0.0, 1.0)
+        f_avg = self.fresnel_average()
+        d_fms = eps * f_avg ** 2 * (1.0 - f_avg) / max(1.0 - f_avg * (1.0 - e_avg.value + eps), 1e-300) ** 2
+        return out + self.fresnel_ms() * eps + (one_minus_el + eps) * d_fms
 
     def table_error(self):
         """Absolute error bound of the E table (interpolation + engine); 0 without compensation."""

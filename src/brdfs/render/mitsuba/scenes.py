@@ -14,8 +14,7 @@ point light of intensity I becomes L_e = I / (π r²), with r = :data:`LIGHT_RAD
 Geometry where the thesis has it: real pyramids (a five-vertex mesh, 2.8 and 3.11), the tank as a
 box hull with a capped cylinder turret and a barrel, a *head substitute* (Fig. 3.11's Beethoven
 bust: a sphere on a capped cylindrical neck on a box plinth, a bust's silhouette), and
-:func:`teapot` — a sphere stand-in until the tessellated Newell teapot lands behind the same
-function.
+:func:`teapot` — the Utah teapot tessellated from Newell's Bézier patches (:mod:`.geometry`).
 """
 from __future__ import annotations
 
@@ -161,7 +160,7 @@ def light_radiance(intensity, radius=LIGHT_RADIUS):
     return np.asarray(intensity, float) / (np.pi * radius * radius)
 
 
-def camera_dict(camera: Camera, rfilter="box") -> dict:
+def camera_dict(camera: Camera, rfilter="box", sampler="independent") -> dict:
     import mitsuba as mi
 
     return {"type": "perspective", "fov": float(camera.fov_deg), "fov_axis": "y",
@@ -169,7 +168,7 @@ def camera_dict(camera: Camera, rfilter="box") -> dict:
                                                        up=list(camera.up)),
             "film": {"type": "hdrfilm", "width": int(camera.width), "height": int(camera.height),
                      "pixel_format": "rgb", "rfilter": {"type": rfilter}},
-            "sampler": {"type": "independent"}}
+            "sampler": {"type": sampler}}
 
 
 def _key(label: str, k: int) -> str:
@@ -177,11 +176,11 @@ def _key(label: str, k: int) -> str:
     return f"{label.replace('.', '_')}#{k}"
 
 
-def to_dict(scene: Scene, camera: Camera, integrator: dict) -> dict:
-    """The Mitsuba scene dictionary (objects, light spheres, sky, camera, integrator)."""
+def to_dict(scene: Scene, camera: Camera, integrator: dict, sampler: str = "independent") -> dict:
+    """The Mitsuba scene dictionary (objects, light spheres, sky, camera with Mitsuba's ``sampler``, integrator)."""
     import mitsuba as mi
 
-    out = {"type": "scene", "integrator": dict(integrator), "sensor": camera_dict(camera)}
+    out = {"type": "scene", "integrator": dict(integrator), "sensor": camera_dict(camera, sampler=sampler)}
     for obj in scene.objects:
         bsdf = mi.load_dict(obj.bsdf)
         bsdf.set_id(obj.label)
@@ -204,11 +203,11 @@ def to_dict(scene: Scene, camera: Camera, integrator: dict) -> dict:
     return out
 
 
-def load(scene: Scene, camera: Camera, integrator: dict):
+def load(scene: Scene, camera: Camera, integrator: dict, sampler: str = "independent"):
     """The loaded Mitsuba scene; each object's BSDF keeps its label as id (:func:`object_labels`)."""
     import mitsuba as mi
 
-    loaded = mi.load_dict(to_dict(scene, camera, integrator))
+    loaded = mi.load_dict(to_dict(scene, camera, integrator, sampler))
     labels = {_key(obj.label, 0).split("#")[0]: obj.label for obj in scene.objects}
     labels["light"] = "light"
     for shape in loaded.shapes():

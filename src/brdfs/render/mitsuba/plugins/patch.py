@@ -36,10 +36,13 @@ Strategies (section 4.2.4; Figure 4.9 renders metal spheres with the first three
   such a lane returns weight 0 (it is counted, see below), a relative bias below float32's 2⁻²⁴.
   For ``patch_exponential``, R = F⁻¹(sample1) first; the weight is then W a_R(L), the *conditional*
   weight given R: E[weight g(V)] = ∫ f g dA for every g, so the estimate is exact in expectation
-  under any MIS weights that sum to one.  The marginal density of V (a 1-D integral over R) has no
-  closed form; :meth:`PatchExponentialBSDF.pdf` reports f cos θ_V / W (the accept/reject density)
-  as the MIS proxy, and the plugin refuses ``diffuse_reflectance`` with this strategy (a one-sample
-  mixture over lobes needs the true pdf).
+  under any MIS weights that sum to one.  :meth:`PatchExponentialBSDF.pdf` is the marginal density
+  of V, Q(m, d) cos θ_V with Q = ∫_m² q(R)/A(d, R) dR + p_Diffuse/π — the model's own ``exact``
+  strategy (:meth:`brdfs.physics.models.patch.PatchExponential.exact_area_density`, closed pieces
+  and Gauss–Legendre nodes on the general lenses, relative error ≤ 5e-5), twinned by
+  :func:`exponential_exact_density`; the pdf serves MIS and the chi-square test, the weight stays
+  the exact conditional one, so the quadrature's error cannot bias an image.  With
+  ``diffuse_reflectance`` the one-sample mixture over the lobes weighs by f cos/pdf of the mixture.
 
 Groove direction (``patch_elliptical``): the ellipse's major axis u = (cos φ_u, sin φ_u, 0) (φ_u =
 ``u_angle_deg`` from the shading frame's x = dp/du) is where the highlight stretches; a highlight on
@@ -52,7 +55,9 @@ Costs (Figure 4.9's CSV: samples, BRDF evaluations, rays per pixel).  With ``cou
 plugin adds, per call of :meth:`sample` on an active lane, to the UInt32 array ``costs`` =
 [samples, tries, evaluations]: one sample; the points drawn (1 for cosine and accept/reject, the
 tries of the loop for normal); the BRDF (or albedo) evaluations its weight needs (cosine 1,
-accept/reject 0, normal 1), and to ``failures`` the lanes the normal loop gave up on.
+accept/reject 0, normal 1), and to ``failures`` the lanes the normal loop gave up on.  Every active
+lane of :meth:`~PatchBSDF.eval` and :meth:`~PatchBSDF.eval_pdf` — the evaluations next-event
+estimation makes, one per light sample that reaches the surface — adds one evaluation too.
 :meth:`PatchBSDF.cost_counts` reads them as a dict (:meth:`PatchBSDF.reset_costs` clears them).
 Uniform numbers drawn = 2 × tries (+ 1 per sample for the mixture's R).  A ray is cast per sample
 whose weight is not 0 (the integrator counts those).  Without ``count`` nothing is recorded; the
@@ -68,6 +73,7 @@ import numpy as np
 from scipy.special import gammainc
 
 from brdfs.physics.models import model as numpy_model
+from brdfs.physics.models.patch import _exact_pdf_nodes
 from brdfs.render.mitsuba.plugins._common import (ModelBSDF, cosine_pdf, from_model, read_float,
                                                   sample_cosine, to_model)
 
@@ -122,6 +128,11 @@ def _segment(t):
 def lens_area(d, R):
     """Area of C(Q, R) ∩ unit disk, |Q| = d (eqs. 4.9/4.10 with Kahan's Heron formula, as
     :func:`brdfs.physics.patch_geometry.circle_intersection`), computed in float64, returned as Float."""
+    return mi.Float(lens_area64(d, R))
+
+
+def lens_area64(d, R):
+    """:func:`lens_area` in float64 (Float64)."""
     d, R = mi.Float64(d), mi.Float64(R)
     one = mi.Float64(1.0)
     a = dr.maximum(dr.maximum(one, R), d)
@@ -135,7 +146,7 @@ def lens_area(d, R):
     apart = d >= 1.0 + R
     alpha = dr.select(apart, 0.0, dr.select(nested, dr.select(R <= 1.0, 0.0, dr.pi), alpha))
     beta = dr.select(apart, 0.0, dr.select(nested, dr.select(R <= 1.0, dr.pi, 0.0), beta))
-    return mi.Float(_segment(alpha) + R * R * _segment(beta))
+    return _segment(alpha) + R * R * _segment(beta)
 
 
 def fresnel_cosine_prime(L, V):
@@ -237,6 +248,44 @@ def exponential_radius(r, s, norm, p_diffuse, table):
     return mi.Float(R)
 
 
+def exponential_exact_density(d, m, s, norm, p_diffuse):
+    """Q(m, d) = ∫_m² q(R)/A(d, R) dR + p_Diffuse/π, the density per unit area of the base plane of the
+    "normal" sampler of the mixture (Float64 in, Float64 out): the twin of
+    :meth:`brdfs.physics.models.patch.PatchExponential.exact_area_density` — the same closed pieces
+    and the same Gauss–Legendre nodes (``EXACT_PDF_NODES`` per piece, read from the model's module),
+    summed by a ``dr.while_loop`` over the nodes of both pieces (one loop body to compile)."""
+    d, m = mi.Float64(d), mi.Float64(m)
+    scale = s * s / (2.0 * norm)
+    inside = dr.select(m < 1.0 - d, scale * (dr.exp(-s * m) - dr.exp(-s * (1.0 - d))) / dr.pi, 0.0)
+    covers = (1.0 - p_diffuse - exponential_cdf(dr.clip(dr.maximum(m, 1.0 + d), 0.0, 2.0), s, norm)) / dr.pi
+    t, weights = _exact_pdf_nodes()
+    count = len(t)
+    smooth = mi.Float64(np.tile(t * t * (3.0 - 2.0 * t), 2))
+    factor = mi.Float64(np.tile(weights * 6.0 * t * (1.0 - t), 2))
+    ends = []                                        # (a, b, w_a, w_b) of [1 − d, 1] and [1, 1 + d]
+    for lo, hi in ((1.0 - d, mi.Float64(1.0)), (mi.Float64(1.0), dr.minimum(1.0 + d, 2.0))):
+        a = dr.maximum(lo, m)
+        b = dr.maximum(hi, a)
+        ends.append((a, b, dr.exp(-s * a), dr.exp(-s * b)))
+    k = mi.UInt32(0)
+    total = inside + covers + p_diffuse / dr.pi
+
+    def pending(k, total):
+        return k < 2 * count
+
+    def add_node(k, total):
+        first = k < count
+        a, b, wa, wb = (dr.select(first, x, y) for x, y in zip(*ends))
+        w = wa + (wb - wa) * dr.gather(mi.Float64, smooth, k)
+        R = dr.clip(-dr.log(w) / s, a, b)
+        area = lens_area64(d, R)
+        h = dr.select(area > 0.0, dr.square(dr.minimum(R, 1.0)) / area, 0.0)
+        return k + 1, total + scale * (wa - wb) * dr.gather(mi.Float64, factor, k) * h
+
+    k, total = dr.while_loop((k, total), pending, add_node)
+    return total
+
+
 # --- the plugins -----------------------------------------------------------------------------------------
 
 class PatchBSDF(ModelBSDF):
@@ -290,6 +339,22 @@ class PatchBSDF(ModelBSDF):
             dr.scatter_reduce(dr.ReduceOp.Add, self.costs, dr.select(active, mi.UInt32(value), 0), zero + slot)
         gave_up = active & ~kept & (mi.UInt32(tries) >= MAX_TRIES)
         dr.scatter_reduce(dr.ReduceOp.Add, self.failures, dr.select(gave_up, mi.UInt32(1), 0), zero)
+
+    def eval(self, ctx, si, wo, active=True):
+        self._count_evaluations(active, wo)
+        return super().eval(ctx, si, wo, active)
+
+    def eval_pdf(self, ctx, si, wo, active=True):
+        self._count_evaluations(active, wo)
+        return super().eval_pdf(ctx, si, wo, active)
+
+    def _count_evaluations(self, active, wo):
+        """One BRDF evaluation per active lane of :meth:`eval` / :meth:`eval_pdf` (next-event estimation)."""
+        if not self.count:
+            return
+        lanes = dr.zeros(mi.UInt32, dr.width(wo))
+        active = mi.Bool(active) & (lanes == 0)          # (broadcast to the lanes of wo)
+        dr.scatter_reduce(dr.ReduceOp.Add, self.costs, dr.select(active, mi.UInt32(1), 0), lanes + 2)
 
     def cost_counts(self) -> dict:
         """``{"samples", "tries", "evaluations", "failures"}`` counted since the last :meth:`reset_costs`."""
@@ -389,9 +454,6 @@ class PatchExponentialBSDF(PatchBSDF):
 
     def __init__(self, props):
         super().__init__(props)
-        if self.strategy == "normal" and self.diffuse is not None:
-            raise ValueError(f"{props.plugin_name()}: strategy = 'normal' takes no diffuse_reflectance "
-                             "(its pdf is a proxy; one-sample MIS over lobes needs the true pdf)")
         s = float(self.brdf.s)
         profile_c_max = self.brdf.C / self.brdf.total_weight
         self.s = dr.opaque(mi.Float, s)
@@ -406,8 +468,15 @@ class PatchExponentialBSDF(PatchBSDF):
         return self.C * dr.exp(-self.s * projected_distance(L, V))
 
     def own_pdf(self, L, V, active):
-        """f cos θ_V / W: the exact density of ``accept_reject`` (the model's ``_pdf``) and the MIS proxy of ``normal``."""
-        return self.lobe_eval(L, V, active) * V.z / self.W
+        """``accept_reject``: f cos θ_V / W (the model's ``russian_roulette`` pdf); ``normal``: Q(m, d) cos θ_V
+        (the model's ``exact`` pdf, :func:`exponential_exact_density`; cos θ_V / π where s = 0)."""
+        if self.strategy != "normal":
+            return self.lobe_eval(L, V, active) * V.z / self.W
+        if self.brdf.s == 0:
+            return V.z / dr.pi
+        d = dr.sqrt(mi.Float64(L.x * L.x + L.y * L.y))
+        Q = exponential_exact_density(d, mi.Float64(projected_distance(L, V)), self.s64, self.norm, self.p_diffuse)
+        return mi.Float(Q) * V.z
 
     def radius(self, u):
         """R = F⁻¹(u) of the mixture's weight (eq. 4.27)."""
