@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import time
 
 import numpy as np
@@ -78,14 +79,11 @@ def main(argv=None) -> None:
         cells = " ".join(f"{r.p95_relative_se:.4f}/{int(r.fireflies)}@{int(r.spp)}" for r in per_panel.itertuples())
         print(f"{name:32s} cpu {cpu:6.1f} s  p95/fireflies@spp {cells}", flush=True)
         if args.maps:
-            import os
             os.makedirs(args.maps, exist_ok=True)
             for k, (passes, ids) in enumerate(store):
                 np.savez_compressed(f"{args.maps}/{name}_{k}.npz", rse=metrics.relative_standard_error(passes),
                                     mean=passes.mean(axis=0), ids=ids,
                                     mask=metrics.object_pixels(ids, passes.mean(axis=0)))
-            df.drop(columns=[c for c in df.columns if df[c].dtype == object and c not in ("object",)],
-                    errors="ignore")
             df.to_csv(f"{args.maps}/{name}.csv", index=False)
     print(f"{'total':32s} cpu {total:6.1f} s")
 

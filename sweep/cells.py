@@ -343,7 +343,8 @@ def truth(family_name: str, params: dict, theta: float, tables: dict | None = No
     if family.model == "oren_nayar":
         p = {**family.fixed_dict, **params}
         value = ind.oren_nayar_albedo(p["rho"], p["sigma"], theta)
-        return Truth(value, 16 * np.finfo(float).eps * abs(value), "closed_form+independent")
+        exact = p["sigma"] == 0.0               # B = 0 and A = 1 exactly: a = ρ, to the bit
+        return Truth(value, 0.0 if exact else 16 * np.finfo(float).eps * abs(value), "closed_form+independent")
     t = hemisphere_albedo(_independent(family, params, model), theta)
     t.route += "+independent" + ("+table" if needs_table(family) else "")
     return t

@@ -151,18 +151,27 @@ def markdown(summary: pd.DataFrame, rows: pd.DataFrame, default: str) -> str:
     return "\n".join(lines) + "\n"
 
 
-def check(truths: pd.DataFrame, methods=METHODS, rtols=RTOLS, workers=2) -> pd.DataFrame:
-    """Every row of the check for the cells of ``truths``, classified (:func:`classify`)."""
+def check(truths: pd.DataFrame, methods=METHODS, rtols=RTOLS, workers=2, partial=None) -> pd.DataFrame:
+    """Every row of the check for the cells of ``truths``, classified (:func:`classify`).  The groups
+    run in a seeded random order; with ``partial`` (a path) every group's rows are appended there as
+    they come, so that an interrupted run can still be summarised (``--merge``)."""
     groups = [(fam, par, list(g["theta_deg"]), tuple(methods), tuple(rtols))
               for (fam, par), g in truths.groupby(["family", "params"], sort=False)]
+    groups = [groups[i] for i in np.random.default_rng(0).permutation(len(groups))]
     rows = []
+
+    def keep(part):
+        rows.extend(part)
+        if partial is not None and part:
+            pd.DataFrame(part).to_csv(partial, mode="a", header=not Path(partial).exists(), index=False,
+                                      float_format="%.17g")
     if workers > 1:
         with Pool(workers) as pool:
             for part in pool.imap_unordered(run_group, groups):
-                rows += part
+                keep(part)
     else:
         for g in groups:
-            rows += run_group(g)
+            keep(run_group(g))
     rows = pd.DataFrame(rows)
     merged = rows.merge(truths[["family", "params", "theta_deg", "truth", "truth_err"]],
                         on=["family", "params", "theta_deg"], how="left")
@@ -181,17 +190,25 @@ def main(argv=None):
     args = parser.parse_args(argv)
     t0 = time.time()
     if args.merge:
-        rows = classify(pd.concat([pd.read_csv(f) for f in args.merge], ignore_index=True)
-                        .drop(columns=["true_err", "ratio", "dishonest", "judged", "verdict"], errors="ignore"))
+        rows = (pd.concat([pd.read_csv(f) for f in args.merge], ignore_index=True)
+                .drop(columns=["true_err", "ratio", "dishonest", "judged", "verdict", "truth", "truth_err"], errors="ignore")
+                .drop_duplicates(["family", "params", "theta_deg", "method", "rtol"], keep="last"))
+        truths = pd.read_csv(args.truths)
+        rows = classify(rows.merge(truths[["family", "params", "theta_deg", "truth", "truth_err"]],
+                                   on=["family", "params", "theta_deg"], how="left"))
     else:
         truths = pd.read_csv(args.truths)
         if args.limit:
             truths = truths.sample(n=min(args.limit, len(truths)), random_state=1).sort_index()
-        rows = check(truths, methods=tuple(args.methods.split(",")), workers=args.workers)
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "sweep_rows.partial.csv").unlink(missing_ok=True)
+        rows = check(truths, methods=tuple(args.methods.split(",")), workers=args.workers,
+                     partial=out / "sweep_rows.partial.csv")
     summary = summarise(rows)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    rows.to_csv(out / "sweep_rows.csv", index=False, float_format="%.17g")
+    rows.drop(columns=["truth", "truth_err"]).to_csv(out / "sweep_rows.csv", index=False, float_format="%.17g")
     summary.to_csv(out / "sweep_summary.csv", index=False)
     (out / "sweep_summary.md").write_text(markdown(summary, rows, default_method()))
     print(summary.groupby("method")[["rows", "judged", "dishonest", "unjudged", "no_answer", "refused"]].sum())

@@ -482,6 +482,12 @@ def disk_albedo(xi, theta_deg, radial_kinks=(), radial_scales=(), ellipse_radius
         w = math.sqrt(2.0 * max(1.0 - s, 1e-300))
         near = [math.pi - w * k for k in (0.25, 0.5, 1, 2, 4, 8, 16, 32, 64) if w * k < 1.0]
         points += near + ([math.pi + (math.pi - x) for x in near] if not symmetric else [])
+    if cl < 0.1:    # ρ_max(ψ) = s cos ψ + √(1 − s² sin² ψ) has a √ layer of width ~cos θ about ψ = π/2
+        # (the root's minimum cos θ there): cuts graded into it, so that the outer quad does not find
+        # the layer by bisection alone (a precaution; the truths from 03:45 on were computed with them)
+        for centre in ((0.5 * math.pi,) if symmetric else (0.5 * math.pi, 1.5 * math.pi)):
+            points += [centre + sign * cl * k for k in 2.0 ** np.arange(-8, 9) for sign in (-1.0, 1.0)
+                       if cl * k < 0.5]
     edges = np.unique(np.concatenate([[0.0], [p for p in points if 0 < p < top], [top]]))
     value, error, notes = _outer_quad(lambda psis: np.array([inner(p) for p in psis]), edges, epsrel)
     factor = 2.0 if symmetric else 1.0

@@ -288,7 +288,38 @@ def phong_cosmin_truth_mp(n, theta_deg, dps=30):
     return float(mp.quad(inner, points))
 
 
+def oren_nayar_truth_mp(rho, sigma, theta_deg, dps=50):
+    """Qualitative Oren–Nayar (Oren & Nayar 1994, eq. 30): the azimuth integrates to
+    ∫ max(0, cos Δφ) dΔφ = 2, so a = ρA + (2ρB/π)[sin θ (θ/2 − sin 2θ/4) + tan θ (1 − sin³θ)/3]
+    (θ_V below θ: α = θ, β = θ_V; above: α = θ_V, β = θ), in mpmath at ``dps`` digits."""
+    mp.mp.dps = dps
+    s2 = mp.mpf(sigma) ** 2
+    A, B = 1 - s2 / 2 / (s2 + mp.mpf("0.33")), mp.mpf("0.45") * s2 / (s2 + mp.mpf("0.09"))
+    t = mp.mpf(theta_deg) * mp.pi / 180
+    below = mp.sin(t) * (t / 2 - mp.sin(2 * t) / 4)
+    above = mp.tan(t) * (1 - mp.sin(t) ** 3) / 3
+    return float(mp.mpf(rho) * A + 2 * mp.mpf(rho) * B / mp.pi * (below + above))
+
+
+def ggx_truth(alpha, theta_deg):
+    """GGX with the height-correlated Smith G2 and F = 1 (Walter et al. 2007; Heitz 2014), by the
+    sweep's third route (``sweep/third_route.py``, nested quadrature in the half-vector frame, and the
+    BRDF rewritten in ``sweep/independent.py``; neither imports brdfs)."""
+    import sys
+    from pathlib import Path
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+    from sweep import independent as ind
+    from sweep.third_route import Integrand, hemisphere_albedo
+    ks = tuple(np.geomspace(0.1, 1e4, 26))
+    f = ind.smith_microfacet("ggx", alpha, "height_correlated")
+    nv = lambda nl: tuple(k * alpha for k in (1 / 16, 1 / 4, 1.0, 4.0) if k * alpha < 1)
+    return hemisphere_albedo(Integrand(f, "half", [float(np.arctan(alpha * k)) for k in ks], nv_levels=nv),
+                             theta_deg).value
+
+
 REPRODUCERS_MP = {
+    "oren_nayar rho=0.988493 sigma=1.311723 theta=89.7": lambda: oren_nayar_truth_mp(0.988493, 1.311723, 89.7),
+    "oren_nayar rho=0.988493 sigma=1.311723 theta=89.791779": lambda: oren_nayar_truth_mp(0.988493, 1.311723, 89.791779),
     "cook_torrance ts m=0.005 theta=90-1e-9": lambda: cook_torrance_truth_mp(0.005, "torrance_sparrow", 90 - 1e-9),
     "cook_torrance none m=0.005 theta=87.745827": lambda: cook_torrance_truth_mp(0.005, "none", 87.745827),
     "cook_torrance ts m=1 theta=85": lambda: cook_torrance_truth_mp(1.0, "torrance_sparrow", 85.0),
@@ -300,7 +331,16 @@ REPRODUCERS_MP = {
 }
 
 
+REPRODUCERS_THIRD_ROUTE = {
+    "ggx height_correlated alpha=0.700492 theta=90-1e-7": lambda: ggx_truth(0.700492, 90 - 1e-7),
+    "ggx height_correlated alpha=0.700492 theta=90-1e-8": lambda: ggx_truth(0.700492, 90 - 1e-8),
+    "ggx height_correlated alpha=0.700492 theta=90-1e-9": lambda: ggx_truth(0.700492, 90 - 1e-9),
+}
+
+
 if __name__ == "__main__":
+    for name, fn in REPRODUCERS_THIRD_ROUTE.items():
+        print(f"sweep   {name:45s} {fn()!r}", flush=True)
     for name, fn in REPRODUCERS.items():
         print(f"quad    {name:45s} {fn()!r}", flush=True)
     for name, fn in REPRODUCERS_MP.items():

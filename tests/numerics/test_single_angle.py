@@ -50,3 +50,28 @@ def test_a_methods_options_are_read_once_per_method():
     method = front_door.ALBEDO_METHODS["product_grid"]
     assert method_options(method) is method_options(method)
     assert list(method_options(method)) == ["n"]
+
+
+@pytest.mark.parametrize("name, params", [("phong", {"n": 150}), ("phong_cosmin", {"n": 128}), ("ward", {"m": 0.1})])
+def test_one_angle_meets_a_tight_tolerance_on_its_first_partition(monkeypatch, name, params):
+    """At rtol 1e-10 the tail graded by half decades (``TIGHT_SINGLE_ANGLE_TAIL``) leaves no interval
+    to refine: one evaluation of the integrand, and a value within its error of a 1e-13 one."""
+    brdf = model(name, **params)
+    tight = azimuthal.albedo_many([brdf], np.array([48.5]), rtol=1e-13)
+    est, rounds = _rounds(monkeypatch, brdf, 48.5, 1e-10)
+    assert rounds == 1
+    assert est.status[0] == "converged"
+    assert abs(est.value[0] - tight.value[0]) <= est.error[0] + tight.error[0]
+
+
+@pytest.mark.parametrize("name, params", [("phong", {"n": 150}), ("blinn_cosmin", {"n": 2}), ("ward", {"m": 0.1}),
+                                          ("cook_torrance", {"m": 0.1}), ("ggx", {"alpha": 0.3})])
+@pytest.mark.parametrize("theta", [0.0, 48.5, 89.99999, 90.0])
+def test_one_float_angle_answers_as_an_array_of_one_angle_does(name, params, theta):
+    """The lean single-angle door (``_one_angle_in_closed_form``) gives what the general path gives
+    an array of one angle, to the bit: value, error, status, route and evaluations."""
+    brdf = model(name, **params)
+    one, array = front_door.albedo(brdf, theta, rtol=1e-8), front_door.albedo(brdf, [theta], rtol=1e-8)
+    assert np.shape(one.value) == np.shape(one.status) == np.shape(one.route) == ()
+    assert (float(one.value), float(one.error), str(one.status), str(one.route), one.evaluations) == (
+        float(array.value[0]), float(array.error[0]), str(array.status[0]), str(array.route[0]), array.evaluations)

@@ -27,6 +27,10 @@ RTOL = 1e-8
 #: Families the engine refuses (no lobe of its own and no albedo route, or not symmetric about
 #: the plane of incidence): only the disk is held to them.
 METHODS = ("engine", "disk")
+#: Dishonest cells found by the sweep and still open, each held by a strict xfail reproducer in
+#: ``test_honesty_families.py``: (method, family, params) at the grazing angles 90° − 1e-7 and beyond.
+KNOWN_OPEN = {("engine", "ggx_height_correlated", '{"alpha": 0.700492}'):
+              "test_ggx_polar_route_is_honest_at_grazing_incidence"}
 
 
 def subset(truths: pd.DataFrame, n: int = N_CELLS, seed: int | None = None) -> pd.DataFrame:
@@ -68,7 +72,9 @@ def test_engine_and_disk_are_honest_on_a_seeded_subset_of_the_independent_sweep(
     rows = sweep_rows(cells)
     answered = rows[rows["verdict"] != "refused"]
     assert len(answered[answered["method"] == "disk"]) >= 0.9 * N_CELLS
-    bad = rows[rows["dishonest"]]
+    known = [(m, f, p) in KNOWN_OPEN and t >= 90 - 1e-7 for m, f, p, t in
+             zip(rows["method"], rows["family"], rows["params"], rows["theta_deg"])]
+    bad = rows[rows["dishonest"] & ~np.array(known, bool)]
     assert bad.empty, "dishonest (true error above reported error + truth error):\n" + bad[
         ["method", "family", "params", "theta_deg", "value", "error", "truth", "truth_err", "ratio"]].to_string()
 
@@ -117,3 +123,19 @@ def test_the_oren_nayar_closed_form_truth_agrees_with_a_nested_quad_of_its_rewri
                 for a, b in ((0.0, t), (t, np.pi / 2)) for pa, pb in ((0.0, np.pi / 2), (np.pi / 2, np.pi)))
     assert abs(value - ind.oren_nayar_albedo(rho, sigma, theta)) < 1e-11
     assert ind.oren_nayar_albedo(rho, 0.0, theta) == rho                       # σ = 0: Lambert
+
+
+def test_the_third_routes_disk_is_honest_in_the_square_root_layer_at_grazing_incidence():
+    """Near 90° the disk's rim ρ_max(ψ) has a √ layer of width cos θ about ψ = π/2, and the basic patch
+    R = 1 a jump at ρ = 1 that meets the rim: the truth within its own error of the lens area
+    (eqs. 4.7–4.9) in mpmath at 50 digits.  (The committed truth of this cell was 9.4e-13 off at a
+    reported 2.2e-14, computed by an earlier state of the route: the sweep called the package
+    dishonest there; the grazing disk truths are recomputed.)"""
+    import mpmath as mp
+    from sweep.cells import truth
+    mp.mp.dps = 50
+    d = mp.sin(mp.mpf(89.99) * mp.pi / 180)
+    a = mp.acos(d / 2)                           # R = 1: both arccos terms are acos(d/2)
+    exact = float((2 * a - d * mp.sqrt(4 - d * d) / 2) / mp.pi)
+    t = truth("patch_basic", {"R": 1.0}, 89.99)
+    assert abs(t.value - exact) <= t.error, (t.value, exact, t.error)

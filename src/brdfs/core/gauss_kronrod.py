@@ -162,7 +162,8 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         if n_el == 1:          # the same arithmetic on Python floats: a single element's round is mostly overhead
             (total_1,), (movable_1,), (high_1,), (extra_1,), (absval_1,) = (
                 x.tolist() for x in (total, movable, high, extra, absval))
-            budget_1 = _budget(max(rtol * abs(high_1), atol), extra_1 + 50 * _EPS * absval_1)
+            atol_1 = float(np.ravel(atol)[0]) if np.ndim(atol) else atol
+            budget_1 = _budget(max(rtol * abs(high_1), atol_1), extra_1 + 50 * _EPS * absval_1)
             budget = np.array([budget_1])
             cand = ~frozen if _still_open(total_1, movable_1, budget_1) else np.zeros(elem.size, bool)
         else:

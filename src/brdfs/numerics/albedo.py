@@ -470,6 +470,10 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     theta = np.asarray(theta_deg, float)
     rtol = DEFAULT_RTOL if rtol is None else rtol
     atol = DEFAULT_ATOL if atol is None else atol
+    if theta.ndim == 0 and method in ("auto", "engine") and not options:
+        fast = _one_angle_in_closed_form(model, float(theta), rtol, atol)
+        if fast is not None:
+            return fast
     with counting_evaluations() as count:
         est = _at_the_ends(_one_model_at_a_time(run, rtol, atol, options), [model] * theta.size, theta.ravel(),
                            rtol, atol, method)
@@ -478,6 +482,30 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
                    est.status.reshape(shape), est.route.reshape(shape))
     _report_not_converged(est, model, theta, method, rtol, atol, strict, warn)
     return est
+
+
+def _one_angle_in_closed_form(model, theta, rtol, atol):
+    """The commonest call — one exact model at one angle short of 90° by the engine's 1-D route
+    (:mod:`.integrate.azimuthal`) — without the per-element bookkeeping of :func:`_at_the_ends` and
+    :func:`_albedo_pairs` (≈ 0.13 ms, a third of such a call): the value, error, status, route and
+    evaluations they give, to the bit.  None wherever more could be at stake (90°, a model's tables'
+    error, its own route, a refusal, a value short of its tolerance): the general path answers."""
+    if theta >= 90.0 or model.has_evaluation_error or model.lobe is None or not azimuthal.supports(model):
+        return None
+    if not model.symmetric_about_incidence_plane or not (model.lobe.reaches_hemisphere or model.zero_beyond_lobe):
+        return None
+    if _engine_scheme(model)[0] is not azimuthal.albedo_many:
+        return None
+    angle = np.array([theta])
+    if model.albedo_estimate(angle, rtol, atol) is not None:
+        return None
+    with counting_evaluations() as count:
+        est = azimuthal.albedo_many([model], angle, rtol=rtol, atol=atol)
+        delta = model.delta_albedo(angle)
+    if est.status[0] != CONVERGED:
+        return None
+    return Estimate(np.asarray(est.value[0] + delta.value[0]), np.asarray(est.error[0] + delta.error[0]),
+                    count[0] + est.evaluations, np.asarray(CONVERGED), np.asarray("engine/azimuthal"))
 
 
 def _one_model_at_a_time(run, rtol, atol, options):

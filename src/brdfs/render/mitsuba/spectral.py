@@ -10,12 +10,25 @@ the same paths and the colour carries no extra noise). The eight channels then g
 sRGB through the CIE 1931 colour-matching functions of colour-science
 (:func:`brdfs.render.spectrum.linear_rgb`).
 
-Choice (against Mitsuba's ``llvm_ad_spectral``, which samples four wavelengths per path from the
-continuous spectrum and converts with its own CIE tables): the thesis's colour is eight bins through
-colour-science, which three RGB passes reproduce exactly; the spectral variant would add wavelength
-noise to every pixel's colour and would not use colour-science. The cost is three RGB passes per
-seed instead of eight monochrome ones (each pass costs what one r, g, b render of the scene costs;
-the ``llvm_ad_spectral`` variant, one pass, was not measured against it).
+Choice, by measurement (``benchmarks/render_spectral_route.py``: Fig. 3.9's panel, 640 × 400,
+64 spp in 8 passes, multijitter, caustics off; CPU seconds of ``time.process_time``, JIT included):
+
+==========================================  ========  ======================  =========
+route                                       CPU-s     p95 relative SE of Y    fireflies
+==========================================  ========  ======================  =========
+8 bins, three RGB passes (the third at 1/8)  11.4      0.0489                  0
+``llvm_ad_spectral`` (one pass, 4 λ/path)    9.5       0.0540                  0
+==========================================  ========  ======================  =========
+
+At equal noise the two cost the same (p95² × CPU-s: 0.0273 and 0.0277): the spectral variant's one
+pass is cheaper, but its sampled wavelengths add noise to Y. The eight bins are kept: they are the
+thesis's colour, converted by colour-science, and add no colour noise (every pass traces the same
+paths). The colours of the two routes differ, white-balanced on the gray floor, by 3-7 % on the
+spheres (copper 3 %, silver 6 %, gold 6 %, aluminium 7 % in the largest sRGB channel) and by 17 % on
+the tank (silver, n = 20); that difference (5 nm optical constants and Mitsuba's D65 emitters and
+CIE tables against 50 nm bins, an equal-energy white and colour-science) was not resolved further.
+The third pass (705/755 nm) is rendered at an eighth of the samples (:data:`PASS_SPP_FRACTION`):
+it costs 2.125 instead of 3 passes' time.
 """
 from __future__ import annotations
 
