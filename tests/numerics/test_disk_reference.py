@@ -52,7 +52,9 @@ def test_cook_torrance_eq_2_10_agrees_with_the_disk_reference_where_the_engine_m
         eng = albedo(models[i], t)
         assert abs(float(eng.value) - ref.value[i]) <= float(eng.error) + ref.error[i], (m, t)
         assert float(eng.error) <= 1e-10 * float(eng.value)
-        assert ref.error[i] < float(eng.error)           # the reference is the sharper of the two
+        # the reference is the sharper of the two, or both are within rounding of 1e-13 (the engine's
+        # closed-form azimuth reports 2.3e-14 at some of these cells, below the reference's floor)
+        assert ref.error[i] < max(float(eng.error), 1e-13 * ref.value[i])
 
 
 @pytest.mark.parametrize("name, params", [("patch_basic", {"R": 0.5}), ("patch_exponential", {"s": 8.0})])

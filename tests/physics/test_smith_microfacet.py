@@ -104,7 +104,7 @@ def test_gold_compensated_albedo_stays_below_the_walk_and_above_single_scatterin
     fresnel = lambda c: unpolarised_reflectance(c, GOLD["ior_re"], GOLD["ior_im"])  # noqa: E731
     value, err = random_walk(GGX(0.5), 60.0, 20_000, rng, fresnel=fresnel).albedo()
     single = float(albedo(model("ggx", alpha=0.5, **GOLD), 60.0, rtol=1e-8).value)
-    compensated = float(albedo(model("ggx", alpha=0.5, compensation="kulla_conty", **GOLD), 60.0, rtol=1e-8).value)
+    compensated = float(albedo(model("ggx", alpha=0.5, compensation="kulla_conty", **GOLD), 60.0, rtol=1e-4).value)
     assert single < compensated < value - 3 * err
     assert value - compensated < 0.05
 
@@ -143,7 +143,7 @@ def test_model_sampler_passes_a_chi_square_test_against_its_pdf(name, compensati
                                   bins=[z_edges, phi_edges])
     assert expected.sum() <= 1.0 + 1e-3           # the rest of the density lies below the horizon
     assert _chi_square_p(counts.ravel(), n * expected.ravel()) > 1e-4
-    engine = float(albedo(brdf, theta_deg, rtol=1e-8).value)
+    engine = float(albedo(brdf, theta_deg, rtol=1e-4).value)   # a compensated model's E table: ~5e-6
     assert abs(weight.mean() - engine) <= 4 * weight.std() / np.sqrt(n)
 
 

@@ -243,7 +243,8 @@ def _disk(model, theta, rtol, atol):
     est = disk_albedo_many([model] * theta.size, theta, rtol=rtol, atol=atol)
     met = _status(est.value, est.error, rtol, atol) == CONVERGED
     reason = np.where(np.asarray(est.status) == CONVERGED, STALLED, np.asarray(est.status, str))
-    return Estimate(est.value, est.error, 0, np.where(met, CONVERGED, reason), np.full(theta.size, "disk"))
+    evaluations = 0 if est.evaluations is None else est.evaluations
+    return Estimate(est.value, est.error, evaluations, np.where(met, CONVERGED, reason), np.full(theta.size, "disk"))
 
 
 def _auto(model, theta, rtol, atol):
@@ -586,8 +587,8 @@ def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
     by_model = float(np.ravel(model.evaluation_error(np.ravel(theta)[worst:worst + 1],
                                                      value.ravel()[worst:worst + 1]))[0]) if model.has_evaluation_error else 0.0
     if by_model > float(target.ravel()[worst]):
-        advice = (f"the model is known only to evaluation_rtol = {model.evaluation_rtol:.3g} with its evaluation_error "
-                  f"{by_model:.3g} there (its tables): ask rtol above that, or build it with finer tables")
+        advice = (f"a looser rtol: the model's own values (its tables) carry an error of {by_model:.3g} there, "
+                  "more than the tolerance asked for; or build it with finer tables")
     else:
         advice = ("method='disk'" if method != "disk" else "method='engine'") + " or a looser rtol"
     message = (f"albedo of {model.name!r} by method {method!r}: {int(short.sum())} of {status.size} values "

@@ -138,8 +138,8 @@ SINGLE_ANGLE_TAIL = np.concatenate([[0.75, 0.5, 0.25], 10.0 ** -np.arange(1.0, 3
 #: whole tail graded by half decades, 1 − t = 10^(−1), 10^(−1.5), ..., 10^(−12.5).  With decades the
 #: interval [1 − 10^(−3), 1 − 10^(−6)] alone kept K − G 1.4e-8 (Phong n = 150, 48.5°) and 1e-10 took
 #: 3 rounds; graded by half decades every interval meets its share of a 1e-10 budget on the first
-#: evaluation for Phong, the new model and Ward in most cases (1.2–1.6 rounds a call, was 3.0, with
-#: fewer evaluations in all: the refinement rounds it saves cost 32 intervals each).  Loose
+#: evaluation for Phong, the new model and Ward in most cases (1.1–1.4 rounds a call at 0°–89°, was
+#: 3.0, with fewer evaluations in all: the refinement rounds it saves cost 32 intervals each).  Loose
 #: tolerances keep the coarser :data:`SINGLE_ANGLE_TAIL`, which meets them in one round already.
 TIGHT_SINGLE_ANGLE_TAIL = np.concatenate([1.0 - np.arange(1, 16) / 16, 10.0 ** -np.arange(1.0, 13.0, 0.5)])
 #: The rtol below which a single angle starts from :data:`TIGHT_SINGLE_ANGLE_TAIL`.
