@@ -97,7 +97,7 @@ benchmark: llvm $(STAMP)
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.
 renders-final: llvm $(STAMP)
-	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full --config "renders={preset: final}" $(TARGETS))
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full --config batches=true "renders={preset: final}" $(TARGETS))
 
 # The six deliberate renderer faults of issue 23, each in a temporary copy; a named test must fail.
 check-mutations: llvm $(STAMP)
