@@ -9,9 +9,10 @@ treat: n to 1e4, m to 0.005, α to 0.01), plus the class's ``examples``.  Angles
 [0°, 90°) and 90° − 10⁻ᵏ, k = 1 … 9.
 
 The BRDF the truth integrates is written again in :mod:`sweep.independent` for every family
-but He–Torrance (its Kirchhoff series is the model's own, evaluated through the physics layer, at
-:data:`HE_TORRANCE_EPSREL`); ``pointwise_agreement`` holds each rewrite to the package's model at
-random directions.  Oren–Nayar (and Lambert, its σ = 0) has a closed-form albedo, derived from the
+(He–Torrance's too, on the projected disk); ``pointwise_agreement`` holds each rewrite to the package's
+model at random directions.  Where a sharper route exists (:mod:`sweep.sharp`: the patch models at 40
+digits, Kulla–Conty's closed form, He–Torrance's vectorised disk, the hemisphere families in long
+double) :func:`truth` takes it.  Oren–Nayar (and Lambert, its σ = 0) has a closed-form albedo, derived from the
 rewrite (:func:`sweep.independent.oren_nayar_albedo`; ``tests/numerics/test_sweep_subset.py`` holds it
 to a nested quadrature).  Models
 built with a table (pumped, Kulla–Conty) are built from the table stored in
@@ -48,10 +49,6 @@ SWEEP_BOUNDS = {"n": (0.5, 1.0e4), "m": (0.005, 1.0), "alpha": (0.01, 1.0), "p":
                 "rho": (0.0, 1.0), "sigma": (0.0, 0.5 * np.pi)}
 #: 90° − 10⁻ᵏ.
 GRAZING = tuple(90.0 - 10.0 ** -k for k in range(1, 10))
-#: Relative tolerance of He–Torrance's truths: at the third route's 1e-13 a cell costs ~500 s (its
-#: series is summed at every node); 1e-8 still judges the rtol 1e-4 and 1e-6 rows (a row is judged
-#: where truth_err ≤ error / 10) and leaves the 1e-8 and 1e-10 rows unjudged.
-HE_TORRANCE_EPSREL = 1e-8
 
 
 @dataclass(frozen=True)
@@ -106,10 +103,10 @@ FAMILIES = (
            grazing=GRAZING[::4]),
     Family("oren_nayar", "oren_nayar", ("rho", "sigma")),
     # He–Torrance (the directional-diffuse density integrated, plus the specular delta's closed form),
-    # by :func:`_he_torrance_truth` through its own (physics) Kirchhoff series at HE_TORRANCE_EPSREL:
-    # ~15 s of CPU a cell (~500 s at the third route's 1e-13), so its examples at three angles only
-    Family("he_torrance_total", "he_torrance", ("sigma0_um", "tau_um"), (("term", "total"),), n_params=2,
-           n_random_angles=1, grazing=(GRAZING[0], GRAZING[-1])),
+    # rewritten and integrated by :mod:`sweep.he_torrance` (vectorised disk quadrature, ~0.03–1.2 CPU-s a
+    # cell; H4, session 5): its two examples and four draws, at four random angles and 90° − 10⁻ᵏ
+    Family("he_torrance_total", "he_torrance", ("sigma0_um", "tau_um"), (("term", "total"),), n_params=6,
+           n_random_angles=4),
 )
 #: Families declared but left out of the committed sweep: He–Torrance's density alone (term 'dd'),
 #: the same integral as ``he_torrance_total`` without the delta's closed form.
@@ -297,49 +294,18 @@ def _patch_truth(family: Family, params: dict, model, theta: float) -> Truth:
     raise KeyError(family.name)
 
 
-def _he_torrance_truth(model, theta: float, epsrel: float = HE_TORRANCE_EPSREL) -> Truth:
-    """He–Torrance's density f_dd through the physics layer, on the projected disk (its lobe is a
-    function of r = |L_xy + V_xy| = ρ), with the horizon layer N·V ~ 2σ0/τ as inner cuts; plus the
-    specular delta's closed-form albedo for ``term='total'``."""
-    cl, s = incidence(theta)
-    L = np.array([s, 0.0, cl])
-    width = model.lambda_um / (np.pi * model.tau_um)
-    layer = 2.0 * model.sigma0_um / model.tau_um
-
-    def xi(rho, psi):
-        x, y = -s + rho * np.cos(psi), rho * np.sin(psi)
-        z = np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
-        V = np.stack([x, y, z], -1)
-        return model(np.broadcast_to(L, V.shape), V)
-
-    def psi_radii(psi):
-        out = []
-        for c in layer * 4.0 ** np.arange(-5, 2):
-            q = 1.0 - c * c - (s * np.sin(psi)) ** 2
-            if q > 0:
-                out.append(s * np.cos(psi) + np.sqrt(q))
-        return out
-
-    scales = [width * 2.0 ** k for k in range(-2, 8) if width * 2.0 ** k < 2]
-    truth = disk_albedo(xi, theta, radial_scales=scales, psi_radii=psi_radii, horizon_layer=True, epsrel=epsrel)
-    truth.error += 1e-13 * abs(truth.value)           # the series' truncation (SERIES_RTOL 1e-14) and EVAL_RTOL
-    delta = model.delta_albedo(theta)
-    truth.value += float(np.ravel(delta.value)[0])
-    truth.error += float(np.ravel(delta.error)[0])
-    truth.route = "quad/disk+model_eval"
-    return truth
-
-
 def truth(family_name: str, params: dict, theta: float, tables: dict | None = None) -> Truth:
     """The third route's a(θ) of a cell."""
     family = FAMILY[family_name]
     model = build(family_name, params, tables)
+    from sweep.sharp import sharp_truth         # H4, session 5: sharper routes where they exist (None: none)
+    sharp = sharp_truth(family, {**family.fixed_dict, **params}, theta, model)
+    if sharp is not None:
+        return sharp
     if family.model.startswith("patch") or family.model == "generalized_lambertian":
         t = _patch_truth(family, params, model, theta)
         t.route += "+independent"
         return t
-    if family.model == "he_torrance":
-        return _he_torrance_truth(model, theta)
     if family.model == "oren_nayar":
         p = {**family.fixed_dict, **params}
         value = ind.oren_nayar_albedo(p["rho"], p["sigma"], theta)
@@ -375,8 +341,9 @@ def pointwise_agreement(family_name: str, params: dict, n: int = 2000, seed: int
                   "generalized_lambertian": lambda: ind.generalized_lambert_xi(params["d"], model.m_clip, model.C),
                   "patch_mixture": lambda: ind.patch_mixture_xi(params["weight"], params["p_diffuse"])}[family.model]()
             mine = xi(m)
-    elif family.model == "he_torrance":
-        return 0.0
+    elif family.model == "he_torrance":             # H4, session 5: the rewrite on the projected disk
+        from sweep.sharp import he_torrance_pointwise
+        return he_torrance_pointwise(model, rng)
     elif family.model == "oren_nayar":
         p = {**family.fixed_dict, **params}
         mine = np.where((L[:, 2] >= 0) & (V[:, 2] > 0), ind.oren_nayar(p["rho"], p["sigma"])(L, V), 0.0)

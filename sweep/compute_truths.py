@@ -38,9 +38,6 @@ def _init(timeout):
     global _CELL_TIMEOUT
     _CELL_TIMEOUT = float(timeout)
     signal.signal(signal.SIGPROF, _alarm)
-#: The mixture's ρ ln ρ end and the shrinking chord at grazing incidence cost the disk route more than
-#: a minute a cell beyond this angle: those cells are left unjudged (a row with no truth).
-MIXTURE_MAX_THETA = 89.99
 
 
 def _one(cell):
@@ -52,8 +49,6 @@ def _one(cell):
     if _CELL_TIMEOUT > 0:
         signal.setitimer(signal.ITIMER_PROF, _CELL_TIMEOUT)
     try:
-        if FAMILY[family].model == "patch_mixture" and theta > MIXTURE_MAX_THETA:
-            raise RuntimeError(f"not computed: the disk route needs > 60 s a cell beyond {MIXTURE_MAX_THETA} deg")
         t = truth(family, params, theta, _TABLES)
         row = {"truth": t.value, "truth_err": t.error, "truth_route": t.route,
                "truth_evaluations": t.evaluations, "notes": "; ".join(t.notes)[:200]}

@@ -17,6 +17,13 @@ import numpy as np
 from scipy.special import erfc, erfcx
 
 
+def _double(special, x):
+    """A scipy special function (double precision only) of x, also when x is long double (the third
+    route's extended mode: the function's rounding is then its ``f_rtol``)."""
+    x = np.asarray(x)
+    return special(x.astype(float)) if x.dtype == np.longdouble else special(x)
+
+
 def _rv(L, V, geo):
     if geo and "cos_axis" in geo and "lh" not in geo:
         return geo["cos_axis"]
@@ -84,7 +91,7 @@ def g_star(x, m):
     x = np.asarray(x, float)
     with np.errstate(divide="ignore", invalid="ignore"):
         h = x * x / (2.0 * m * m * (1.0 - x) * (1.0 + x))
-        g = np.sqrt(np.pi * h) * (2.0 - erfc(np.sqrt(h)))
+        g = np.sqrt(np.pi * h) * (2.0 - _double(erfc, np.sqrt(h)))
         out = g / (g + 1.0)
     return np.where(x >= 1.0, 1.0, out)
 
@@ -139,7 +146,7 @@ def beckmann_lambda(mu, a):
     mu = np.asarray(mu, float)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         c = mu / (a * np.sqrt((1.0 - mu) * (1.0 + mu)))
-        lam = 0.5 * np.exp(-c * c) * (1.0 / (c * np.sqrt(np.pi)) - erfcx(c))
+        lam = 0.5 * np.exp(-c * c) * (1.0 / (c * np.sqrt(np.pi)) - _double(erfcx, c))
     return np.where(mu >= 1.0, 0.0, lam)
 
 
@@ -248,3 +255,110 @@ def ellipse_radius(b, ratio, u_angle_deg):
         cv = -np.cos(psi) * np.sin(phi) + np.sin(psi) * np.cos(phi)
         return b / np.hypot(ratio * cu, cv)
     return rho
+
+
+# --- He–Torrance (1991), written again from /work/shared/he_torrance.md ---------------------------
+
+def he_shadowing(cos_t, sin_t, sigma0, tau):
+    """S₁(θ) = (1 − ½ erfc c)/(1 + Λ), Λ = ½ (e^{−c²}/(√π c) − erfc c), c = τ cot θ/(2σ0) (eqs. 24–25
+    with the exp(−c²) erratum); S₁(0) = 1."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        c = tau * cos_t / (2.0 * sigma0 * sin_t)
+        ec = erfc(c)
+        lam = 0.5 * (np.exp(-c * c) / (np.sqrt(np.pi) * c) - ec)
+        out = (1.0 - 0.5 * ec) / (1.0 + lam)
+    return np.where(sin_t == 0, 1.0, out)
+
+
+def he_sigma(cos_i, sin_i, cos_r, sin_r, sigma0, tau):
+    """Effective roughness σ = σ0/√(1 + x²), x e^{x²/2} = f0 = (K_i + K_r)/√(8π), K = tan θ erfc(τ cot θ/(2σ0))
+    (eqs. 80–83), x by Newton on ln x + x²/2 = ln f0 (Westin's iteration, not the Lambert W closed form),
+    from x = f0 (f0 ≤ 1) or √(2 ln f0)."""
+    def k(c, s):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(s == 0, 0.0, s / c * erfc(tau * c / (2.0 * sigma0 * s)))
+    f0 = (k(cos_i, sin_i) + k(cos_r, sin_r)) / np.sqrt(8.0 * np.pi)
+    x = np.where(f0 <= 1.0, f0, np.sqrt(2.0 * np.log(np.maximum(f0, 1.0))))
+    tiny = f0 < 1e-6                   # x = f0 − f0³/2 + …: x² = f0² − f0⁴ (relative error < 1e-18)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        lf0 = np.log(f0)
+        for _ in range(60):
+            step = (np.log(x) + 0.5 * x * x - lf0) / (1.0 / x + x)
+            x = np.where(tiny | (f0 == 0), x, x - step)
+    x2 = np.where(tiny, f0 * f0 * (1.0 - f0 * f0), x * x)
+    return sigma0 / np.sqrt(1.0 + x2)
+
+
+#: Relative truncation of the Kirchhoff series of :func:`he_series` (its tail bound is below this).
+HE_SERIES_RTOL = 1e-17
+_HE_BLOCK = 24
+
+
+def he_series(g, h):
+    """(T, tail) of T(g, h) = Σ_{m≥1} e^{−g} g^m/(m! m) e^{−h/m} (eq. 78), summed in log space in blocks
+    until the tail bound t_M q/(1 − q), q = g/(M+1) e^{h/(M(M+1))} < 1 (the term ratio decreases in m),
+    is below :data:`HE_SERIES_RTOL` of the partial sum (or below 1e-300)."""
+    from scipy.special import gammaln
+    g, h = np.broadcast_arrays(np.asarray(g, float), np.asarray(h, float))
+    shape, g, h = g.shape, g.ravel().copy(), h.ravel().copy()
+    total, tail = np.zeros(g.size), np.zeros(g.size)
+    live = np.nonzero(g > 0)[0]
+    with np.errstate(divide="ignore"):
+        lg = np.log(g)
+    start = 1
+    while live.size:
+        m = np.arange(start, start + _HE_BLOCK, dtype=float)
+        const = gammaln(m + 1.0) + np.log(m)
+        lt = lg[live, None] * m - g[live, None] - const - h[live, None] / m
+        total[live] += np.exp(lt).sum(-1)
+        M = m[-1]
+        lq = lg[live] - np.log(M + 1.0) + h[live] / (M * (M + 1.0))
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            bound = np.where(lq < 0, np.exp(lt[:, -1] + lq) / -np.expm1(np.minimum(lq, -1e-300)), np.inf)
+        tail[live] = bound
+        done = (bound <= HE_SERIES_RTOL * total[live]) | (bound <= 1e-300)
+        live = live[~done]
+        start += _HE_BLOCK
+    return total.reshape(shape), tail.reshape(shape)
+
+
+def he_torrance_disk(sigma0, tau, lam, theta_deg):
+    """f_dd of He–Torrance (F = 1) on the projected disk, polar about −L_xy, for incidence θ:
+    ``xi(rho, psi, to_edge)`` with ρ = |L_xy + V_xy| (so h = (πτ/λ)² ρ² exactly) and ``to_edge`` = ρ_max(ψ) − ρ
+    (so cos²θ_V = (ρ_max − ρ)(ρ + |ρ_min|) without the cancellation of 1 − |V_xy|² at the horizon);
+    returns (f_dd, its series' truncation bound).
+
+    f_dd = G S D / (π cos θ_i cos θ_r), G = (|v|²/v_z)², v_z = cos θ_i + cos θ_r, |v|² = ρ² + v_z²,
+    S = S₁(θ_i) S₁(θ_r), D = π²τ²/(4λ²) T(g, h), g = (2πσ v_z/λ)², σ the effective roughness (eqs. 71–84)."""
+    t = np.radians(theta_deg)
+    cl, s = float(np.sin(np.radians(90.0 - theta_deg))), float(np.sin(t))
+    s1_i = he_shadowing(np.array(cl), np.array(s), sigma0, tau)
+
+    def xi(rho, psi, to_edge):
+        cp = np.cos(psi)
+        q = np.sqrt(cl * cl + (s * cp) ** 2)                    # √(1 − s² sin² ψ)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rho_max = np.where(cp >= 0, s * cp + q, cl * cl / (q - s * cp))
+            rho_min = np.where(cp >= 0, cl * cl / (q + s * cp), q - s * cp)     # |ρ_min|
+        cos_r = np.sqrt(np.maximum(to_edge, 0.0) * (rho + rho_min))
+        x, y = -s + rho * cp, rho * np.sin(psi)
+        sin_r = np.minimum(np.hypot(x, y), 1.0)
+        vz = cl + cos_r
+        sig = he_sigma(np.full(rho.shape, cl), np.full(rho.shape, s), cos_r, sin_r, sigma0, tau)
+        g = (2.0 * np.pi * sig * vz / lam) ** 2
+        h = (np.pi * tau / lam) ** 2 * rho * rho
+        T, tail = he_series(g, h)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            common = ((rho * rho + vz * vz) / vz) ** 2 * s1_i * he_shadowing(cos_r, sin_r, sigma0, tau) \
+                * (np.pi * tau / (2.0 * lam)) ** 2 / (np.pi * cl * cos_r)
+        ok = (cos_r > 0) & (cl > 0) & np.isfinite(common)
+        return np.where(ok, common * T, 0.0), np.where(ok, common * tail, 0.0)
+    return xi
+
+
+def he_specular_albedo(sigma0, tau, lam, theta_deg):
+    """ρ_s = e^{−g_s} S₁(θ)², g_s = (4π σ(θ, θ) cos θ/λ)² (eqs. 73–74, F = 1): the specular delta's albedo."""
+    cl, s = np.sin(np.radians(90.0 - theta_deg)), np.sin(np.radians(theta_deg))
+    cl, s = np.array(cl), np.array(s)
+    sig = he_sigma(cl, s, cl, s, sigma0, tau)
+    return float(np.exp(-(4.0 * np.pi * sig * cl / lam) ** 2) * he_shadowing(cl, s, sigma0, tau) ** 2)

@@ -54,7 +54,7 @@ def test_multisection_finds_the_torrance_sparrow_switch_radii_bisection_finds():
     levels = [np.zeros_like(mu)] + [np.broadcast_to(c, mu.shape) for c in brdf.nv_levels(mu)]
     t_max = brdf.lobe.t_of(0.5 * (np.pi / 2 + np.radians(theta)))
 
-    def bisection(fn, a, b, sign_a):
+    def bisection(fn, a, b, sign_a, root_rtol=None):
         for _ in range(60):
             mid = 0.5 * (a + b)
             same = np.sign(fn(mid[:, None])[:, 0]) == sign_a

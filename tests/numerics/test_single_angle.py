@@ -7,7 +7,7 @@ import pytest
 
 from brdfs.numerics import albedo as front_door
 from brdfs.numerics.arguments import method_options
-from brdfs.numerics.integrate import azimuthal
+from brdfs.numerics.integrate import azimuthal, hemisphere
 from brdfs.physics.models import model
 
 CASES = [("phong", {"n": 150}), ("blinn_cosmin", {"n": 2}), ("ward", {"m": 0.1})]
@@ -68,10 +68,59 @@ def test_one_angle_meets_a_tight_tolerance_on_its_first_partition(monkeypatch, n
                                           ("cook_torrance", {"m": 0.1}), ("ggx", {"alpha": 0.3})])
 @pytest.mark.parametrize("theta", [0.0, 48.5, 89.99999, 90.0])
 def test_one_float_angle_answers_as_an_array_of_one_angle_does(name, params, theta):
-    """The lean single-angle door (``_one_angle_in_closed_form``) gives what the general path gives
-    an array of one angle, to the bit: value, error, status, route and evaluations."""
+    """One float angle takes the general path an array of one angle takes (there is no special door
+    for it any more), to the bit: value, error, status, route and evaluations, and 0-d shapes."""
     brdf = model(name, **params)
     one, array = front_door.albedo(brdf, theta, rtol=1e-8), front_door.albedo(brdf, [theta], rtol=1e-8)
     assert np.shape(one.value) == np.shape(one.status) == np.shape(one.route) == ()
     assert (float(one.value), float(one.error), str(one.status), str(one.route), one.evaluations) == (
         float(array.value[0]), float(array.error[0]), str(array.status[0]), str(array.route[0]), array.evaluations)
+
+
+@pytest.mark.parametrize("theta", [48.5, np.linspace(0.0, 89.0, 30)])
+def test_the_front_door_decides_what_depends_on_the_model_once_per_call(monkeypatch, theta):
+    """Whether a model has its own route, which scheme integrates it and its Dirac part are asked once
+    per distinct model, for one angle as for a curve: no per-element bookkeeping in ``_albedo_pairs``."""
+    brdf = model("phong", n=150)
+    asked = {"own": 0, "delta": 0}
+    cls = type(brdf)
+    own, delta = cls.albedo_estimate, cls.delta_albedo
+    monkeypatch.setattr(cls, "albedo_estimate", lambda self, *a: (asked.__setitem__("own", asked["own"] + 1), own(self, *a))[1])
+    monkeypatch.setattr(cls, "delta_albedo", lambda self, *a: (asked.__setitem__("delta", asked["delta"] + 1), delta(self, *a))[1])
+    front_door.albedo(brdf, theta, rtol=1e-6)
+    assert asked == {"own": 1, "delta": 1}
+
+
+def _section_rounds(monkeypatch, rtol, single=True):
+    """Rounds of the multisection that places the Torrance–Sparrow switch radii (Cook–Torrance,
+    m = 0.1, 48°) in one 1-D albedo call: of one angle, or of the same angle twice (a batch)."""
+    rounds = [0]
+    multisection = hemisphere._multisection
+
+    def counted(fn, *args):
+        return multisection(lambda x: (rounds.__setitem__(0, rounds[0] + 1), fn(x))[1], *args)
+
+    monkeypatch.setattr(hemisphere, "_multisection", counted)
+    brdf = model("cook_torrance", m=0.1)
+    azimuthal.albedo_many([brdf] * (1 if single else 2), np.full(1 if single else 2, 48.0), rtol=rtol)
+    return rounds[0]
+
+
+def test_a_loose_single_angle_places_its_kink_radii_no_finer_than_its_tolerance_needs(monkeypatch):
+    """At rtol 1e-6 a single angle narrows the switch radii to 1e-5 of their distance from the ends
+    (``single_angle_root_rtol``), in fewer multisection rounds than a batch's ``ROOT_RTOL`` takes."""
+    assert azimuthal.single_angle_root_rtol(1e-6) == pytest.approx(1e-5)
+    assert _section_rounds(monkeypatch, 1e-6) < _section_rounds(monkeypatch, 1e-6, single=False)
+
+
+@pytest.mark.parametrize("m, theta", [(0.05, 89.5), (0.3, 81.82)])
+def test_a_kink_radius_found_coarsely_carries_its_misplacement_cost_in_the_error(monkeypatch, m, theta):
+    """A switch radius found to 1e-2 of its distance from the ends leaves a kink up to half a bracket
+    inside an interval whose nodes may not see it: without the bound J w² of ``_KinkProbes`` the
+    reported error was 10.6× (m = 0.05, 89.5°) and 5.4× (m = 0.3, 81.82°) short of the true one at
+    rtol 1e-12.  With it the answer is honest against the batch's (radii to ``ROOT_RTOL``)."""
+    monkeypatch.setattr(azimuthal, "single_angle_root_rtol", lambda rtol: 1e-2)
+    brdf = model("cook_torrance", m=m)
+    reference = azimuthal.albedo_many([brdf, brdf], np.array([theta, theta]), rtol=1e-13)
+    coarse = azimuthal.albedo_many([brdf], np.array([theta]), rtol=1e-12)
+    assert abs(coarse.value[0] - reference.value[0]) <= coarse.error[0] + reference.error[0]

@@ -139,3 +139,36 @@ def test_the_third_routes_disk_is_honest_in_the_square_root_layer_at_grazing_inc
     exact = float((2 * a - d * mp.sqrt(4 - d * d) / 2) / mp.pi)
     t = truth("patch_basic", {"R": 1.0}, 89.99)
     assert abs(t.value - exact) <= t.error, (t.value, exact, t.error)
+
+
+def test_rows_the_default_call_answers_are_the_rows_of_that_methods_own_call():
+    """``auto`` calls the engine on the same angles, and the disk on all of them where the engine
+    refuses: the check takes those answers for the engine's (Phong) or the disk's (the elliptical
+    patch, not symmetric about the plane of incidence) rows instead of calling again; a direct call
+    gives the same bits."""
+    import json
+    from brdfs import albedo
+    from sweep.cells import build
+    groups = {("phong", '{"n": 20.0}'): "engine",
+              ("patch_elliptical", '{"b": 0.307268, "ratio": 0.489933, "u_angle_deg": 44.116697}'): "disk"}
+    for (family, params), method in groups.items():
+        rows = pd.DataFrame(run_group((family, params, [40.0, 89.9], ("default", "engine", "disk"), (1e-6,))))
+        derived = rows[rows["method"] == method]
+        assert set(derived["source"]) == {"default"}
+        assert set(rows[rows["method"] == ({"engine", "disk"} - {method}).pop()]["source"]) == {"call"}
+        direct = albedo(build(family, json.loads(params)), np.array([40.0, 89.9]), method=method, rtol=1e-6)
+        assert np.array_equal(derived["value"].to_numpy(), direct.value)
+        assert np.array_equal(derived["error"].to_numpy(), direct.error)
+
+
+def test_a_resumed_check_keeps_only_the_groups_it_finished(tmp_path):
+    """An interrupted check leaves whole groups (and perhaps none of a group) in its partial file;
+    ``--resume`` keeps the whole ones (every angle × method × rtol) and runs the others again."""
+    from sweep.check import completed_groups
+    whole = [dict(family="phong", params='{"n": 2.0}', theta_deg=t, method=m, rtol=r, value=1.0)
+             for t in (10.0, 20.0) for m in ("engine", "disk") for r in (1e-4, 1e-8)]
+    cut = [dict(row, family="ward") for row in whole[:5]]
+    partial = tmp_path / "sweep_rows.partial.csv"
+    pd.DataFrame(whole + cut).to_csv(partial, index=False)
+    kept = completed_groups(partial, methods=("engine", "disk"), rtols=(1e-4, 1e-8))
+    assert set(kept["family"]) == {"phong"} and len(kept) == len(whole)

@@ -105,3 +105,15 @@ def test_it_is_registered_with_its_declarations():
     assert cls.chapter is None and cls.param_columns() == ("rho", "sigma")
     assert set(cls.param_ranges) == {"rho", "sigma"} and "cosine" in cls.strategies
     assert cls.example().azimuth_levels(np.array([0.5])) == (np.pi / 2, 3 * np.pi / 2)
+
+
+def test_at_sigma_zero_it_declares_no_kinks_so_the_engine_integrates_lambert_in_few_evaluations():
+    """B = 0: neither N·V = N·L nor the half-planes Δφ = ±90° is a kink of ρ/π; declared anyway they
+    cost the 2-D engine ~10× the evaluations (and the sweep's Lambert cells 60 s)."""
+    brdf = model("oren_nayar", rho=0.7, sigma=0.0)
+    mu = np.array([0.5])
+    assert brdf.nv_levels(mu) == () and brdf.azimuth_levels(mu) == ()
+    theta = np.array([0.0, 45.0, 89.9, 90 - 1e-9])
+    est = albedo(brdf, theta, "engine", rtol=1e-10)
+    assert np.all(np.abs(est.value - 0.7) <= est.error) and set(est.status) == {"converged"}
+    assert est.evaluations < 30_000 * theta.size, est.evaluations

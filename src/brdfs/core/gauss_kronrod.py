@@ -154,19 +154,20 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     stalls = np.zeros(elem.size, np.intp)
     evaluations = elem.size * NODES.size
     exhausted = True
+    if n_el == 1:
+        atol_1 = float(np.ravel(atol)[0]) if np.ndim(atol) else float(atol)
     for _ in range(max_rounds):
         frozen = fixed | (stalls >= STALL_LIMIT)
-        total = np.bincount(elem, err, n_el)
-        movable = np.bincount(elem, np.where(frozen, 0.0, err), n_el)
-        high, extra, absval = (np.bincount(elem, v, n_el) for v in (vals[0], vals[2], vals[3]))
         if n_el == 1:          # the same arithmetic on Python floats: a single element's round is mostly overhead
-            (total_1,), (movable_1,), (high_1,), (extra_1,), (absval_1,) = (
-                x.tolist() for x in (total, movable, high, extra, absval))
-            atol_1 = float(np.ravel(atol)[0]) if np.ndim(atol) else atol
+            high_1, extra_1, absval_1, total_1, movable_1 = _single_sums(elem, vals, err, frozen)
+            total = np.array([total_1])
             budget_1 = _budget(max(rtol * abs(high_1), atol_1), extra_1 + 50 * _EPS * absval_1)
             budget = np.array([budget_1])
             cand = ~frozen if _still_open(total_1, movable_1, budget_1) else np.zeros(elem.size, bool)
         else:
+            total = np.bincount(elem, err, n_el)
+            movable = np.bincount(elem, np.where(frozen, 0.0, err), n_el)
+            high, extra, absval = (np.bincount(elem, v, n_el) for v in (vals[0], vals[2], vals[3]))
             budget = _budget(np.maximum(rtol * np.abs(high), atol), extra + 50 * _EPS * absval)
             cand = _still_open(total, movable, budget)[elem] & ~frozen
         if not cand.any():
@@ -193,6 +194,13 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     met = error <= np.maximum(rtol * np.abs(low), atol)
     status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
     return Estimate(low, error, evaluations, status)
+
+
+def _single_sums(elem, vals, err, frozen):
+    """A single element's sums of the Kronrod values, known errors, |f|, |K − G| and the unfrozen
+    |K − G|, as Python floats: ``np.bincount``, as for a batch's elements (the same sums to the bit,
+    and on a few values the cheapest numpy sum: ~1 µs, a third of ``np.sum``'s dispatch)."""
+    return [float(np.bincount(elem, v, 1)[0]) for v in (vals[0], vals[2], vals[3], err, np.where(frozen, 0.0, err))]
 
 
 def _budget(tol, floor):
@@ -323,6 +331,12 @@ def bp_span(bp):
 
 
 def _initial_intervals(bp):
+    if bp.shape[0] == 1:               # one element: its row, without the batch's broadcasting
+        row = bp[0]
+        lo, hi = row[:-1], row[1:]
+        keep = (hi > lo) & np.isfinite(lo) & np.isfinite(hi)
+        lo, hi = lo[keep], hi[keep]
+        return np.zeros(lo.size, np.intp), lo, hi
     lo, hi = bp[:, :-1], bp[:, 1:]
     elem = np.broadcast_to(np.arange(bp.shape[0])[:, None], lo.shape)
     # NaN padding and empty pieces are dropped; an all-empty element integrates to zero.

@@ -122,56 +122,90 @@ def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
     (:mod:`.integrate.azimuthal`, unless ``closed_form_azimuth`` is False), Kirchhoff lobes in the
     scattering-vector frame (:mod:`.integrate.scattering`), the others in two dimensions around R
     or N (:mod:`.integrate.hemisphere`) — plus the albedo of its Dirac part (``model.delta_albedo``,
-    e.g. He–Torrance's specular term; zero for most models)."""
-    value, error = np.zeros(theta.size), np.zeros(theta.size)
-    status = np.full(theta.size, CONVERGED, dtype=object)
-    own = _own_routes(models, theta, rtol, atol, value, error, status)
-    lobeless = [m for m, o in zip(models, own) if not o and m.lobe is None]
-    if lobeless:
-        raise EngineCannotIntegrate(f"{lobeless[0].name!r} declares neither a lobe nor its own albedo route; "
-                                    "use method='disk' (or 'auto')")
-    asymmetric = [m for m, o in zip(models, own) if not o and not m.symmetric_about_incidence_plane]
-    if asymmetric:                  # the engine integrates φ over [0, π] and doubles it
-        raise EngineCannotIntegrate(f"{asymmetric[0].name!r} is not symmetric about the plane of incidence, "
-                                    "which the engine assumes; use method='disk' (or 'auto')")
-    short_of_support = [m for m, o in zip(models, own)
-                        if not o and not m.lobe.reaches_hemisphere and not m.zero_beyond_lobe]
-    if short_of_support:            # the lobe's coordinates would silently leave part of f out
-        raise EngineCannotIntegrate(f"{short_of_support[0].name!r} has a lobe whose coordinates reach only part "
-                                    "of the hemisphere (about R: R·V ≥ 0) and does not declare "
-                                    "zero_beyond_lobe; use method='disk' (or 'auto')")
-    # the route is the model's, so it is decided once per distinct model (a single-angle call pays
-    # for the decision once, not for masks over its elements)
+    e.g. He–Torrance's specular term; zero for most models).
+
+    Everything that depends on the model alone (its own route, a refusal, its scheme, its Dirac part)
+    is decided once per distinct model object, never per element: a single angle pays for one model,
+    a batch of one model (a curve) for one, and neither for per-element masks."""
+    groups = [(models[rows[0]], np.asarray(rows)) for rows in indices_by_model(models)]
+    answers = []                                     # (rows, Estimate with status and route)
     by_scheme = {}
-    for members in indices_by_model(models):
-        if not own[members[0]]:
-            by_scheme.setdefault(_engine_scheme(models[members[0]], closed_form_azimuth), []).extend(members)
-    route = np.full(theta.size, "engine/own", dtype=object)
-    one_d = np.zeros(theta.size, bool)
+    for m, rows in groups:
+        own = m.albedo_estimate(theta if len(groups) == 1 else theta[rows], rtol, atol)
+        if own is not None:
+            # a route that reports no status is judged by its error, not taken as converged
+            status = _status(own.value, own.error, rtol, atol) if own.status is None else np.asarray(own.status, str)
+            answers.append((rows, Estimate(np.asarray(own.value, float), np.asarray(own.error, float), 0, status,
+                                           np.full(rows.size, "engine/own"))))
+            continue
+        _refuse_what_the_engine_cannot_integrate(m)
+        by_scheme.setdefault(_engine_scheme(m, closed_form_azimuth), []).append(rows)
     closed_form_nodes = 0          # the 1-D route evaluates a closed form, not the BRDF: count its nodes
-    for (scheme, name), members in by_scheme.items():
-        chosen = np.sort(members) if len(by_scheme) > 1 else np.asarray(members)
-        est = scheme([models[i] for i in chosen], theta[chosen], rtol=rtol, atol=atol)
-        value[chosen], error[chosen] = est.value, est.error
-        status[chosen] = est.status
-        route[chosen] = f"engine/{name}"
+    for (scheme, name), parts in by_scheme.items():
+        rows = parts[0] if len(parts) == 1 else np.sort(np.concatenate(parts))
+        these, angles = ([models[i] for i in rows], theta[rows]) if rows.size < theta.size else (models, theta)
+        est = scheme(these, angles, rtol=rtol, atol=atol)
         if scheme is azimuthal.albedo_many or scheme is polar.albedo_many:
             closed_form_nodes += est.evaluations
-            one_d[chosen] = True
-    # Within ~1e-4 of grazing the 1-D route of max(N·L, N·V) models loses ε / cos θ to rounding and
-    # can stop short of the tolerance: those elements are integrated in two dimensions instead.
-    short = one_d & (status != CONVERGED)
-    if short.any():
-        est = albedo_many([m for m, s in zip(models, short) if s], theta[short], rtol=rtol, atol=atol)
-        better = est.error < error[short]
-        rows = np.flatnonzero(short)[better]
-        value[rows], error[rows], status[rows] = est.value[better], est.error[better], est.status[better]
-        route[rows] = "engine/hemisphere"
-    for rows in indices_by_model(models):
-        delta = models[rows[0]].delta_albedo(theta[rows])
+            est = _short_ones_in_two_dimensions(est, these, angles, rtol, atol, name)
+        route = est.route if est.route is not None else np.full(rows.size, f"engine/{name}")
+        answers.append((rows, Estimate(est.value, est.error, 0, np.asarray(est.status, str), route)))
+    if len(answers) == 1 and len(groups) == 1:       # one model (one angle, or a curve): taken whole
+        est, delta = answers[0][1], groups[0][0].delta_albedo(theta)
+        return Estimate(est.value + delta.value, est.error + delta.error, closed_form_nodes, est.status, est.route)
+    value, error, status, route = _gathered(answers, theta.size)
+    for m, rows in groups:
+        delta = m.delta_albedo(theta[rows])
         value[rows] += delta.value
         error[rows] += delta.error
-    return Estimate(value, error, closed_form_nodes, status.astype(str), route.astype(str))
+    return Estimate(value, error, closed_form_nodes, status, route)
+
+
+def _refuse_what_the_engine_cannot_integrate(model):
+    """Raise :class:`EngineCannotIntegrate` for a model (without a route of its own) that the engine's
+    coordinates would get wrong: no lobe, not symmetric about the plane of incidence (the engine
+    integrates φ over [0, π] and doubles it), or a lobe whose coordinates reach only part of the
+    hemisphere while f may not vanish beyond it (they would silently leave part of f out)."""
+    if model.lobe is None:
+        raise EngineCannotIntegrate(f"{model.name!r} declares neither a lobe nor its own albedo route; "
+                                    "use method='disk' (or 'auto')")
+    if not model.symmetric_about_incidence_plane:
+        raise EngineCannotIntegrate(f"{model.name!r} is not symmetric about the plane of incidence, "
+                                    "which the engine assumes; use method='disk' (or 'auto')")
+    if not model.lobe.reaches_hemisphere and not model.zero_beyond_lobe:
+        raise EngineCannotIntegrate(f"{model.name!r} has a lobe whose coordinates reach only part "
+                                    "of the hemisphere (about R: R·V ≥ 0) and does not declare "
+                                    "zero_beyond_lobe; use method='disk' (or 'auto')")
+
+
+def _short_ones_in_two_dimensions(est, models, theta, rtol, atol, name):
+    """A 1-D route's answer with the elements that missed their tolerance integrated again in two
+    dimensions, where that reports the smaller error: within ~1e-4 of grazing the 1-D route of
+    max(N·L, N·V) models loses ε / cos θ to rounding and can stop short of the tolerance.  ``name``:
+    the 1-D route's."""
+    status = np.asarray(est.status, str)
+    short = status != CONVERGED
+    route = np.full(theta.size, f"engine/{name}")
+    if not short.any():
+        return Estimate(est.value, est.error, est.evaluations, status, route)
+    second = albedo_many([m for m, s in zip(models, short) if s], theta[short], rtol=rtol, atol=atol)
+    value, error = np.array(est.value, float), np.array(est.error, float)
+    better = second.error < error[short]
+    rows = np.flatnonzero(short)[better]
+    value[rows], error[rows], status[rows] = second.value[better], second.error[better], second.status[better]
+    route = route.astype(object)
+    route[rows] = "engine/hemisphere"
+    return Estimate(value, error, est.evaluations, status, route.astype(str))
+
+
+def _gathered(answers, size):
+    """The (rows, Estimate) answers of :func:`_albedo_pairs` as new element arrays (value, error,
+    status, route)."""
+    value, error = np.zeros(size), np.zeros(size)
+    status, route = np.empty(size, object), np.empty(size, object)
+    for rows, est in answers:
+        value[rows], error[rows], status[rows], route[rows] = est.value, est.error, est.status, est.route
+    return value, error, status.astype(str), route.astype(str)
 
 
 def _engine_scheme(model, closed_form_azimuth=True):
@@ -186,22 +220,6 @@ def _engine_scheme(model, closed_form_azimuth=True):
     if closed_form_azimuth and polar.supports(model):
         return polar.albedo_many, "polar"
     return albedo_many, "hemisphere"
-
-
-def _own_routes(models, theta, rtol, atol, value, error, status):
-    """The models' own albedo routes (``albedo_estimate``, one call per distinct model) written into
-    ``value``, ``error`` and ``status``; returns the mask of the elements they answered (a model
-    whose ``albedo_estimate`` returns None has no route of its own)."""
-    own = np.zeros(theta.size, bool)
-    for rows in indices_by_model(models):
-        est = models[rows[0]].albedo_estimate(theta[rows], rtol, atol)
-        if est is None:
-            continue
-        own[rows] = True
-        value[rows], error[rows] = est.value, est.error
-        # a route that reports no status is judged by its error, not taken as converged
-        status[rows] = _status(est.value, est.error, rtol, atol) if est.status is None else est.status
-    return own
 
 
 def _engine(model, theta, rtol, atol):
@@ -471,10 +489,6 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     theta = np.asarray(theta_deg, float)
     rtol = DEFAULT_RTOL if rtol is None else rtol
     atol = DEFAULT_ATOL if atol is None else atol
-    if theta.ndim == 0 and method in ("auto", "engine") and not options:
-        fast = _one_angle_in_closed_form(model, float(theta), rtol, atol)
-        if fast is not None:
-            return fast
     with counting_evaluations() as count:
         est = _at_the_ends(_one_model_at_a_time(run, rtol, atol, options), [model] * theta.size, theta.ravel(),
                            rtol, atol, method)
@@ -483,30 +497,6 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
                    est.status.reshape(shape), est.route.reshape(shape))
     _report_not_converged(est, model, theta, method, rtol, atol, strict, warn)
     return est
-
-
-def _one_angle_in_closed_form(model, theta, rtol, atol):
-    """The commonest call — one exact model at one angle short of 90° by the engine's 1-D route
-    (:mod:`.integrate.azimuthal`) — without the per-element bookkeeping of :func:`_at_the_ends` and
-    :func:`_albedo_pairs` (≈ 0.13 ms, a third of such a call): the value, error, status, route and
-    evaluations they give, to the bit.  None wherever more could be at stake (90°, a model's tables'
-    error, its own route, a refusal, a value short of its tolerance): the general path answers."""
-    if theta >= 90.0 or model.has_evaluation_error or model.lobe is None or not azimuthal.supports(model):
-        return None
-    if not model.symmetric_about_incidence_plane or not (model.lobe.reaches_hemisphere or model.zero_beyond_lobe):
-        return None
-    if _engine_scheme(model)[0] is not azimuthal.albedo_many:
-        return None
-    angle = np.array([theta])
-    if model.albedo_estimate(angle, rtol, atol) is not None:
-        return None
-    with counting_evaluations() as count:
-        est = azimuthal.albedo_many([model], angle, rtol=rtol, atol=atol)
-        delta = model.delta_albedo(angle)
-    if est.status[0] != CONVERGED:
-        return None
-    return Estimate(np.asarray(est.value[0] + delta.value[0]), np.asarray(est.error[0] + delta.error[0]),
-                    count[0] + est.evaluations, np.asarray(CONVERGED), np.asarray("engine/azimuthal"))
 
 
 def _one_model_at_a_time(run, rtol, atol, options):
@@ -533,14 +523,40 @@ def _at_the_ends(run_pairs, models, theta, rtol, atol, method, model_error=True)
     declares at exactly 90°: +inf (``diverged``) where it ``diverges_at_grazing``, the albedo of its
     ``grazing_limit_model()`` where that is another integrand; plus its ``evaluation_error`` (the
     error of its tables) in every error, unless ``model_error`` is False (f as evaluated).
-    :func:`albedo`, :func:`albedo_table` and :func:`albedo_pairs` all answer through here."""
+    :func:`albedo`, :func:`albedo_table` and :func:`albedo_pairs` all answer through here; what
+    depends on the model alone is decided once per distinct model object, so that one angle (or a
+    curve of one model) short of 90° costs one call of ``run_pairs`` and no per-element bookkeeping."""
+    groups = [(models[rows[0]], np.asarray(rows)) for rows in indices_by_model(models)]
     at_90 = theta == 90.0
+    if at_90.any():
+        est = _with_the_declared_ends(run_pairs, models, groups, theta, at_90, method)
+    else:
+        est = run_pairs(models, theta)
+        route = np.full(theta.size, method) if est.route is None else np.asarray(est.route, str)
+        est = Estimate(est.value, est.error, est.evaluations, np.asarray(est.status, str), route)
+    if not model_error or not any(m.has_evaluation_error for m, _ in groups):
+        return est
+    value, error, status = np.array(est.value, float), np.array(est.error, float), np.array(est.status, object)
+    finite = np.isfinite(value)
+    for m, rows in groups:
+        rows = rows[finite[rows]]
+        if not rows.size or not m.has_evaluation_error:
+            continue
+        error[rows] += m.evaluation_error(theta[rows], value[rows])
+        # the model is known to no better than its tables: no refinement of the integral helps
+        missed = (status[rows] == CONVERGED) & (error[rows] > np.maximum(rtol * np.abs(value[rows]), atol))
+        status[rows[missed]] = STALLED
+    return Estimate(value, error, est.evaluations, status.astype(str), est.route)
+
+
+def _with_the_declared_ends(run_pairs, models, groups, theta, at_90, method):
+    """``run_pairs`` on the elements it has to answer: those at exactly 90° of a model that
+    ``diverges_at_grazing`` are +inf, error 0, ``diverged`` (route ``declared``), and those of a model
+    with another ``grazing_limit_model()`` integrate that limit (route suffix ``:grazing_limit``)."""
     answered, limited = np.ones(theta.size, bool), np.zeros(theta.size, bool)
     integrands = list(models)
-    groups = indices_by_model(models)
-    for rows in groups if at_90.any() else ():
-        rows = np.asarray(rows)
-        here, m = rows[at_90[rows]], models[rows[0]]
+    for m, rows in groups:
+        here = rows[at_90[rows]]
         if not here.size:
             continue
         if m.diverges_at_grazing:
@@ -560,15 +576,6 @@ def _at_the_ends(run_pairs, models, theta, rtol, atol, method, model_error=True)
         evaluations += est.evaluations
     if limited.any():
         route[limited] = np.char.add(route[limited].astype(str), ":grazing_limit")
-    finite = np.isfinite(value)
-    for rows in groups if model_error else ():
-        rows = np.asarray(rows)[finite[np.asarray(rows)]]
-        if not rows.size or not models[rows[0]].has_evaluation_error:
-            continue
-        error[rows] += models[rows[0]].evaluation_error(theta[rows], value[rows])
-        # the model is known to no better than its tables: no refinement of the integral helps
-        missed = (status[rows] == CONVERGED) & (error[rows] > np.maximum(rtol * np.abs(value[rows]), atol))
-        status[rows[missed]] = STALLED
     return Estimate(value, error, evaluations, status.astype(str), route.astype(str))
 
 

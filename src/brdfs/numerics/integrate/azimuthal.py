@@ -30,7 +30,9 @@ sin δ dδ/dt = m² cos³δ / (2 e^{−tan²δ/m²})) w = C cos³δ/(8π) (Ward,
 
 The integrand in t has kinks where a level circle N·V = c (c = 0, cos θ) touches the circle of
 radius β, and (Cook–Torrance) where a switch of eq. 2.10's minimum starts or stops cutting it:
-the breakpoints of the 2-D engine (:func:`.hemisphere.radial_breakpoints_many`).  Where a kernel
+the breakpoints of the 2-D engine (:func:`.hemisphere.radial_breakpoints_many`).  A single angle
+finds the switch radii only as precisely as its tolerance needs (:func:`single_angle_root_rtol`) and
+adds a bound of what a kink off its breakpoint costs to the error (:class:`_KinkProbes`).  Where a kernel
 divides a difference by cos θ it loses ε / cos θ relative digits near grazing; that rounding is
 added to the error, and the albedo front door integrates elements that miss their tolerance in
 two dimensions instead.
@@ -44,9 +46,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from brdfs.core.estimate import CONVERGED, STALLED
 from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
-from brdfs.numerics.integrate.hemisphere import TAIL, level_azimuth, level_cos, radial_breakpoints_many
+from brdfs.numerics.integrate.hemisphere import (ROOT_RTOL, TAIL, level_azimuth, level_cos,
+                                                 radial_breakpoints_many)
 from brdfs.numerics.integrate.mean import positive_part_azimuth
 from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
 from brdfs.physics.geometry import cos_incidence, sin_incidence
@@ -101,7 +105,12 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     if outside.any():
         raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    bp = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol) if theta_deg.size == 1 else TAIL)
+    single = theta_deg.size == 1
+    if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
+        bp, kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
+                                            root_rtol=single_angle_root_rtol(rtol), kinks=True)
+    else:
+        bp, kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=TAIL), None
     kernels = {members[0]: _RadialKernel.of(models[members[0]]) for members in indices_by_model(models)}
     if len(kernels) == 1:                  # one model: no regrouping of the nodes by model
         (kernel,) = kernels.values()
@@ -120,7 +129,72 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                 value[rows], rounding[rows] = kernels[k](t[rows], mu[e, None], st[e, None])
             return NodeValues(value, value, rounding)
 
-    return integrate(integrand, bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)
+    if kinks is None or not kinks.element.size:
+        # at ROOT_RTOL a misplaced kink costs ~1e-18 of the integral, below the 50 ε Σ|f| floor already in
+        return integrate(integrand, bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)
+    probes = _KinkProbes(kinks)
+    est = integrate(probes.riding_on(integrand), bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)
+    error = est.error + probes.misplaced_kink_error(theta_deg.size)
+    status = np.where((np.asarray(est.status) == CONVERGED) & (error > np.maximum(rtol * np.abs(est.value), atol)),
+                      STALLED, est.status)
+    return Estimate(est.value, error, est.evaluations + probes.evaluations, status)
+
+
+def single_angle_root_rtol(rtol):
+    """The precision of the numerically found kink radii (:func:`.hemisphere.radial_breakpoints_many`)
+    for a single angle at ``rtol``: 10⁻² √rtol of their distance from the ends of [0, 1] (1e-7 at
+    rtol 1e-10, 1e-5 at 1e-6), at least :data:`.hemisphere.ROOT_RTOL`.  A kink of slope jump J
+    placed off by δ costs at most J δ² / 2 (:class:`_KinkProbes` adds a bound of it to the error); the radial integrand's slopes are of order |a| / min(t, 1 − t), so that is of order
+    |a| 10⁻⁴ rtol, and each factor 64 of precision given up is one multisection round less (the
+    Torrance–Sparrow switch radii: 4–5 rounds at ROOT_RTOL, a third of a single call's setup)."""
+    return float(min(1e-3, max(ROOT_RTOL, 1e-2 * np.sqrt(np.min(rtol)))))
+
+
+class _KinkProbes:
+    """A bound, per element, of what its numerically found kinks cost for not sitting exactly on
+    their breakpoints.  A kink at x₀ in the bracket [lo, hi] of width w, with the breakpoint at the
+    bracket's midpoint, lies at most w/2 inside the interval next to the breakpoint; if no node falls
+    between them, both rules integrate the function as if it had no kink there and miss
+    J (w/2)² / 2 = J w² / 8, J the jump of the derivative (if nodes fall between, K − G sees it).
+    J ≤ |f'₋| + |f'₊|, the one-sided slopes estimated by differences over [lo − 4w, lo] and
+    [hi, hi + 4w] (each on one side of the kink), with the values' rounding bounds; the bound
+    reported, (|f'₋| + |f'₊|) w² / 2, is four times the miss, for the slopes' own error.
+
+    The four probe points of each kink ride on the driver's first evaluation of the integrand
+    (:meth:`riding_on`): a kernel call costs more than its points (Cook–Torrance's lower envelope:
+    a second call for the probes alone cost a fifth of a single-angle call)."""
+
+    def __init__(self, kinks):
+        self.kinks, self.width = kinks, kinks.hi - kinks.lo
+        self.points = np.stack([np.maximum(kinks.lo - 4 * self.width, 0.0), kinks.lo, kinks.hi,
+                                np.minimum(kinks.hi + 4 * self.width, 1.0)], -1)
+        self.value = self.rounding = None
+        self.evaluations = 0
+
+    def riding_on(self, integrand):
+        """``integrand`` whose first call also evaluates the probes (as extra rows of 21 nodes, the
+        four points padded with the last)."""
+        def first_with_probes(t, elem):
+            if self.value is not None:
+                return integrand(t, elem)
+            rows = np.concatenate([self.points, np.repeat(self.points[:, -1:], t.shape[1] - 4, 1)], 1)
+            value, _, rounding = integrand(np.concatenate([t, rows]), np.concatenate([elem, self.kinks.element]))
+            m = t.shape[0]
+            self.value, self.rounding = value[m:, :4], np.abs(rounding[m:, :4])
+            self.evaluations = rows.size
+            return NodeValues(value[:m], value[:m], rounding[:m])
+        return first_with_probes
+
+    def misplaced_kink_error(self, n_el):
+        """The bound of the class docstring summed per element (``n_el`` elements)."""
+        slopes = []
+        for i, j in ((0, 1), (2, 3)):
+            step = self.points[:, j] - self.points[:, i]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                slope = (np.abs(self.value[:, j] - self.value[:, i]) + self.rounding[:, i] + self.rounding[:, j]) / step
+            slopes.append(np.where(step > 0, slope, 0.0))
+        cost = (slopes[0] + slopes[1]) * self.width ** 2 / 2
+        return np.bincount(self.kinks.element, np.where(np.isfinite(cost), cost, np.inf), n_el)
 
 
 #: Initial breakpoints 1 − t of the 1-D route on a single angle: 10^(−1), 10^(−2) ahead of the 2-D

@@ -28,6 +28,8 @@ integrates) has φ run over [0, π] and the result doubled.
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
@@ -76,60 +78,117 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=192)
 
 
-def radial_breakpoints_many(models, mu, st, theta_deg, tail=None):
+class Kinks(NamedTuple):
+    """The kink radii found numerically (:func:`_lh_radial_breakpoints`) as brackets [lo, hi] in t,
+    flattened over the elements (``element``: the element of each): the breakpoint sits at their
+    midpoint, the kink anywhere in between."""
+
+    element: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+
+
+def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None, kinks=False):
     """Breakpoints in t of ``models[i]`` at incidence ``theta_deg[i]`` (cos ``mu``, sin ``st``), one
     row per element, ascending and NaN-padded (:func:`.gauss_kronrod.integrate`'s ragged form):
     the range ends, the radii where N·V level sets touch the circles (closed form), the radii where
     L·H levels change how they cut the circles (found numerically, :func:`_lh_radial_breakpoints`),
     the lobe's tail 1 − t = ``tail`` (:data:`TAIL` by default), and graded points at the two ends of
     the range where an endpoint singularity sits (:data:`HEAD`, :data:`END`).  The elements of one
-    model are handled together, and the 1-D route (:mod:`.azimuthal`) uses the same rows."""
+    model are handled together, and the 1-D route (:mod:`.azimuthal`) uses the same rows.
+
+    ``root_rtol`` (:data:`ROOT_RTOL` by default) is the precision of the kink radii found
+    numerically; with ``kinks`` True, also returns their brackets (:class:`Kinks`), from which a
+    caller that loosens ``root_rtol`` bounds what a misplaced kink costs."""
     tail = TAIL if tail is None else tail
+    root_rtol = ROOT_RTOL if root_rtol is None else root_rtol
     groups = indices_by_model(models)
     if len(groups) == 1:                   # one model (a curve, or a single angle): no regrouping
-        rows = _radial_breakpoints(models[0], mu, st, theta_deg, tail)
+        rows, brackets = _radial_breakpoints(models[0], mu, st, theta_deg, tail, root_rtol)
     else:
-        rows = [None] * len(models)
+        rows, brackets = [None] * len(models), [None] * len(models)
         for members in groups:
             idx = np.array(members)
-            for i, row in zip(members, _radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx], tail)):
-                rows[i] = row
+            for i, row, bracket in zip(members, *_radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx],
+                                                                     tail, root_rtol)):
+                rows[i], brackets[i] = row, bracket
     if len(rows) == 1:
-        return rows[0][None]
-    out = np.full((len(rows), max(r.size for r in rows)), np.nan)
-    for out_row, row in zip(out, rows):
-        out_row[:row.size] = row
-    return out
+        out = rows[0][None]
+    else:
+        out = np.full((len(rows), max(r.size for r in rows)), np.nan)
+        for out_row, row in zip(out, rows):
+            out_row[:row.size] = row
+    if not kinks:
+        return out
+    element = np.concatenate([np.full(lo.size, i) for i, (lo, _) in enumerate(brackets)]).astype(np.intp)
+    return out, Kinks(element, np.concatenate([lo for lo, _ in brackets]), np.concatenate([hi for _, hi in brackets]))
 
 
-def _radial_breakpoints(model, mu, st, theta_deg, tail=None):
-    """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows."""
+def _radial_breakpoints(model, mu, st, theta_deg, tail=None, root_rtol=None):
+    """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows, and
+    a list of the brackets (lo, hi) of each row's numerically found kinks."""
     tail = TAIL if tail is None else tail
     lobe = model.lobe
     theta = np.radians(theta_deg)[:, None]
     scale = 0.5 if lobe.frame is HALF else 1.0
     beta_max = scale * (np.pi / 2 + theta)
-    levels = [np.zeros_like(mu)] + [np.broadcast_to(np.asarray(c, float), mu.shape)
-                                     for c in model.nv_levels(np.asarray(mu, float))]
-    a = np.arccos(np.minimum(np.maximum(np.stack(levels, 1), -1.0), 1.0))     # np.clip: 4× the overhead
+    declared = model.nv_levels(np.asarray(mu, float))
+    # np.full, np.array and np.minimum(np.maximum(...)): np.broadcast_to, np.stack and np.clip cost
+    # several times their work on the few values of a single angle
+    levels = [np.zeros(mu.shape)] + [np.full(mu.shape, c, float) for c in declared]
+    # N·V = N·L passes through R, the lobe's centre
+    through_centre = any(c is mu or np.array_equal(level, mu) for c, level in zip(declared, levels[1:]))
+    a = np.arccos(np.minimum(np.maximum(np.array(levels).T, -1.0), 1.0))
     cand = np.concatenate([scale * (a - theta), scale * (theta - a), scale * (a + theta), beta_max], axis=1)
     cand = np.where((cand > 0) & (cand <= beta_max), cand, beta_max)
     # t of the range's end, of the candidates and of the END points, in one call of the lobe
     t_all = lobe.t_of(np.concatenate([beta_max, cand, beta_max * (1.0 - END)], axis=1))
     t_max, t_cand, t_end = t_all[:, :1], t_all[:, 1:1 + cand.shape[1]], t_all[:, 1 + cand.shape[1]:]
-    through_centre = any(np.array_equal(c, mu) for c in levels[1:])      # N·V = N·L passes through R
     head = t_max * HEAD if through_centre else np.empty((mu.size, 0))
     squeezed = (t_max > 1.0 - TAIL[0]) & (t_max < 1.0)
     end = np.where(squeezed, t_end, np.nan)
-    t_pts = np.concatenate([np.zeros_like(t_max), t_cand, np.broadcast_to(1.0 - tail, (mu.size, tail.size)),
-                            head, end, _cone_radius(model, theta, scale)], axis=1)
-    lh = _lh_radial_breakpoints(model, mu, st, levels, t_max[:, 0])
+    ends_of_tail = (1.0 - tail)[None] if mu.size == 1 else np.repeat((1.0 - tail)[None], mu.size, 0)
+    t_pts = np.concatenate([np.zeros((mu.size, 1)), t_cand, ends_of_tail, head, end,
+                            _cone_radius(model, theta, scale), _tangency_layers(lobe, a[:, 1:], theta, st, scale, beta_max)],
+                           axis=1)
+    brackets = _lh_radial_brackets(model, mu, st, levels, t_max[:, 0], ROOT_RTOL if root_rtol is None else root_rtol)
     az = _azimuth_radial_breakpoints(model, mu, st, theta, beta_max)
     out = []
     for i in range(mu.size):
-        row = np.concatenate([t_pts[i], lh[i], az[i]])
+        row = np.concatenate([t_pts[i], 0.5 * (brackets[i][0] + brackets[i][1]), az[i]])
         out.append(_sorted_distinct(row[(row >= 0) & (row <= t_max[i, 0])]))
-    return out
+    return out, brackets
+
+
+#: Cuts at β_c ± w g (g of this tuple) about a radius β_c where a declared level N·V = c touches the
+#: circles (φ = 0 or π), w = B / |∂(A ± B)/∂β| there (N·V = A + B cos φ): the distance from β_c
+#: over which the cut circles' φ-range of the level's far side grows to O(1) (√(2 ε B' / B) at
+#: β_c − ε).  Where w is small the φ-integral changes over that layer only, next to the
+#: breakpoint β_c, unseen by the nodes of one interval that ends there.  Half frame, c = N·L:
+#: δ_c = θ (V = L), w = sin 2θ / 2 ≈ cos θ at grazing incidence; Oren–Nayar, whose slope in N·V
+#: jumps by tan θ_L there, was 465× over-confident at 89.6° (σ = 0.1, rtol 1e-4 … 1e-8).
+TANGENCY_LAYER = (1.0, 0.125)
+#: Layers at most this wide relative to their radius β_c are cut (wider ones, e.g. every layer near
+#: normal incidence, where w ≈ β_c, are resolved by the first partition and the driver's bisection).
+TANGENCY_LAYER_MAX = 0.05
+
+
+def _tangency_layers(lobe, a, theta, st, scale, beta_max):
+    """t of the cuts of :data:`TANGENCY_LAYER` about the tangency radii of the declared N·V levels
+    (``a`` = arccos c, one column per level; the horizon is :data:`END`'s), NaN where none.  With
+    x = β / scale (2δ half frame, α mirror frame), N·V = cos(x − θ) at φ = 0 and cos(x + θ) at φ = π,
+    so the circles touch the level at x = θ ± a and x = a − θ, where |∂(A ± B)/∂x| = sin a and
+    B = sin x sin θ."""
+    if a.shape[1] == 0:
+        return np.empty((a.shape[0], 0))
+    x = np.concatenate([a + theta, theta - a, a - theta], axis=1)
+    beta_c = scale * x
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w = scale * np.abs(np.sin(x)) * st[:, None] / np.sin(np.concatenate([a, a, a], axis=1))
+    thin = (beta_c > 0) & (beta_c < beta_max) & (w < TANGENCY_LAYER_MAX * beta_c) & (w > 64 * _EPS * beta_c)
+    pts = np.concatenate([beta_c + s * g * w for s in (-1.0, 1.0) for g in TANGENCY_LAYER], axis=1)
+    keep = np.tile(thin, 2 * len(TANGENCY_LAYER)) & (pts > 0) & (pts < beta_max)
+    return np.where(keep, lobe.t_of(np.where(keep, pts, 0.0)), np.nan)
 
 
 def _sorted_distinct(points):
@@ -172,7 +231,13 @@ _SCAN = 1024
 _UNIT_SCAN = np.sort(np.concatenate([np.linspace(0.0, 1.0, _SCAN), 1.0 - np.geomspace(1e-16, 1.0, _SCAN)]))
 
 
-def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
+def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max, root_rtol=None):
+    """The radii of :func:`_lh_radial_brackets`: the midpoints of their brackets, per angle."""
+    return [0.5 * (lo + hi) for lo, hi in _lh_radial_brackets(model, mu, st, nv_levels, t_max,
+                                                               ROOT_RTOL if root_rtol is None else root_rtol)]
+
+
+def _lh_radial_brackets(model, mu, st, nv_levels, t_max, root_rtol):
     """Radii t (half frame) where an L·H level of ``model`` starts or stops cutting the circle
     (the level reaches φ = 0 or φ = π) or crosses an N·V level (the horizon included), per angle:
     a list of arrays, one per element of ``mu``.
@@ -180,9 +245,10 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
     There the φ-integral — which the azimuthal breakpoints make smooth in φ — has a kink as a
     function of t (Torrance–Sparrow's masking and shadowing switches of eq. 2.10).  The levels
     depend on δ, so the radii are found numerically: sign changes on a scan uniform in t and in
-    log(1 − t), then bisection to rounding, all angles at once."""
+    log(1 − t), then multisection to ``root_rtol`` of their distance from the ends of [0, 1], all
+    angles at once.  A list, per element, of the brackets (lo, hi) of its radii."""
     lobe = model.lobe
-    none = [np.empty(0)] * mu.size
+    none = [(np.empty(0), np.empty(0))] * mu.size
     if lobe.frame is not HALF or len(model.lh_levels(mu, np.ones_like(mu))) == 0:
         return none
     # uniform in t (the lobe's core) and geometric in 1 − t (its tail, where the switches sit)
@@ -244,9 +310,8 @@ def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max):
         section = lambda x: gaps(x, mu[row, None], st[row, None], levels)[which, brackets]     # noqa: E731
     else:
         section = lambda x: selected_gap(x, mu[row, None], st[row, None], levels, which)     # noqa: E731
-    a, b = _multisection(section, a, b, sign_a)
-    roots = 0.5 * (a + b)
-    return [roots[row == i] for i in range(mu.size)]
+    a, b = _multisection(section, a, b, sign_a, root_rtol)
+    return [(a[row == i], b[row == i]) for i in range(mu.size)]
 
 
 #: Brackets up to which :func:`_lh_radial_breakpoints` evaluates every gap function in each round of the
@@ -264,14 +329,14 @@ _SECTION_ROUNDS = 12
 ROOT_RTOL = 1e-9
 
 
-def _multisection(fn, a, b, sign_a):
-    """Brackets [a, b] (arrays) of a sign change of ``fn`` narrowed to :data:`ROOT_RTOL` of their
+def _multisection(fn, a, b, sign_a, root_rtol=ROOT_RTOL):
+    """Brackets [a, b] (arrays) of a sign change of ``fn`` narrowed to ``root_rtol`` of their
     distance from the ends of [0, 1] (or to 4 ulps): each round evaluates ``fn`` on ``_SECTIONS − 1``
     interior points of every bracket at once (shape (r, k) in, (r, k) out) and keeps the first piece
     where the sign leaves ``sign_a`` (a NaN counts as a change, as in bisection)."""
     frac = np.arange(1, _SECTIONS) / _SECTIONS
     for _ in range(_SECTION_ROUNDS):
-        wanted = np.maximum(4 * np.spacing(np.maximum(np.abs(a), np.abs(b))), ROOT_RTOL * np.minimum(a, 1.0 - b))
+        wanted = np.maximum(4 * np.spacing(np.maximum(np.abs(a), np.abs(b))), root_rtol * np.minimum(a, 1.0 - b))
         if np.all(b - a <= wanted):
             break
         pts = a[:, None] + (b - a)[:, None] * frac

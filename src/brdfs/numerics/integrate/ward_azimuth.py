@@ -183,7 +183,8 @@ def _far_moment(a, b):
     r = b / a
     z = r * r
     g = np.full_like(z, _G_COEFFS[-1])
-    for coeff in _G_COEFFS[-2::-1]:
-        g = g * z + coeff
+    for coeff in _G_COEFFS[-2::-1]:         # Horner in place: the same roundings, no temporaries
+        g *= z
+        g += coeff
     w1 = (b / np.sqrt(a)) * g * (np.pi / 4.0)
     return w1, _SERIES_REL * w1

@@ -80,12 +80,12 @@ class OrenNayar(BRDF):
         return lambert * (A + rough)
 
     def nv_levels(self, nl):
-        """N·V = N·L, where α = max(θ_L, θ_V) and β = min(θ_L, θ_V) swap."""
-        return (nl,)
+        """N·V = N·L, where α = max(θ_L, θ_V) and β = min(θ_L, θ_V) swap; none at σ = 0 (B = 0: Lambert)."""
+        return (nl,) if self.sigma > 0 else ()
 
     def azimuth_levels(self, nl):
-        """cos(φ_L − φ_V) = 0: the half-planes φ_V = ±90° (L in the plane φ = 0)."""
-        return (0.5 * np.pi, 1.5 * np.pi)
+        """cos(φ_L − φ_V) = 0: the half-planes φ_V = ±90° (L in the plane φ = 0); none at σ = 0."""
+        return (0.5 * np.pi, 1.5 * np.pi) if self.sigma > 0 else ()
 
     def exact_albedo(self, theta_deg):
         """a(0) = ρ A (β = 0 at normal incidence: the B term vanishes)."""

@@ -364,17 +364,28 @@ class PatchMixture(_MixtureSampling, BRDF):
         check_positive("p_diffuse", self.p_diffuse, allow_zero=True)
         check_positive("rtol", self.rtol)
 
-    #: No lobe (its albedo is integrated over the projected disk only, ``method="disk"``).
+    #: No lobe: the albedo is the mixture of lens areas (eqs. 4.22, 4.24), its own route.
     lobe = None
 
     def scattering_radius_levels(self):
         """The kink of c(R) = 1/(π min(1, R²)) at m = 1, inherited by ∫_m² p(R) c(R) dR (eq. 4.21)."""
         return (1.0,)
 
+    def albedo_estimate(self, theta_deg, rtol, atol):
+        """∫₀² p(R) a_R(L) dR + p_Diffuse over the basic patches' lens areas (eqs. 4.8, 4.22, 4.24):
+        one quadrature in R of closed forms, where the disk integrates f, itself an integral in R,
+        at every point (14 sweep cells took 1,400 s)."""
+        return patch.weighted_mixture_albedo(self.weight, self.p_diffuse, theta_deg, rtol, atol)
+
     def _eval(self, L, V, nl, nv):
         m = np.minimum(projected_distance(L, V), 2.0)
         flat = m.ravel()
-        bp = np.stack([flat, np.maximum(flat, 1.0), np.full_like(flat, 2.0)], axis=1)
+        # c(R) = 1/(πR²) below R = 1: cuts geometric from m, where one interval [m, 1] took the driver
+        # ~log2(1/m) rounds of bisection per block (the disk's albedo of a mixture: 5 s at 2 angles)
+        graded = flat[:, None] * self.GRADING
+        bp = np.sort(np.concatenate([np.stack([flat, np.maximum(flat, 1.0), np.full_like(flat, 2.0)], axis=1),
+                                     np.where((graded < 1.0) & (graded > flat[:, None]), graded, np.nan)], axis=1),
+                     axis=1)
         # In blocks: one call over very many points would run into the driver's interval budget;
         # atol 1e-300: a tail that underflows (s = 512 far from the patch) must not be refined forever.
         inner = np.concatenate([
@@ -384,6 +395,8 @@ class PatchMixture(_MixtureSampling, BRDF):
 
     #: Points per call of the integration driver in ``_eval``.
     block = 2048
+    #: Cuts R = m · 4^k of ``_eval``'s integral in R (those below 1).
+    GRADING = 4.0 ** np.arange(1.0, 27.0)
 
     #: The chi-square tests' mixtures: the exponential profile's weight, rebuilt generically
     #: (:meth:`chi2_example`), so that the sampler runs the tabulated F⁻¹.
