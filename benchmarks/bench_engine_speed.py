@@ -9,8 +9,10 @@ machine's load hits all alike:
 * ``single_ms_1e-10`` / ``single_ms_1e-6``: the mean over 12 angles of one ``albedo`` call per angle;
 * ``single_over_curve`` = single (1e-10) / per-point (target ≤ 5) and ``loose_over_tight`` =
   single (1e-6) / single (1e-10) (target ≤ ½);
-* ``single_evals_1e-10`` / ``single_evals_1e-06``: the mean evaluations of those single calls, and
-  ``single_rounds_1e-10`` / ``single_rounds_1e-06`` their mean driver rounds (exact counts).
+* ``single_evals_1e-10`` / ``single_evals_1e-06``: the mean evaluations of those single calls,
+  ``single_rounds_1e-10`` / ``single_rounds_1e-06`` their mean driver rounds and
+  ``single_root_rounds_1e-10`` / ``single_root_rounds_1e-06`` their mean multisection rounds of the
+  kink radii found numerically (exact counts).
 
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
@@ -26,6 +28,7 @@ import numpy as np
 import pandas as pd
 
 from brdfs.core import gauss_kronrod
+from brdfs.numerics.integrate import hemisphere
 from brdfs.numerics.albedo import albedo
 from brdfs.pipeline.io import REPO_ROOT
 from brdfs.physics.models import model
@@ -65,27 +68,35 @@ def _curve_runs(brdf):
 
 
 def _single_evaluations(brdf):
-    """Mean ``Estimate.evaluations`` of the single calls at each rtol, and their mean number of
-    integrand evaluation rounds of the Gauss–Kronrod driver (its calls of ``_evaluate``): the work
-    the times measure, exact where the times are noisy (on a loaded machine a ratio of times can
-    move by 20 %)."""
-    rounds = [0]
-    evaluate = gauss_kronrod._evaluate
+    """Mean ``Estimate.evaluations`` of the single calls at each rtol, their mean number of
+    integrand evaluation rounds of the Gauss–Kronrod driver (its calls of ``_evaluate``) and of
+    multisection rounds placing the kink radii found numerically (``hemisphere._multisection``'s
+    calls of its function; the Torrance–Sparrow switches): the work the times measure, exact where
+    the times are noisy (on a loaded machine a ratio of times can move by 20 % or more)."""
+    rounds, sections = [0], [0]
+    evaluate, multisection = gauss_kronrod._evaluate, hemisphere._multisection
 
     def counted(*args, **kwargs):
         rounds[0] += 1
         return evaluate(*args, **kwargs)
 
+    def sectioned(fn, *args):
+        def counted_fn(x):
+            sections[0] += 1
+            return fn(x)
+        return multisection(counted_fn, *args)
+
     out = {}
-    gauss_kronrod._evaluate = counted
+    gauss_kronrod._evaluate, hemisphere._multisection = counted, sectioned
     try:
         for rtol in (TIGHT, LOOSE):
-            rounds[0] = 0
+            rounds[0] = sections[0] = 0
             out[f"single_evals_{rtol:g}"] = float(np.mean([albedo(brdf, float(t), rtol=rtol).evaluations
                                                            for t in SINGLE_THETA]))
             out[f"single_rounds_{rtol:g}"] = rounds[0] / SINGLE_THETA.size
+            out[f"single_root_rounds_{rtol:g}"] = sections[0] / SINGLE_THETA.size
     finally:
-        gauss_kronrod._evaluate = evaluate
+        gauss_kronrod._evaluate, hemisphere._multisection = evaluate, multisection
     return out
 
 

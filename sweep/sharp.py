@@ -13,6 +13,7 @@ import numpy as np
 
 from sweep import independent as ind
 from sweep import patch_mp as pm
+from sweep.ct_mp import cook_torrance_ts_albedo
 from sweep.he_torrance import he_torrance_truth
 from sweep.third_route import Truth, hemisphere_albedo, incidence
 
@@ -37,11 +38,17 @@ def sharp_truth(family, params: dict, theta: float, model) -> Truth | None:
         return kulla_conty_truth(params)
     if name in PATCH_ROUTES:
         return PATCH_ROUTES[name](params, model, theta)
+    if name == "cook_torrance" and params.get("G") == "torrance_sparrow" and theta > MP_GRAZING_THETA:
+        return cook_torrance_ts_albedo(params["m"], theta, dps=MP_DPS)
     if family.pumped is None and name in EXTENDED_F_RTOL:
         return extended_hemisphere_truth(family, params, theta, model)
     return None
 
 
+#: Cook–Torrance (Torrance–Sparrow) beyond this angle by the 2-D mpmath route (:mod:`sweep.ct_mp`, ~25 CPU-s a
+#: cell at :data:`MP_DPS` digits): where the double route's truths were suspect (issue 24's 78× cells).
+MP_GRAZING_THETA = 89.99
+MP_DPS = 25
 #: Families whose rewrite the nested quadrature integrates in long double (:func:`extended_hemisphere_truth`),
 #: by model, with the relative accuracy of one evaluation: 0 where every operation is numpy's (long double),
 #: 1e-15 where a scipy special function (double only) enters (erfc in the thesis's Smith G*, erfcx in

@@ -438,7 +438,10 @@ def _outer_range(integrand, cl, sl):
 #: cuts, the thresholds' own arithmetic), relative: 2 ε of a double.  Calibrated on mpmath: Cook–Torrance
 #: (Torrance–Sparrow) at 89.9999°/89.99999°, m = 0.052342, 30-digit nested quadrature
 #: (:mod:`sweep.ct_mp`), the long-double values were 1.9e-16 and 1.5e-16 off (their quadrature estimates
-#: 4e-17 and 6e-17).
+#: 4e-17 and 6e-17).  NOT enough everywhere: for Cook–Torrance (Torrance–Sparrow) at 89.99999°–89.9999999°
+#: the long-double values were up to 1.2e-13 off the mpmath ones (250× their error; the package's disk
+#: sides with mpmath), so those cells take the mpmath route (:data:`sweep.sharp.MP_GRAZING_THETA`); the
+#: cause (likely the double-precision L·H-level cuts at cos θ ~ 1e-7) is not found.
 EXTENDED_CUT_RTOL = 2 * EPS
 
 
