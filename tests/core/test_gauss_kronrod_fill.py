@@ -44,6 +44,12 @@ def test_fill_zero_is_plain_bisection():
     assert (est.evaluations, rounds) == (651, 16)
 
 
+
+def _kink_radii(brdf, mu, st, levels, t_max):
+    """The L·H kink radii per angle, as the engine cuts them: the midpoints of their brackets."""
+    return [0.5 * (lo + hi) for lo, hi in hemisphere._lh_radial_brackets(brdf, mu, st, levels, t_max,
+                                                                         hemisphere.ROOT_RTOL)]
+
 def test_multisection_finds_the_torrance_sparrow_switch_radii_bisection_finds():
     """The radii where eq. 2.10's switches start or stop cutting the circles, by multisection (to
     ``ROOT_RTOL`` of their distance from the ends of [0, 1]), against bisection of the same gap
@@ -61,11 +67,11 @@ def test_multisection_finds_the_torrance_sparrow_switch_radii_bisection_finds():
             a, b = np.where(same, mid, a), np.where(same, b, mid)
         return a, b
 
-    found = hemisphere._lh_radial_breakpoints(brdf, mu, st, levels, t_max)
+    found = _kink_radii(brdf, mu, st, levels, t_max)
     original = hemisphere._multisection
     try:
         hemisphere._multisection = bisection
-        bisected = hemisphere._lh_radial_breakpoints(brdf, mu, st, levels, t_max)
+        bisected = _kink_radii(brdf, mu, st, levels, t_max)
     finally:
         hemisphere._multisection = original
     assert sum(r.size for r in found) > 40
@@ -106,11 +112,11 @@ def test_few_brackets_take_the_roots_the_gathered_gap_functions_take():
     mu, st = np.cos(np.radians(theta)), np.sin(np.radians(theta))
     levels = [np.zeros_like(mu)] + [np.broadcast_to(c, mu.shape) for c in brdf.nv_levels(mu)]
     t_max = brdf.lobe.t_of(0.5 * (np.pi / 2 + np.radians(theta)))
-    picked = hemisphere._lh_radial_breakpoints(brdf, mu, st, levels, t_max)
+    picked = _kink_radii(brdf, mu, st, levels, t_max)
     few = hemisphere._FEW_BRACKETS
     try:
         hemisphere._FEW_BRACKETS = 0
-        gathered = hemisphere._lh_radial_breakpoints(brdf, mu, st, levels, t_max)
+        gathered = _kink_radii(brdf, mu, st, levels, t_max)
     finally:
         hemisphere._FEW_BRACKETS = few
     assert sum(r.size for r in picked) >= 3

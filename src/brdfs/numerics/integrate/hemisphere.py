@@ -79,7 +79,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
 
 
 class Kinks(NamedTuple):
-    """The kink radii found numerically (:func:`_lh_radial_breakpoints`) as brackets [lo, hi] in t,
+    """The kink radii found numerically (:func:`_lh_radial_brackets`) as brackets [lo, hi] in t,
     flattened over the elements (``element``: the element of each): the breakpoint sits at their
     midpoint, the kink anywhere in between."""
 
@@ -92,7 +92,7 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
     """Breakpoints in t of ``models[i]`` at incidence ``theta_deg[i]`` (cos ``mu``, sin ``st``), one
     row per element, ascending and NaN-padded (:func:`.gauss_kronrod.integrate`'s ragged form):
     the range ends, the radii where N·V level sets touch the circles (closed form), the radii where
-    L·H levels change how they cut the circles (found numerically, :func:`_lh_radial_breakpoints`),
+    L·H levels change how they cut the circles (found numerically, :func:`_lh_radial_brackets`),
     the lobe's tail 1 − t = ``tail`` (:data:`TAIL` by default), and graded points at the two ends of
     the range where an endpoint singularity sits (:data:`HEAD`, :data:`END`).  The elements of one
     model are handled together, and the 1-D route (:mod:`.azimuthal`) uses the same rows.
@@ -226,15 +226,9 @@ HEAD = 10.0 ** -np.arange(1.0, 9.0, 1.0)
 #: rtol 1e-10).
 END = 10.0 ** -np.arange(1.0, 7.0, 1.0)
 _SCAN = 1024
-#: The scan of :func:`_lh_radial_breakpoints` on [0, 1], sorted: uniform in t (the lobe's core) and
+#: The scan of :func:`_lh_radial_brackets` on [0, 1], sorted: uniform in t (the lobe's core) and
 #: geometric in 1 − t (its tail, where the switches sit); built once (it cost a third of a call's setup).
 _UNIT_SCAN = np.sort(np.concatenate([np.linspace(0.0, 1.0, _SCAN), 1.0 - np.geomspace(1e-16, 1.0, _SCAN)]))
-
-
-def _lh_radial_breakpoints(model, mu, st, nv_levels, t_max, root_rtol=None):
-    """The radii of :func:`_lh_radial_brackets`: the midpoints of their brackets, per angle."""
-    return [0.5 * (lo + hi) for lo, hi in _lh_radial_brackets(model, mu, st, nv_levels, t_max,
-                                                               ROOT_RTOL if root_rtol is None else root_rtol)]
 
 
 def _lh_radial_brackets(model, mu, st, nv_levels, t_max, root_rtol):
@@ -314,7 +308,7 @@ def _lh_radial_brackets(model, mu, st, nv_levels, t_max, root_rtol):
     return [(a[row == i], b[row == i]) for i in range(mu.size)]
 
 
-#: Brackets up to which :func:`_lh_radial_breakpoints` evaluates every gap function in each round of the
+#: Brackets up to which :func:`_lh_radial_brackets` evaluates every gap function in each round of the
 #: multisection (a single angle: one or two brackets) rather than gathering each bracket's own.
 _FEW_BRACKETS = 16
 #: Points per bracket and round of :func:`_multisection` (each round narrows a bracket 2^6-fold:
