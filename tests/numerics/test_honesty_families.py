@@ -184,16 +184,15 @@ def test_ggx_polar_route_is_honest_at_grazing_incidence(theta, rtol, truth):
     _honest(est, truth)
 
 
-# --- Cook–Torrance without masking near grazing, in a batch (found by the sweep; open) -------------
+# --- Cook–Torrance without masking near grazing, in a batch (found by the sweep) ----------------------
+# The radial integrand rises like arccos √(t0 / t) past the horizon-touch radius t0 = 1.4e-7: a
+# square-root onset that K − G understated on the pieces bisection made of [t0, 0.999].  Fixed by the
+# substitution t = t0 + (t1 − t0) u² on that interval (hemisphere.horizon_onset / square_root_onset).
 
-@pytest.mark.xfail(strict=True, reason="open (issue 24): the 1-D route (integrate/azimuthal.py) leaves one interval "
-                   "from the horizon-touch kink t0 = 1.4e-7 to 0.999; on the pieces bisection makes from it "
-                   "(t/t0 up to ~1e3) the kernel dips and rises like sqrt(t) and K is only 3x better than G. "
-                   "Breakpoints t0 (1 + 16^k) fix it (0.12x) but move Cook-Torrance (TS) m = 0.005027 at 89.9 deg "
-                   "from 0.70x to 1.02x: report of helper H1, session 5")
 def test_cook_torrance_without_masking_is_honest_near_grazing_in_a_batch():
     """The sweep's group (m = 0.230153, four angles; truth at 89.99° from tests/data/sweep_truths.csv,
-    372.49278798508186 ± 3.2e-11): was 6.6e-9 off at 5.1e-9 reported at rtol 1e-10 (1.28×)."""
+    372.49278798508186 ± 3.2e-11): was 6.6e-9 off at 5.1e-9 reported at rtol 1e-10 (1.28×), is 1.9e-10
+    off at 3.9e-10 (0.48×)."""
     est = albedo(model("cook_torrance", m=0.230153, G="none"), np.array([59.862315, 13.072208, 89.99, 89.9999999]),
                  "engine", rtol=1e-10)
     assert abs(float(est.value[2]) - 372.49278798508186) <= float(est.error[2])
