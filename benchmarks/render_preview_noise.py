@@ -22,7 +22,7 @@ import numpy as np
 from brdfs.pipeline.config import load_config
 from brdfs.render.mitsuba import metrics
 
-#: The rendered figures, in the order of their two Snakemake batches.
+#: The rendered figures, in the order of their Snakemake batches (chapters 2-3, chapter 4, Fig. 4.16 alone).
 FIGURES = ("fig_2_8_pumping_render", "fig_3_8_material_spheres", "fig_3_9_metals_new_model",
            "fig_3_10_metal_teapots", "fig_3_11_silver_mirror", "fig_3_12_plastics", "fig_3_13_ceramics",
            "fig_4_9_sampling_efficiency", "fig_4_11_anisotropic_metals", "fig_4_16_patch_metals",

@@ -127,6 +127,23 @@ def test_a_large_near_light_over_a_lambert_plate_gives_rho_e_over_pi(mi):
     assert abs(got - expected) <= 5 * err + 1e-3 * expected, (got, expected, err)
 
 
+def test_the_lobe_mis_density_leaves_a_wide_light_on_a_patch_plate_unbiased(mi):
+    """A wide sphere light (sin α = 2/3) over an exponential patch plate, s = 4: light and BSDF
+    samples share the work, so MIS weights that did not sum to one would bias it.  Normal sampling
+    with the lobe density in the MIS weights (``mis_density = "lobe"``) agrees with the exact density
+    and with cosine sampling (three estimators, one expectation)."""
+    L, V = (0.2, 0.1, 1.0), (-1.0, 0.1, 0.6)
+    plate = {"type": "brdfs_patch_exponential", "s": 4.0}
+    got = {name: _direct_radiance(mi, {**plate, **extra}, L, V, distance=1.5, radius=1.0)[0]
+           for name, extra in (("lobe", {"strategy": "normal", "mis_density": "lobe"}),
+                               ("exact", {"strategy": "normal"}), ("cosine", {"strategy": "cosine"}))}
+    (lobe, lobe_err) = got["lobe"]
+    for name in ("exact", "cosine"):
+        value, err = got[name]
+        assert abs(lobe - value) <= 5 * np.hypot(lobe_err, err), (name, lobe, value)
+    assert lobe_err < 0.01 * lobe
+
+
 @pytest.mark.parametrize("plugin, model_name, params", PLUGIN_MODELS, ids=[p[0] for p in PLUGIN_MODELS])
 def test_a_far_spherical_light_gives_f_cos_e_for_every_plugin(mi, plugin, model_name, params):
     """One bounce from a far sphere of irradiance E: radiance = f(L, V) E (f cos θ_L E_⊥). L and V are

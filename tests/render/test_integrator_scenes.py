@@ -140,6 +140,21 @@ def test_a_figures_spp_entry_overrides_the_presets_and_must_be_a_multiple_of_pas
         rf.settings(cfg)
 
 
+def test_a_per_panel_spp_list_gives_each_panel_its_own_and_needs_one_entry_per_panel():
+    from brdfs.artifacts import _render_figures as rf
+
+    cfg = {"renders": {"preset": "preview", "variant": "llvm_ad_rgb", "sampler": "multijitter", "caustics": False,
+                       "preview": {"min_width": 64, "min_height": 40, "spp": 64, "passes": 8,
+                                   "figure_spp": {"fig_2_8_pumping_render": [64, 32, 48, 8]}}}}
+    setup = rf.figure_setup(rf.settings(cfg), "fig_2_8_pumping_render")
+    assert [s["spp"] for s in rf.panel_setups(setup, "fig_2_8_pumping_render", 4)] == [64, 32, 48, 8]
+    with pytest.raises(ValueError, match=r"figure_spp.fig_2_8_pumping_render = \[64, 32, 48, 8\]: needs one entry per panel, 2"):
+        rf.panel_setups(setup, "fig_2_8_pumping_render", 2)
+    cfg["renders"]["preview"]["figure_spp"]["fig_2_8_pumping_render"] = [64, 30, 48, 8]
+    with pytest.raises(ValueError, match="must be a multiple of passes = 8 \\(each entry\\)"):
+        rf.settings(cfg)
+
+
 def test_the_dim_third_wavelength_pass_takes_an_eighth_of_the_samples_of_the_others():
     from brdfs.artifacts import _render_figures as rf
     from brdfs.render import spectrum

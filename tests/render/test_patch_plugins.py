@@ -346,6 +346,27 @@ def test_exponential_normal_weights_average_to_the_models_albedo(mitsuba):
     assert abs(weight.mean() - albedo) < 5 * weight.std() / np.sqrt(weight.size) + 1e-6, (weight.mean(), albedo)
 
 
+def test_the_lobe_mis_density_changes_the_mis_weights_only_not_the_samples_weights_or_pdf(mitsuba):
+    """``mis_density = "lobe"``: ``eval_pdf`` and ``bs.pdf`` report f cos θ_V / W (the MIS weights'
+    density), while ``pdf`` stays the exact marginal density of normal sampling (the chi-square
+    tests) and the directions and weights are those of the exact sampler, bit for bit."""
+    mi = mitsuba
+    brdf = numpy_model("patch_exponential", s=10.0)
+    exact = mi.load_dict(_plugin("patch_exponential", "normal", s=10.0))
+    lobe = mi.load_dict({**_plugin("patch_exponential", "normal", s=10.0), "mis_density": "lobe"})
+    si, bs_e, wo_e, w_e = _sample(mi, exact, 60.0, 20_000, 5)
+    _, bs_l, wo_l, w_l = _sample(mi, lobe, 60.0, 20_000, 5)
+    np.testing.assert_array_equal(wo_e, wo_l)
+    np.testing.assert_array_equal(w_e, w_l)
+    kept = w_l > 0
+    f_cos = _np(lobe.eval(mi.BSDFContext(), si, bs_l.wo))[0]
+    np.testing.assert_allclose(_np(bs_l.pdf)[kept], f_cos[kept] / brdf.total_weight, rtol=2e-6)
+    np.testing.assert_array_equal(_np(lobe.pdf(mi.BSDFContext(), si, bs_l.wo)), _np(bs_e.pdf))
+    value, pdf = lobe.eval_pdf(mi.BSDFContext(), si, bs_l.wo)
+    np.testing.assert_allclose(_np(pdf)[kept], f_cos[kept] / brdf.total_weight, rtol=2e-6)
+    assert not np.allclose(_np(bs_e.pdf)[kept], _np(bs_l.pdf)[kept], rtol=1e-3)
+
+
 def test_the_normal_loop_gives_up_with_a_probability_below_float32_resolution(mitsuba):
     from brdfs.render.mitsuba.plugins import patch as plugins
     d, R = np.meshgrid(np.linspace(0.0, 1.0, 201), np.linspace(0.01, 2.0, 200))

@@ -122,6 +122,8 @@ def test_generic_plugin_renders_a_users_own_model_as_mitsuba_renders_its_own_lam
     ({"type": "brdfs_cook_torrance", "m": 0.1, "G": "beckmann"}, "brdfs_cook_torrance: G = 'beckmann'"),
     ({"type": "brdfs_ggx", "alpha": 0.3, "compensation": "kulla_conty"}, "render it through brdfs_model"),
     ({"type": "brdfs_model", "model": "no_such_model"}, "brdfs_model: model(): name = 'no_such_model'"),
+    ({"type": "brdfs_patch_exponential", "s": 10.0, "mis_density": "cheap"},
+     "brdfs_patch_exponential: mis_density = 'cheap'; choose one of ('exact', 'lobe')"),
 ])
 def test_bad_plugin_parameters_are_named_in_one_line(mitsuba, params, line):
     with pytest.raises(RuntimeError) as error:

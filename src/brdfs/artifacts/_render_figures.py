@@ -7,7 +7,7 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
 
 * **Preset** (``renders.preset``: ``preview`` or ``final``): the smallest panel size, samples per
   pixel (``spp``, or a figure's own ``figure_spp`` entry: the noisy figures get more, the quiet
-  ones fewer) and the number of independent passes they are split into (≥ 8; the noise figures of
+  ones fewer; a list gives each panel its own, :func:`panel_setups`) and the number of independent passes they are split into (≥ 8; the noise figures of
   :mod:`brdfs.render.mitsuba.metrics` are taken over them). A panel is at least ``min_width``
   columns and ``min_height`` rows, at its aspect ratio; its PNG shows it at native resolution.
 * **Launches**: every pass is its own ``mi.render`` launch with its own seed (:func:`pass_seed`),
@@ -46,7 +46,7 @@ SECTION = "renders"
 PRESETS = ("preview", "final")
 SPECTRAL = len(spectrum.WAVELENGTHS_NM)
 #: Material keys that are not model parameters.
-MATERIAL_KEYS = ("metal", "model", "pumped", "label", "diffuse", "rgb", "a_s", "strategy", "count")
+MATERIAL_KEYS = ("metal", "model", "pumped", "label", "diffuse", "rgb", "a_s", "strategy", "mis_density", "count")
 
 
 @dataclass
@@ -78,14 +78,28 @@ def settings(cfg: dict) -> dict:
         raise ValueError(f"renders.{preset}: spp = {setup['spp']} must be a multiple of passes = "
                          f"{setup['passes']} >= {metrics.MIN_PASSES}")
     for name, spp in setup["figure_spp"].items():
-        if spp % setup["passes"]:
-            raise ValueError(f"renders.{preset}.figure_spp.{name} = {spp}: must be a multiple of passes = {setup['passes']}")
+        if any(value % setup["passes"] for value in np.atleast_1d(spp)):
+            raise ValueError(f"renders.{preset}.figure_spp.{name} = {spp}: must be a multiple of passes = {setup['passes']}"
+                             + (" (each entry)" if isinstance(spp, list) else ""))
     return setup
 
 
 def figure_setup(setup: dict, name: str) -> dict:
-    """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp``."""
+    """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp`` (an
+    integer, or a list with one entry per panel, :func:`panel_setups`)."""
     return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"])}
+
+
+def panel_setups(setup: dict, name: str, count: int) -> list[dict]:
+    """The settings of each of a figure's ``count`` panels: a per-panel ``figure_spp`` list gives
+    each panel its own samples per pixel (where the panels' noise differs, as Fig. 2.8's by 5x)."""
+    spp = setup["spp"]
+    if not isinstance(spp, (list, tuple)):
+        return [setup] * count
+    if len(spp) != count:
+        raise ValueError(f"renders.{setup['preset']}.figure_spp.{name} = {list(spp)}: needs one entry per panel, "
+                         f"{count} panels")
+    return [{**setup, "spp": int(value)} for value in spp]
 
 
 def panel_size(setup: dict, aspect: float) -> tuple[int, int]:
@@ -117,8 +131,9 @@ def bsdf(spec: dict, channels=None) -> dict:
     out = {"type": f"brdfs_{spec['model']}", **params}
     if int(spec.get("pumped", 0)):
         out["pumping"] = "g1"
-    if "strategy" in spec:
-        out["strategy"] = spec["strategy"]
+    for key in ("strategy", "mis_density"):
+        if key in spec:
+            out[key] = spec[key]
     if spec.get("count"):
         out["count"] = True           # the patch plugins count samples, tries and evaluations
     if "metal" in spec:
@@ -287,7 +302,7 @@ def _plugin_costs(scene) -> dict:
 
 def _describe(spec: dict) -> dict:
     """Material columns of a row (docs/contract.md names): model, metal, parameters, pumping."""
-    keys = ("metal", "model", "n", "s", "b", "ratio", "d", "a_s", "diffuse", "strategy")
+    keys = ("metal", "model", "n", "s", "b", "ratio", "d", "a_s", "diffuse", "strategy", "mis_density")
     out = {k: spec.get(k) for k in keys}
     if "rgb" in spec:          # eq. 3.31: Lambert r, g, b + a_s · phong_cosmin
         out["model"] = "phong_cosmin"
@@ -330,9 +345,9 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``count``: columns ``rays`` (the panel's) and ``plugin_samples``, ``plugin_tries``,
     ``plugin_evaluations`` (per object whose plugin counts), for one wavelength pass set.
     """
-    setup = figure_setup(settings(cfg), name)
+    setups = panel_setups(figure_setup(settings(cfg), name), name, len(panels))
     rows, images, id_buffers, scale = [], [], [], None
-    for k, panel in enumerate(panels):
+    for k, (panel, setup) in enumerate(zip(panels, setups)):
         width, height = panel_size(setup, panel.aspect)
         rendered = render_panel(panel, cfg, setup, width, height, count)
         if post is not None:

@@ -6,13 +6,20 @@ from brdfs.render.mitsuba import scenes as msc
 
 
 def _params(entry):
-    """The model parameters of a config entry ``{metal: ..., <parameter>: ...}`` (n, s, ...)."""
+    """The model parameters of a config entry ``{metal: ..., <parameter>: ...}`` (n, s, ...), with
+    the sampler's keys (``strategy``, ``mis_density``) where a figure adds them."""
     return {k: v for k, v in entry.items() if k != "metal"}
+
+
+def with_sampler(entries, sampler):
+    """``entries`` with the figure's sampler keys (``{strategy: ..., mis_density: ...}``) added to each."""
+    return [{**entry, **sampler} for entry in entries]
 
 
 def describe(entries, model="phong_cosmin"):
     """'silver n=20, aluminium n=40, ...' from config entries (panel titles follow the config)."""
-    return ", ".join(" ".join([e["metal"], *(f"{k}={v:g}" for k, v in _params(e).items())]) for e in entries)
+    return ", ".join(" ".join([e["metal"], *(f"{k}={v:g}" for k, v in _params(e).items() if not isinstance(v, str))])
+                     for e in entries)
 
 
 def _metal(entry, model="phong_cosmin"):

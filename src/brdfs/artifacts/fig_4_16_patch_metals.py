@@ -13,7 +13,7 @@ NAME = "fig_4_16_patch_metals"
 
 def panels(cfg: dict) -> list:
     s = cfg[rf.SECTION]
-    entries = s["patch_exponential"]["fig_4_16"]
+    entries = ms.with_sampler(s["patch_exponential"]["fig_4_16"], s["patch_exponential"]["sampler"])
     tank, plate, spheres = entries[0], entries[1], entries[2:]
     title = (f"tank {_short(tank)} s={tank['s']:g}, plate {_short(plate)} s={plate['s']:g}, spheres s = "
              + ", ".join(f"{e['s']:g} ({_short(e)})" for e in spheres))
@@ -24,7 +24,7 @@ def _short(entry):
     return SYMBOL.get(entry["metal"], entry["metal"])
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_chapter_4")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_fig_4_16")
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

@@ -19,7 +19,8 @@ CAMERA = {"eye": (0.0, -7.6, 3.0), "target": (0.0, 0.0, 0.55), "fov_deg": 34.0}
 
 
 def panels(cfg: dict) -> list:
-    entries = cfg[rf.SECTION]["patch_exponential"]["fig_4_17"]
+    section = cfg[rf.SECTION]["patch_exponential"]
+    entries = ms.with_sampler(section["fig_4_17"], section["sampler"])
     shapes = [("cube", msc.box((-2.0, -0.3, 0.6), (0.6, 0.6, 0.6))),
               ("cylinder", msc.capped_cylinder((0.0, 0.5, 0.0), 0.6, 1.3)),
               ("sphere", rf.sphere(2.0, -0.3, 0.7))]

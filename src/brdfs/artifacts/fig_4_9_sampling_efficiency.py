@@ -30,7 +30,7 @@ def panels(cfg: dict) -> list:
         for x, entry in zip(rf.row(len(spec["spheres"]), 2.0), spec["spheres"]):
             objects.append((f"{entry['metal']} s={entry['s']:g}", rf.sphere(x, 0.0, 0.8),
                             {"model": "patch_exponential", "metal": entry["metal"], "s": entry["s"],
-                             "strategy": strategy, "count": 1}))
+                             "strategy": strategy, "mis_density": spec["mis_density"], "count": 1}))
         out.append(rf.Panel(f"{strategy.replace('_', '/')} sampling", objects, rf.TWO_LIGHTS, CAMERA,
                             aspect=1.6, extra={"strategy": strategy}))
     return out

@@ -238,11 +238,18 @@ class ModelBSDF(mi.BSDF):
             f = f + self.diffuse.eval(si, active) * INV_PI
         return dr.select(active, f, 0.0)
 
-    def _pdf(self, si, given, drawn, active):
+    def mis_lobe_pdf(self, L, V, active):
+        """The lobe's density in the MIS weights of :meth:`eval_pdf` (next-event estimation) and of a
+        sample's ``bs.pdf``: :meth:`lobe_pdf` here.  A plugin whose ``sample`` weight does not divide by
+        the density may report a cheaper one: MIS weights that sum to one for every direction keep the
+        estimate unbiased whatever density they are computed from (Veach 1997, sec. 9.2)."""
+        return self.lobe_pdf(L, V, active)
+
+    def _pdf(self, si, given, drawn, active, mis=False):
         """The mixture density of ``drawn`` (``wo``) sampled from ``given`` (``si.wi``): the model's
-        ``pdf(L=given, V=drawn)``."""
+        ``pdf(L=given, V=drawn)``; with ``mis``, the density of the MIS weights (:meth:`mis_lobe_pdf`)."""
         active = active & (given.z > 0) & (drawn.z > 0)
-        p_lobe = self.lobe_pdf(given, drawn, active)
+        p_lobe = (self.mis_lobe_pdf if mis else self.lobe_pdf)(given, drawn, active)
         if self.diffuse is not None:
             p_d = self._diffuse_probability(si, active)
             p_lobe = p_d * cosine_pdf(drawn) + (1.0 - p_d) * p_lobe
@@ -259,7 +266,7 @@ class ModelBSDF(mi.BSDF):
     def eval_pdf(self, ctx, si, wo, active=True):
         wi_m, wo_m = to_model(si.wi), to_model(wo)
         return (self._value(si, wo_m, wi_m, active) * dr.maximum(wo.z, 0.0),
-                self._pdf(si, wi_m, wo_m, active))
+                self._pdf(si, wi_m, wo_m, active, mis=True))
 
     def sample(self, ctx, si, sample1, sample2, active=True):
         wi_m = to_model(si.wi)

@@ -392,7 +392,9 @@ class PatchBSDF(ModelBSDF):
         ok = active & kept & (V.z > 0) & (pdf > 0)
         bs = dr.zeros(mi.BSDFSample3f)
         bs.wo = dr.select(ok, from_model(V), mi.Vector3f(0.0, 0.0, -1.0))
-        bs.pdf = dr.select(ok, pdf, 0.0)
+        # the weight below is the exact conditional one, so bs.pdf may be the MIS density
+        mis_pdf = pdf if type(self).mis_lobe_pdf is ModelBSDF.mis_lobe_pdf else self._pdf(si, wi_m, V, active, mis=True)
+        bs.pdf = dr.select(ok, mis_pdf, 0.0)
         bs.eta = 1.0
         bs.sampled_type = dr.select(diffuse, mi.UInt32(int(mi.BSDFFlags.DiffuseReflection)),
                                     mi.UInt32(int(self.lobe_flag)))
@@ -452,8 +454,16 @@ class PatchExponentialBSDF(PatchBSDF):
     parameters = ("s", "C")
     strategies = ("accept_reject", "normal", "cosine")
 
+    #: ``mis_density``: "exact" (default), the marginal density of ``normal`` sampling in the MIS
+    #: weights; "lobe", f cos θ_V / W (the accept/reject density, of the same shape) instead.
+    MIS_DENSITIES = ("exact", "lobe")
+
     def __init__(self, props):
+        mis_density = props.get("mis_density", "exact")
         super().__init__(props)
+        if mis_density not in self.MIS_DENSITIES:
+            raise ValueError(f"{props.plugin_name()}: mis_density = {mis_density!r}; choose one of {self.MIS_DENSITIES}")
+        self.mis_density = mis_density
         s = float(self.brdf.s)
         profile_c_max = self.brdf.C / self.brdf.total_weight
         self.s = dr.opaque(mi.Float, s)
@@ -477,6 +487,15 @@ class PatchExponentialBSDF(PatchBSDF):
         d = dr.sqrt(mi.Float64(L.x * L.x + L.y * L.y))
         Q = exponential_exact_density(d, mi.Float64(projected_distance(L, V)), self.s64, self.norm, self.p_diffuse)
         return mi.Float(Q) * V.z
+
+    def mis_lobe_pdf(self, L, V, active):
+        """With ``mis_density = "lobe"`` and ``normal`` sampling: f cos θ_V / W, the accept/reject
+        density, in place of the marginal Q(m, d) cos θ_V, whose Gauss–Legendre nodes cost twice the
+        rest of a path (Fig. 4.16 at 32 spp: 37.3 against 12.6 CPU-s, JIT included, the same p95 of
+        the relative standard error, 0.124).  :meth:`pdf` stays the exact density (the chi-square tests)."""
+        if self.mis_density == "lobe" and self.strategy == "normal":
+            return self.lobe_eval(L, V, active) * V.z / self.W
+        return self.lobe_pdf(L, V, active)
 
     def radius(self, u):
         """R = F⁻¹(u) of the mixture's weight (eq. 4.27)."""
