@@ -60,6 +60,9 @@ for _batch, _members in BATCHES.items():
         resources:
             mem_mb=max(a.resources["mem_mb"] for a in _members),
             runtime=sum(a.resources["runtime"] for a in _members),
+        # the render batches (config section `renders`) start first, side by side on the two cores: they
+        # are the longest jobs, and behind other jobs one waited for the other (render wall 202 s for 125)
+        priority: 1 if any("renders" in a.config for a in _members) else 0
         log:
             f"results/logs/batches/{_batch}.log",
         benchmark:
