@@ -224,7 +224,7 @@ def test_the_passes_of_one_launch_are_independent_unbiased_renders_averaging_to_
                  "bsdf": {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [rho] * 3}},
                  "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [emitted] * 3}}}})
     image = np.asarray(mi.render(scene, spp=32 * PASSES, seed=3))
-    per_pass = PASSES * np.moveaxis(image[..., 5:].reshape(pixels, pixels, PASSES, 3), 2, 0)
+    per_pass = PASSES * np.moveaxis(image[..., 5:5 + 3 * PASSES].reshape(pixels, pixels, PASSES, 3), 2, 0)
     got, err = _mean_and_error(per_pass[..., 0].mean(axis=(1, 2)))
     expected = emitted / (1.0 - rho)
     assert np.all(per_pass >= emitted * (1 - 1e-5))          # every pass has samples in every pixel

@@ -164,3 +164,14 @@ def test_the_dim_third_wavelength_pass_takes_an_eighth_of_the_samples_of_the_oth
     assert rf.pass_spp(128, 8, None) == 16 and rf.pass_spp(8, 8, WAVELENGTH_PASSES[2]) == 1
     weights = spectrum.luminance_weights(8)
     assert weights[list(WAVELENGTH_PASSES[2][:2])].sum() < 0.005 * weights.sum()   # why it may
+
+
+def test_a_pixel_whose_samples_hit_two_objects_has_no_object_id_even_where_their_mean_is_an_integer():
+    """Half the samples on object 3 and half on object 5 average to 4, another object's ID: the
+    variance mean(id²) − mean(id)² tells them apart, down to one sample of N."""
+    from brdfs.artifacts import _render_figures as rf
+
+    n = 64
+    mean = np.array([4.0, 4.0, 2.0, 0.0, (63 * 2 + 3) / n, 0.5])
+    mean_sq = np.array([(9 + 25) / 2, 16.0, 4.0, 0.0, (63 * 4 + 9) / n, 0.5])
+    assert rf.pure_ids(mean, mean_sq, n).tolist() == [rf.MIXED_ID, 4.0, 2.0, 0.0, rf.MIXED_ID, rf.MIXED_ID]

@@ -252,7 +252,7 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     out = np.zeros((passes, height, width, channels))
     # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a pixel's
     # ID is an object's only where all its samples hit that object
-    ids, cos_v = np.zeros((height, width)), np.zeros((height, width))
+    ids, ids_sq, cos_v = np.zeros((height, width)), np.zeros((height, width)), np.zeros((height, width))
     labels, costs, rays, first = None, {}, None, True
     # point lights: one scene per light (an emitter sample then picks no light at random)
     light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
@@ -269,9 +269,10 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                     if first:
                         ids += chunk / (spp * passes) * image[..., 3]
                         cos_v += chunk / (spp * passes) * image[..., 4]
+                        ids_sq += chunk / (spp * passes) * image[..., -1]
             if first:
                 labels, first = msc.object_labels(scene), False
-                ids = np.where(np.abs(ids - np.round(ids)) < 1e-5, np.round(ids), ids)   # float sums of integers
+                ids = pure_ids(ids, ids_sq, spp * passes)
             if group is None:
                 out += per_pass
             else:
@@ -282,6 +283,19 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
             rays = int(np.asarray(scene.integrator().rays)[0])
     spp_full = pass_spp(total_spp, passes, groups[0])
     return RenderedPanel(out, ids, labels, spp_full * passes, costs, rays, cos_v)
+
+
+#: The ID of a pixel whose samples hit more than one object (or an object and the background).
+MIXED_ID = -1.0
+
+
+def pure_ids(mean_id: np.ndarray, mean_id_sq: np.ndarray, samples: int) -> np.ndarray:
+    """The object ID of each pixel from the means of ``id`` and ``id²`` over its ``samples`` samples:
+    round(mean) where every sample hit the same object (variance 0; one sample of N elsewhere gives
+    at least (1 − 1/N)/N), else :data:`MIXED_ID`."""
+    variance = mean_id_sq - mean_id ** 2
+    pure = (variance < 0.25 / samples) & (np.abs(mean_id - np.round(mean_id)) < 1e-3)
+    return np.where(pure, np.round(mean_id), MIXED_ID)
 
 
 def pass_seed(seed: int, pass_index: int, launch: int = 0) -> int:

@@ -11,8 +11,8 @@ pyramid of each panel cropped at native resolution, side by side, and (right) it
 profile*: the mean luminance Y of the pyramid's pixels in bins of the viewing angle θ_V (the
 integrator's cos θ_V AOV), per panel, with its standard error over the independently seeded
 passes. A flat face is seen at one θ_V (within the perspective's few degrees), so the profile has
-a point per visible face: the front face near 20° and the side face near 62°; the pixels on the
-edges between faces, mixtures of two, fill no bin. The CSV carries the profile as rows with
+a point per visible face: the front faces near 8° and 11°, the side faces near 75° and 87°; the
+pixels on the edges between faces, mixtures of two, fill no bin. The CSV carries the profile as rows with
 ``theta_v_deg`` (the bin's mean θ_V), ``theta_v_lo_deg``, ``theta_v_hi_deg``, ``pixels``,
 ``luminance``, ``luminance_err``.
 """

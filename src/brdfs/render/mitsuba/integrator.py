@@ -32,10 +32,12 @@ Per camera ray the estimator is the usual one of pbrt-v4's ``PathIntegrator`` an
 The bounce loop is a Python ``while`` loop that ``@dr.syntax`` turns into ``dr.while_loop``: with
 Dr.Jit's default flags it is traced once into one kernel (fast); after :func:`wavefront` (symbolic
 calls and loops switched off) it runs one evaluated iteration at a time, so that a BSDF implemented
-in numpy (the generic plugin ``brdfs_model``) can read its arguments. The integrator writes two AOVs: ``id``,
-the index + 1 of the BSDF of the shape the camera ray hits first (:func:`scene_bsdfs`; 0 for the
-background), the object ID buffer of :mod:`brdfs.render.mitsuba.metrics`; and ``cos_v``, cos θ_V
-at that hit (0 for the background), for the material editor's S·a(θ_V) of Figure 3.8.
+in numpy (the generic plugin ``brdfs_model``) can read its arguments. The integrator writes the AOVs
+``id``, the index + 1 of the BSDF of the shape the camera ray hits first (:func:`scene_bsdfs`; 0 for the
+background), the object ID buffer of :mod:`brdfs.render.mitsuba.metrics`; ``cos_v``, cos θ_V
+at that hit (0 for the background), for the material editor's S·a(θ_V) of Figure 3.8; and, last,
+``id_sq``, the square of ``id``: a pixel's mean ``id`` is an object's only where the variance
+mean(id²) − mean(id)² is 0 (half the samples on object 3 and half on object 5 average to 4).
 
 The lines marked ``# MUTATION:<name>`` are the switches of ``make check-mutations``
 (``workflow/scripts/check_mutations.sh`` rewrites each in a temporary copy and expects a named
@@ -152,7 +154,7 @@ class _BrdfsPathMethods:
         self.bounce_limit = self.bounce_limit  # MUTATION:depth3 self.bounce_limit = min(self.bounce_limit, 3)
 
     def aov_names(self):
-        return ["id", "cos_v"] + pass_aov_names(self.passes)
+        return ["id", "cos_v"] + pass_aov_names(self.passes) + ["id_sq"]
 
     def _count(self, active):
         if self.count_rays:
@@ -220,7 +222,7 @@ class _BrdfsPathMethods:
             survive = sampler.next_1d(roulette) < q
             beta = dr.select(roulette, beta / dr.maximum(q, 1e-30), beta)
             active &= ~roulette | survive
-        return L, mi.Bool(True), [object_id, cos_v] + self._pass_aovs(sampler, L)
+        return L, mi.Bool(True), [object_id, cos_v] + self._pass_aovs(sampler, L) + [dr.square(object_id)]
 
     def _light_sample(self, scene, emitter, bsdf, bsdf_ctx, si, sampler, active):
         """β-free NEE term of one light: f cos L_e / p_light × w_light, zero where the shadow ray is blocked."""
