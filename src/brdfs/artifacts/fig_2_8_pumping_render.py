@@ -100,13 +100,15 @@ def profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
     fig = Figure(figsize=(CHART_PX[0] / dpi, CHART_PX[1] / dpi), dpi=dpi)
     FigureCanvasAgg(fig)
     ax = fig.add_axes([0.11, 0.13, 0.86, 0.8])
-    styles = ["C0-", "C0--", "C3-", "C3--"]
+    # markers only: between the faces' viewing angles there is nothing to draw a line through
+    styles = ["C0o", "C0s", "C3o", "C3s"]
     for k, title in enumerate(titles):
         part = profile[profile["panel"] == k].sort_values("theta_v_deg")
         if part.empty:
             continue
         ax.errorbar(part["theta_v_deg"], part["luminance"], yerr=2 * part["luminance_err"],
-                    fmt=styles[k % len(styles)] + "o", ms=3, capsize=2, lw=1.2, label=title)
+                    fmt=styles[k % len(styles)], ms=5, mfc="none" if k % 2 else None, capsize=2, lw=1.2,
+                    label=title)
     ax.set_xlabel("viewing angle θ_V on the silver pyramid's faces (deg)", fontsize=8)
     ax.set_ylabel("mean luminance Y (±2 SE)", fontsize=8)
     ax.set_xlim(0, 90)
