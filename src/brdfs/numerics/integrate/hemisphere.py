@@ -129,8 +129,8 @@ def horizon_onset(models, theta_deg, bp):
     """The breakpoint rows ``bp`` with the onset interval split, and per element that interval
     (lo, hi): it starts at the radius where the circles first reach below the horizon (β = π/2 − θ
     mirror frame, δ = (π/2 − θ)/2 half frame) and ends at the next breakpoint, or halfway to it where
-    that lies beyond 4 lo (the new breakpoint); NaN where there is none (θ = 0, or the radius past
-    the lobe's range).
+    that lies beyond 4 lo (the new breakpoint); NaN where there is none (θ = 0, the radius past the
+    lobe's range, or the next breakpoint within 2 lo).
 
     Beyond that radius the cut-off part of the circle grows like √(t − lo): the radial integrand of an
     indicator kernel (Cook–Torrance with G = 1) rises like arccos √(lo / t), a square-root onset and a
@@ -155,7 +155,7 @@ def horizon_onset(models, theta_deg, bp):
         at = rows == t0[:, None]
         k = np.argmax(at, axis=1)
         end = rows[np.arange(idx.size), k + 1]
-        ok = at.any(axis=1) & (touch > 0) & (t0 > ONSET_MIN_T) & np.isfinite(end) & (end > t0)
+        ok = at.any(axis=1) & (touch > 0) & (t0 > ONSET_MIN_T) & np.isfinite(end) & (end > ONSET_MIN_SPAN * t0)
         lo[idx], hi[idx] = np.where(ok, t0, np.nan), np.where(ok, end, np.nan)
     split = np.isfinite(lo) & (hi > ONSET_SPLIT * lo)
     if not split.any():
@@ -167,6 +167,10 @@ def horizon_onset(models, theta_deg, bp):
 
 #: An onset interval longer than this many times its start is split in half (:func:`horizon_onset`).
 ONSET_SPLIT = 4.0
+#: Only an onset interval that ends beyond this many times its start is mapped: on a shorter one the
+#: knee (width ≈ lo) fills the interval, whose √ endpoint bisection resolves as before (a single angle
+#: at moderate incidence, where the onset lies in the lobe's tail near t = 1, keeps its cost).
+ONSET_MIN_SPAN = 2.0
 
 
 def square_root_onset(integrand, lo, hi):
@@ -188,15 +192,27 @@ def square_root_onset(integrand, lo, hi):
         span = np.arcsinh(np.sqrt((hi - lo) / lo))
 
     def substituted(s, elem):
-        a, b, big_w = lo[elem, None], hi[elem, None], span[elem, None]
-        inside = (s > a) & (s < b)
-        scale = np.where(inside, big_w / (b - a), 0.0)
-        w = np.where(inside, (s - a) * scale, 0.0)
-        t = np.where(inside, a + a * np.sinh(w) ** 2, s)
-        jac = np.where(inside, a * np.sinh(2.0 * w) * scale, 1.0)
+        # an interval lies inside [lo, hi] or outside it (lo and hi are breakpoints): its middle node says which
+        start, stop = lo[elem], hi[elem]
+        middle = s[:, s.shape[1] // 2]
+        rows = np.flatnonzero((middle > start) & (middle < stop))
+        if not rows.size:
+            return integrand(s, elem)
+        a, b = start[rows, None], stop[rows, None]
+        scale = span[elem[rows], None] / (b - a)
+        w = (s[rows] - a) * scale
+        t = s.copy()
+        t[rows] = a + a * np.sinh(w) ** 2
+        jac = a * np.sinh(2.0 * w) * scale
         out = node_values(integrand(t, elem))
-        extra = None if out.extra_err is None else out.extra_err * jac
-        return NodeValues(out.high * jac, out.low * jac, extra)
+
+        def scaled(values):
+            values = np.array(values, float)
+            values[rows] *= jac
+            return values
+        high = scaled(out.high)
+        low = high if out.low is out.high else scaled(out.low)
+        return NodeValues(high, low, None if out.extra_err is None else scaled(out.extra_err))
     return substituted
 
 
