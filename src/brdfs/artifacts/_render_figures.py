@@ -7,8 +7,9 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
 
 * **Preset** (``renders.preset``: ``preview`` or ``final``): the smallest panel size, samples per
   pixel (``spp``, or a figure's own ``figure_spp`` entry: the noisy figures get more, the quiet
-  ones fewer; a list gives each panel its own, :func:`panel_setups`) and the number of independent passes they are split into (≥ 8; the noise figures of
-  :mod:`brdfs.render.mitsuba.metrics` are taken over them). A panel is at least ``min_width``
+  ones fewer; a list gives each panel its own, :func:`panel_setups`) and the number of independent
+  passes they are split into (≥ 8; the noise figures of :mod:`brdfs.render.mitsuba.metrics` are
+  taken over them). A panel is at least ``min_width``
   columns and ``min_height`` rows, at its aspect ratio; its PNG shows it at native resolution.
 * **Launches**: every pass is its own ``mi.render`` launch with its own seed (:func:`pass_seed`),
   so that Mitsuba's stratified sampler ``renders.sampler`` (multijitter) stratifies each pass
@@ -92,7 +93,7 @@ def figure_setup(setup: dict, name: str) -> dict:
 
 def panel_setups(setup: dict, name: str, count: int) -> list[dict]:
     """The settings of each of a figure's ``count`` panels: a per-panel ``figure_spp`` list gives
-    each panel its own samples per pixel (where the panels' noise differs, as Fig. 2.8's by 5x)."""
+    each panel its own samples per pixel (where the panels' noise differs, as Fig. 2.8's by 4x)."""
     spp = setup["spp"]
     if not isinstance(spp, (list, tuple)):
         return [setup] * count
