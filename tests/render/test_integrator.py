@@ -131,7 +131,8 @@ def test_the_lobe_mis_density_leaves_a_wide_light_on_a_patch_plate_unbiased(mi):
     """A wide sphere light (sin α = 2/3) over an exponential patch plate, s = 4: light and BSDF
     samples share the work, so MIS weights that did not sum to one would bias it.  Normal sampling
     with the lobe density in the MIS weights (``mis_density = "lobe"``) agrees with the exact density
-    and with cosine sampling (three estimators, one expectation)."""
+    and with cosine sampling (three estimators, one expectation).  Fault ``mis_weights_apart``
+    (next-event estimation weighted by the exact density, ``bs.pdf`` by the lobe's) biases it."""
     L, V = (0.2, 0.1, 1.0), (-1.0, 0.1, 0.6)
     plate = {"type": "brdfs_patch_exponential", "s": 4.0}
     got = {name: _direct_radiance(mi, {**plate, **extra}, L, V, distance=1.5, radius=1.0)[0]

@@ -265,8 +265,9 @@ class ModelBSDF(mi.BSDF):
 
     def eval_pdf(self, ctx, si, wo, active=True):
         wi_m, wo_m = to_model(si.wi), to_model(wo)
+        mis = True  # MUTATION:mis_weights_apart mis = False
         return (self._value(si, wo_m, wi_m, active) * dr.maximum(wo.z, 0.0),
-                self._pdf(si, wi_m, wo_m, active, mis=True))
+                self._pdf(si, wi_m, wo_m, active, mis=mis))
 
     def sample(self, ctx, si, sample1, sample2, active=True):
         wi_m = to_model(si.wi)
