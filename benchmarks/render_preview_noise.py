@@ -22,11 +22,12 @@ import numpy as np
 from brdfs.pipeline.config import load_config
 from brdfs.render.mitsuba import metrics
 
-#: The rendered figures: the Snakemake batch renders_paths, then renders_patch_and_direct (Fig. 4.16 and
-#: the two direct-lighting figures; the two batches cost about the same, so they balance on 2 cores).
+#: The rendered figures: the Snakemake batch renders_paths, then renders_patch_and_direct (the patch
+#: models' Figs. 4.11, 4.16, 4.17 and the direct-lighting Figs. 3.8, 4.18; the two batches cost about
+#: the same, so they balance on 2 cores).
 FIGURES = ("fig_2_8_pumping_render", "fig_3_9_metals_new_model", "fig_3_10_metal_teapots", "fig_3_11_silver_mirror",
            "fig_3_12_plastics", "fig_3_13_ceramics", "fig_4_9_sampling_efficiency", "fig_4_11_anisotropic_metals",
-           "fig_4_17_patch_shapes", "fig_4_16_patch_metals", "fig_3_8_material_spheres", "fig_4_18_generalized_lambert")
+           "fig_4_16_patch_metals", "fig_4_17_patch_shapes", "fig_3_8_material_spheres", "fig_4_18_generalized_lambert")
 
 
 def _set(cfg: dict, assignment: str) -> None:
