@@ -187,8 +187,7 @@ def square_root_onset(integrand, lo, hi):
     if not np.isfinite(lo).any():
         return integrand
     with np.errstate(invalid="ignore"):
-        # sinh² W = (hi − lo) / lo from the difference: near t = 1 an onset interval can be 1e-12 of
-        # lo long, where arccosh √(hi / lo) and lo cosh² w would round every node onto lo
+        # sinh² W = (hi − lo) / lo from the difference, which is exact next to t = 1 (hi / lo is not)
         span = np.arcsinh(np.sqrt((hi - lo) / lo))
 
     def substituted(s, elem):
