@@ -1,5 +1,5 @@
 """The spectral route of the renders, measured on one metal scene (Fig. 3.9's panel, preview size):
-eight 50 nm bins as three RGB passes of ``llvm_ad_rgb`` (the pipeline's route,
+eight 50 nm bins as three colour groups along each path of ``llvm_ad_rgb`` (the pipeline's route,
 :mod:`brdfs.render.mitsuba.spectral`) against Mitsuba's ``llvm_ad_spectral`` (one pass, four
 wavelengths sampled per path from the continuous spectrum, Mitsuba's own CIE tables).
 
@@ -62,7 +62,7 @@ def spectral_route(cfg, panel, setup):
     width, height = rf.panel_size(setup, panel.aspect)
     cam = panel.camera
     camera = msc.Camera(tuple(cam["eye"]), tuple(cam["target"]), width, height, cam.get("fov_deg", 30.0))
-    scene_spec = rf._scene(panel, cfg, rf.WAVELENGTH_PASSES[0])
+    scene_spec = rf._scene(panel, cfg, rf.WAVELENGTH_PASSES[:1])
     objects = tuple(msc.SceneObject(o.label, o.parts, _spectral_metal(o.bsdf, spec["metal"]) if "metal" in spec else o.bsdf)
                     for o, (_, _, spec) in zip(scene_spec.objects, panel.objects))
     scene = msc.load(msc.Scene(objects, scene_spec.lights, sky=scene_spec.sky), camera,
@@ -82,13 +82,13 @@ def main() -> None:
     cfg = copy.deepcopy(load_config())
     setup = rf.settings(cfg)
     panel = fig.panels(cfg)[0]
-    results = {"8 bins, 3 rgb passes": rgb_route(cfg, panel, setup),
+    results = {"8 bins, 3 colour groups": rgb_route(cfg, panel, setup),
                "llvm_ad_spectral": spectral_route(cfg, panel, setup)}
     for route, (cpu, noise, means) in results.items():
         print(f"{route:22s} cpu {cpu:5.1f} s  p95 {noise.p95_relative_se:.4f}  fireflies {noise.fireflies}")
     # the routes' white differs (equal-energy bins adapted to D65 by colour-science vs Mitsuba's
     # D65 emitters), so colours are compared white-balanced on the gray floor
-    ref = results["8 bins, 3 rgb passes"][2]
+    ref = results["8 bins, 3 colour groups"][2]
     spectral = results["llvm_ad_spectral"][2]
     for label, rgb in spectral.items():
         r = ref[label] / ref["floor"]

@@ -337,3 +337,41 @@ def test_without_caustics_a_plate_lit_only_through_a_metal_mirror_is_black(mi):
     dark = _passes(mi, _caustic_scene(mi, False), spp=32, passes=PASSES)
     assert lit.mean() > 5 * lit.mean(axis=(1, 2)).std(ddof=1) / np.sqrt(PASSES) > 0, lit.mean()
     assert dark.max() == 0.0, dark.max()
+
+
+def _colour_group_scene(mi, groups, bsdf_of):
+    """A metal sphere on a gray floor under a sky and a spherical light, with depth 4 and no Russian
+    roulette (so that a path does not depend on its colour); ``bsdf_of(groups)`` its material."""
+    T = mi.ScalarTransform4f
+    return mi.load_dict({
+        "type": "scene",
+        "integrator": {"type": "brdfs_path", "max_depth": 4, "rr_depth": 100, "colour_groups": len(groups)},
+        "sensor": {"type": "perspective", "fov": 40, "to_world": T().look_at([0, -4, 2], [0, 0, 0], [0, 0, 1]),
+                   "film": {"type": "hdrfilm", "width": 24, "height": 16, "pixel_format": "rgb"},
+                   "sampler": {"type": "independent", "sample_count": 8}},
+        "sky": {"type": "constant", "radiance": 1.0},
+        "light": _light((2.0, -2.0, 3.0), 0.1, 500.0),
+        "sphere": {"type": "sphere", "radius": 1.0, "bsdf": bsdf_of(groups)},
+        "floor": {"type": "rectangle", "to_world": T().translate([0, 0, -1]).scale(10),
+                  "bsdf": {"type": "diffuse", "reflectance": 0.5}}})
+
+
+@pytest.mark.parametrize("material", [{"model": "phong_cosmin", "n": 20.0},
+                                      {"model": "patch_exponential", "s": 8.0, "strategy": "normal", "mis_density": "lobe"}])
+def test_each_colour_group_of_a_spectral_path_is_the_render_of_that_group_alone(mi, material):
+    """A spectral panel's eight wavelengths ride one path as three colour groups (group g's
+    throughput is group 0's times f_g / f_0 at every vertex): with the same seed and no Russian
+    roulette, every group's image equals, to float rounding, the render of that group's metal alone."""
+    from brdfs.artifacts import _render_figures as rf
+    from brdfs.render.mitsuba.spectral import WAVELENGTH_PASSES as groups
+
+    def metal(chosen):
+        return rf.bsdf({**material, "metal": "copper"}, chosen)
+    together = rf.panel_channels(np.asarray(mi.render(_colour_group_scene(mi, groups, metal), seed=3)), groups)
+    for g, group in enumerate(groups):
+        alone = rf.panel_channels(np.asarray(mi.render(_colour_group_scene(mi, groups[g:g + 1], metal), seed=3)),
+                                  groups[g:g + 1])
+        channels = list(dict.fromkeys(group))
+        assert alone[..., channels].max() > 1.0                  # lit, and the groups differ in colour
+        assert np.allclose(together[..., channels], alone[..., channels], rtol=2e-6, atol=1e-6), g
+    assert not np.allclose(together[..., 0], together[..., 6], rtol=0.05)

@@ -155,17 +155,6 @@ def test_a_per_panel_spp_list_gives_each_panel_its_own_and_needs_one_entry_per_p
         rf.settings(cfg)
 
 
-def test_the_dim_third_wavelength_pass_takes_an_eighth_of_the_samples_of_the_others():
-    from brdfs.artifacts import _render_figures as rf
-    from brdfs.render import spectrum
-    from brdfs.render.mitsuba.spectral import WAVELENGTH_PASSES
-
-    assert [rf.pass_spp(128, 8, g) for g in WAVELENGTH_PASSES] == [16, 16, 2]
-    assert rf.pass_spp(128, 8, None) == 16 and rf.pass_spp(8, 8, WAVELENGTH_PASSES[2]) == 1
-    weights = spectrum.luminance_weights(8)
-    assert weights[list(WAVELENGTH_PASSES[2][:2])].sum() < 0.005 * weights.sum()   # why it may
-
-
 def test_a_pixel_whose_samples_hit_two_objects_has_no_object_id_even_where_their_mean_is_an_integer():
     """Half the samples on object 3 and half on object 5 average to 4, another object's ID: the
     variance mean(id²) − mean(id)² tells them apart, down to one sample of N."""

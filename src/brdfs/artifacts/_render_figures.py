@@ -20,8 +20,9 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
 * **Caustics** (``renders.caustics``): off, the paths diffuse → metal → light are not traced
   (:mod:`brdfs.render.mitsuba.integrator`).
 * **Colour** (section 3.8, :mod:`brdfs.render.mitsuba.spectral`): a spectral panel carries eight
-  wavelengths, three to a pass of the RGB variant, with the same seeds in every pass; the eight
-  channels go to XYZ and sRGB through colour-science. An ``rgb`` panel (eq. 3.31) is one pass per seed.
+  wavelengths as three colour groups along each path (a metal's ``eta``/``k`` and ``eta_g``/``k_g``,
+  the integrator's ``colour_groups``); the eight channels go to XYZ and sRGB through colour-science.
+  An ``rgb`` panel (eq. 3.31) is its plugins' r, g, b.
 * **Rows**: one per (panel, object): the mean luminance Y of the object's pixels and its standard
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
   ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset`` and ``variant``. The
@@ -41,7 +42,7 @@ import pandas as pd
 from brdfs.render import spectrum
 from brdfs.render.mitsuba import metrics
 from brdfs.render.mitsuba import scenes as msc
-from brdfs.render.mitsuba.spectral import PASS_SPP_FRACTION, WAVELENGTH_PASSES, metal_constants, pass_channels
+from brdfs.render.mitsuba.spectral import WAVELENGTH_PASSES, metal_constants, pass_channels
 
 SECTION = "renders"
 PRESETS = ("preview", "final")
@@ -115,15 +116,16 @@ def _texture(values):
     return {"type": "srgb", "color": [float(v) for v in values], "unbounded": True}
 
 
-def bsdf(spec: dict, channels=None) -> dict:
+def bsdf(spec: dict, groups=None) -> dict:
     """The plugin dictionary of a config material entry (see :mod:`brdfs.render.scenes`) for the
-    wavelengths ``channels`` (indices, spectral) or r, g, b (``None``)."""
+    colour groups ``groups`` (a tuple of wavelength-index triples, spectral: a metal gets ``eta``,
+    ``k`` of the first and ``eta_g``, ``k_g`` of group g) or r, g, b (``None``)."""
     spec = dict(spec)
     params = {k: float(v) for k, v in spec.items() if k not in MATERIAL_KEYS}
     if "diffuse" in spec:
         return {"type": "brdfs_lambert", "reflectance": _texture([spec["diffuse"]] * 3)}
     if "rgb" in spec:          # eq. 3.31: ρ_d/π (r, g, b) + a_s · the new model, Fresnel 1
-        if channels is not None:
+        if groups is not None:
             raise ValueError(f"plastic {spec!r}: eq. 3.31 is an r, g, b model; the panel is spectral")
         return {"type": "brdfs_phong_cosmin", "n": float(spec["n"]), "specular": _texture([spec["a_s"]] * 3),
                 "diffuse_reflectance": _texture(spec["rgb"])}
@@ -138,10 +140,12 @@ def bsdf(spec: dict, channels=None) -> dict:
     if spec.get("count"):
         out["count"] = True           # the patch plugins count samples, tries and evaluations
     if "metal" in spec:
-        if channels is None:
+        if groups is None:
             raise ValueError(f"metal {spec!r}: metals are rendered at the {SPECTRAL} wavelengths")
-        eta, k = metal_constants(spec["metal"], channels)
-        out["eta"], out["k"] = _texture(eta), _texture(k)
+        for g, channels in enumerate(groups):
+            eta, k = metal_constants(spec["metal"], channels)
+            suffix = f"_{g}" if g else ""
+            out["eta" + suffix], out["k" + suffix] = _texture(eta), _texture(k)
     return out
 
 
@@ -156,17 +160,18 @@ def _mitsuba(variant: str):
     return mi
 
 
-def _scene(panel: Panel, cfg: dict, channels):
+def _scene(panel: Panel, cfg: dict, groups):
     section = cfg[SECTION]
-    objects = tuple(msc.SceneObject(label, parts, bsdf(spec, channels)) for label, parts, spec in panel.objects)
+    objects = tuple(msc.SceneObject(label, parts, bsdf(spec, groups)) for label, parts, spec in panel.objects)
     lights = tuple(msc.Light(tuple(pos), section["light_intensity"] * scale) for pos, scale in panel.lights)
     sky = float(section["sky_radiance"]) if panel.sky else None
     return msc.Scene(objects, lights, sky=sky, background_visible=panel.background is None,
                      point_lights=panel.point_lights)
 
 
-def _integrator(panel: Panel, count: bool = False, caustics: bool = True) -> dict:
-    out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count), "caustics": bool(caustics)}
+def _integrator(panel: Panel, count: bool = False, caustics: bool = True, colour_groups: int = 1) -> dict:
+    out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count), "caustics": bool(caustics),
+           "colour_groups": int(colour_groups)}
     if panel.background is not None:
         out.update(hide_emitters=True, background=float(panel.background))
     return out
@@ -175,7 +180,7 @@ def _integrator(panel: Panel, count: bool = False, caustics: bool = True) -> dic
 @dataclass(frozen=True)
 class RenderedPanel:
     """Per-pass channel images (P, H, W, C), the ID buffer (H, W) and {id: label}; with counting,
-    the rays and the plugins' (samples, tries, evaluations) of one wavelength pass set (all seeds)."""
+    the rays and the plugins' (samples, tries, evaluations) of all its passes."""
 
     passes: np.ndarray
     ids: np.ndarray
@@ -225,65 +230,61 @@ def launches(width: int, height: int, spp: int, sampler: str = "independent") ->
     return out
 
 
-def pass_spp(panel_spp: int, passes: int, group) -> int:
-    """Samples per pixel of one pass of wavelength pass ``group`` (``None``: an rgb panel):
-    ``panel_spp / passes`` scaled by the group's :data:`~brdfs.render.mitsuba.spectral.PASS_SPP_FRACTION`."""
-    spp = max(panel_spp // passes, 1)
-    if group is None:
-        return spp
-    return max(int(round(spp * PASS_SPP_FRACTION[WAVELENGTH_PASSES.index(group)])), 1)
-
-
 def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, count: bool = False) -> RenderedPanel:
-    """Render ``panel``: ``passes`` independently seeded passes × (three wavelength passes or one rgb pass).
+    """Render ``panel``: ``passes`` independently seeded passes of ``spp / passes`` samples per pixel.
 
     Each pass is its own ``mi.render`` launch (or a few, :func:`launches`) with its own seed
     (:func:`pass_seed`), so that a stratified sampler (``renders.sampler``) stratifies each pass
     alone and the passes stay independent; Dr.Jit traces the integrator anew per launch but
-    compiles its kernel once (the kernel cache). The wavelength passes share the seeds (the same
-    paths: the colour carries no extra noise), the dim third at fewer samples (:func:`pass_spp`).
+    compiles its kernel once (the kernel cache). A spectral panel's eight wavelengths ride along one
+    path as three colour groups (:data:`~brdfs.render.mitsuba.spectral.WAVELENGTH_PASSES`): the
+    image carries the first, the integrator's ``c<g>_*`` AOVs the others.
     """
     mi = _mitsuba(setup["variant"])
     cam = panel.camera
     camera = msc.Camera(tuple(cam["eye"]), tuple(cam["target"]), width, height, cam.get("fov_deg", 30.0))
-    groups = WAVELENGTH_PASSES if panel.channels == "spectral" else (None,)
-    channels = SPECTRAL if panel.channels == "spectral" else 3
+    groups = WAVELENGTH_PASSES if panel.channels == "spectral" else None
     passes = setup["passes"]
-    total_spp = setup["spp"] if panel.spp is None else panel.spp
-    out = np.zeros((passes, height, width, channels))
+    spp = max((setup["spp"] if panel.spp is None else panel.spp) // passes, 1)
+    out = np.zeros((passes, height, width, SPECTRAL if groups else 3))
     # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a pixel's
     # ID is an object's only where all its samples hit that object
     ids, ids_sq, cos_v = np.zeros((height, width)), np.zeros((height, width)), np.zeros((height, width))
-    labels, costs, rays, first = None, {}, None, True
+    labels, first = None, True
+    integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1)
     # point lights: one scene per light (an emitter sample then picks no light at random)
     light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
-    for group in groups:
-        spp = pass_spp(total_spp, passes, group)
-        for lights in light_sets:
-            part = Panel(**{**panel.__dict__, "lights": lights})
-            scene = msc.load(_scene(part, cfg, group), camera, _integrator(panel, count, setup["caustics"]), setup["sampler"])
-            per_pass = np.zeros((passes, height, width, 3))
-            for p in range(passes):
-                for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
-                    image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
-                    per_pass[p] += chunk / spp * image[..., :3]
-                    if first:
-                        ids += chunk / (spp * passes) * image[..., 3]
-                        cos_v += chunk / (spp * passes) * image[..., 4]
-                        ids_sq += chunk / (spp * passes) * image[..., -1]
-            if first:
-                labels, first = msc.object_labels(scene), False
-                ids = pure_ids(ids, ids_sq, spp * passes)
-            if group is None:
-                out += per_pass
-            else:
-                for k, wavelength in enumerate(pass_channels(group)):
-                    out[..., wavelength] += per_pass[..., k]
-        if count and group == groups[0]:
-            costs = _plugin_costs(scene)
-            rays = int(np.asarray(scene.integrator().rays)[0])
-    spp_full = pass_spp(total_spp, passes, groups[0])
-    return RenderedPanel(out, ids, labels, spp_full * passes, costs, rays, cos_v)
+    for lights in light_sets:
+        part = Panel(**{**panel.__dict__, "lights": lights})
+        scene = msc.load(_scene(part, cfg, groups), camera, integrator, setup["sampler"])
+        for p in range(passes):
+            for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
+                image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
+                out[p] += chunk / spp * panel_channels(image, groups)
+                if first:
+                    ids += chunk / (spp * passes) * image[..., 3]
+                    cos_v += chunk / (spp * passes) * image[..., 4]
+                    ids_sq += chunk / (spp * passes) * image[..., -1]
+        if first:
+            labels, first = msc.object_labels(scene), False
+            ids = pure_ids(ids, ids_sq, spp * passes)
+    costs = _plugin_costs(scene) if count else {}
+    rays = int(np.asarray(scene.integrator().rays)[0]) if count else None
+    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v)
+
+
+def panel_channels(image: np.ndarray, groups) -> np.ndarray:
+    """The panel's channels of one launch's image: r, g, b (``groups`` None), or the eight wavelengths
+    from the colour groups (group 0 in channels 0–2, group g ≥ 1 in the AOVs ``c<g>_*`` after ``id``
+    and ``cos_v``, channels 5 + 3(g − 1) …)."""
+    if groups is None:
+        return image[..., :3]
+    out = np.zeros(image.shape[:-1] + (SPECTRAL,))
+    for g, group in enumerate(groups):
+        first = 0 if g == 0 else 5 + 3 * (g - 1)
+        for k, wavelength in enumerate(pass_channels(group)):
+            out[..., wavelength] = image[..., first + k]
+    return out
 
 
 #: The ID of a pixel whose samples hit more than one object (or an object and the background).
@@ -301,7 +302,7 @@ def pure_ids(mean_id: np.ndarray, mean_id_sq: np.ndarray, samples: int) -> np.nd
 
 def pass_seed(seed: int, pass_index: int, launch: int = 0) -> int:
     """Mitsuba's 32-bit seed of launch ``launch`` of pass ``pass_index`` (the same in every
-    wavelength pass and panel: common random numbers)."""
+    panel: common random numbers)."""
     return (int(seed) * 1009 + pass_index * 65537 + launch) % 2 ** 32
 
 
@@ -358,7 +359,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``shared_scale``: one display scale for all panels (from the first panel's reference objects),
     else one per panel. ``post(panel, rendered) -> RenderedPanel`` may add a noise-free term (3.8).
     ``count``: columns ``rays`` (the panel's) and ``plugin_samples``, ``plugin_tries``,
-    ``plugin_evaluations`` (per object whose plugin counts), for one wavelength pass set.
+    ``plugin_evaluations`` (per object whose plugin counts), over all passes.
     """
     setups = panel_setups(figure_setup(settings(cfg), name), name, len(panels))
     rows, images, id_buffers, scale = [], [], [], None

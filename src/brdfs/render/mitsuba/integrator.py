@@ -23,8 +23,13 @@ Per camera ray the estimator is the usual one of pbrt-v4's ``PathIntegrator`` an
   a metal reflecting such a floor by up to 2.8 % (3.9's tank), the metal spheres by 0.5-0.7 %, the
   plastics not at all; Fig. 3.9's p95 of the relative standard error falls from 0.070 to 0.049 and
   its time by 18 %;
+* **colour groups** (property ``colour_groups``, default 1): with G > 1 a path carries G throughputs,
+  one per group of three wavelengths (:mod:`brdfs.render.mitsuba.spectral`); the samplers do not
+  read the colour, so group g's throughput is group 0's times f_g / f_0 at every vertex (the
+  plugins' ``colour_ratios``, 1 for a gray material, :func:`colour_ratios`), the emitters are white,
+  and groups 1 … G − 1 leave in the AOVs ``c<g>_<channel>`` after ``cos_v``;
 * **Russian roulette** from depth ``rr_depth`` on: a path survives with probability
-  ``q = min(0.95, max β)`` and its throughput is divided by q (unbiased; this is *not* the 0/1
+  ``q = min(0.95, max β)`` (the largest channel of every colour group) and its throughput is divided by q (unbiased; this is *not* the 0/1
   accept/reject sampling that section 4.2.4 of the thesis calls Russian roulette);
   ``max_depth = -1`` means no fixed limit. (Starting it at depth 2 or 1 instead of 4 saved no time
   on Fig. 3.9's scene and raised its p95 from 0.070 to 0.087 and 0.109.)
@@ -127,7 +132,8 @@ class _BrdfsPathMethods:
     at which Russian roulette may end a path), ``hide_emitters`` (bool, default False: camera rays
     that miss see ``background`` instead of the sky or a light), ``background`` (float, default 0) and
     ``count_rays`` (bool, default False: count camera, shadow and continuation rays in ``rays``),
-    ``caustics`` (bool, default True: False drops the paths diffuse → metal → light, module docstring) and
+    ``caustics`` (bool, default True: False drops the paths diffuse → metal → light, module docstring),
+    ``colour_groups`` (int, default 1: the throughputs a path carries, module docstring) and
     ``passes`` (int, default 1: with P > 1, AOVs ``p<k>_<c>`` carry each sample's radiance in the
     AOV of its pass k = P·(i mod spp)/spp, i the sample's lane; see :func:`pass_index`).
     """
@@ -141,8 +147,11 @@ class _BrdfsPathMethods:
         self.count_rays = bool(props.get("count_rays", False))
         self.passes = int(props.get("passes", 1))
         self.caustics = bool(props.get("caustics", True))
+        self.colour_groups = int(props.get("colour_groups", 1))
         if self.passes < 1:
             raise ValueError(f"brdfs_path: passes = {self.passes}: must be >= 1")
+        if self.colour_groups < 1 or (self.colour_groups > 1 and self.passes > 1):
+            raise ValueError(f"brdfs_path: colour_groups = {self.colour_groups}: must be >= 1, and 1 with passes > 1")
         self.rays = dr.zeros(mi.UInt32, 1)          # rays cast so far (count_rays), cumulative
         if self.max_depth < -1 or self.max_depth == 0:
             raise ValueError(f"brdfs_path: max_depth = {self.max_depth}: must be -1 (unlimited) or >= 1")
@@ -154,7 +163,7 @@ class _BrdfsPathMethods:
         self.bounce_limit = self.bounce_limit  # MUTATION:depth3 self.bounce_limit = min(self.bounce_limit, 3)
 
     def aov_names(self):
-        return ["id", "cos_v"] + pass_aov_names(self.passes) + ["id_sq"]
+        return ["id", "cos_v"] + colour_group_aov_names(self.colour_groups) + pass_aov_names(self.passes) + ["id_sq"]
 
     def _count(self, active):
         if self.count_rays:
@@ -174,7 +183,9 @@ class _BrdfsPathMethods:
         seen = active & (si.is_valid() | mi.Bool(not self.hide_emitters))
         L = dr.select(seen, si.emitter(scene, seen).eval(si, seen), 0.0)
         L = dr.select(active & ~si.is_valid() & mi.Bool(self.hide_emitters), L + self.background, L)
-        beta = mi.Spectrum(1.0)
+        # one radiance and throughput per colour group (the emitters are white: the same in every group)
+        Ls = (L,) * self.colour_groups
+        betas = (mi.Spectrum(1.0),) * self.colour_groups
         depth = mi.UInt32(0)
         after_diffuse = mi.Bool(False)
         active &= si.is_valid()
@@ -189,16 +200,17 @@ class _BrdfsPathMethods:
             caustic = after_diffuse & _glossy_only(bsdf) & mi.Bool(not self.caustics)
             nee &= ~caustic
             for emitter in lights:
-                L = dr.select(nee, L + beta * self._light_sample(scene, emitter, bsdf, bsdf_ctx, si, sampler, nee), L)
+                value, ratios = self._light_sample(scene, emitter, bsdf, bsdf_ctx, si, sampler, nee)
+                Ls = _add_each(Ls, nee, betas, value, ratios)
 
             # BSDF sampling: the next direction, and what it meets.
-            bs, bsdf_weight = bsdf.sample(bsdf_ctx, si, sampler.next_1d(active), sampler.next_2d(active), active)
-            beta = dr.select(active, beta * bsdf_weight, beta)
+            bs, bsdf_weight, ratios = self._bsdf_sample(bsdf, bsdf_ctx, si, sampler, active)
+            betas = _scale_each(betas, active, bsdf_weight, ratios)
             prev_si = mi.Interaction3f(si)
             delta = mi.has_flag(bs.sampled_type, mi.BSDFFlags.Delta)
             after_diffuse |= mi.has_flag(bs.sampled_type, mi.BSDFFlags.Diffuse)
             ray = si.spawn_ray(si.to_world(bs.wo))
-            active &= (bs.pdf > 0) & dr.any(beta != 0.0)
+            active &= (bs.pdf > 0) & (_largest(betas) != 0.0)
             si = scene.ray_intersect(ray, ray_flags=mi.RayFlags.All, coherent=False, active=active)
             self._count(active)
 
@@ -211,30 +223,55 @@ class _BrdfsPathMethods:
             ds = mi.DirectionSample3f(scene, si=si, ref=prev_si)
             em_pdf = emitter.pdf_direction(prev_si, ds, hit_light)
             w_bsdf = dr.select(hit_light, power_heuristic(bs.pdf, em_pdf), 1.0)
-            L = dr.select(hit_emitter, L + beta * w_bsdf * emitter.eval(si, hit_emitter), L)
+            radiance = w_bsdf * emitter.eval(si, hit_emitter)
+            Ls = _add_each(Ls, hit_emitter, betas, radiance, _ONE * len(betas))
 
             depth[active] += 1
             active &= si.is_valid() & (depth < self.bounce_limit)
 
             # Russian roulette, weight 1/q.
-            q = dr.minimum(dr.max(beta), RR_MAX_SURVIVAL)
+            q = dr.minimum(_largest(betas), RR_MAX_SURVIVAL)
             roulette = active & (depth >= self.rr_depth)
             survive = sampler.next_1d(roulette) < q
-            beta = dr.select(roulette, beta / dr.maximum(q, 1e-30), beta)
+            betas = _scale_each(betas, roulette, 1.0 / dr.maximum(q, 1e-30), _ONE * len(betas))
             active &= ~roulette | survive
-        return L, mi.Bool(True), [object_id, cos_v] + self._pass_aovs(sampler, L) + [dr.square(object_id)]
+        return Ls[0], mi.Bool(True), [object_id, cos_v] + _group_channels(Ls) + self._pass_aovs(sampler, Ls[0]) + [dr.square(object_id)]
+
+    def _bsdf_sample(self, bsdf, bsdf_ctx, si, sampler, active):
+        """``bsdf.sample`` and the colour ratios f_g / f_0 at the sampled direction (one call per vertex)."""
+        sample1, sample2 = sampler.next_1d(active), sampler.next_2d(active)
+        if self.colour_groups == 1:
+            return (*bsdf.sample(bsdf_ctx, si, sample1, sample2, active), _ONE)
+        groups = self.colour_groups
+
+        def target(self_, ctx, si, sample1, sample2, active):
+            bs, weight = self_.sample(ctx, si, sample1, sample2, active)
+            return bs, weight, colour_ratios(self_, si, bs.wo, active, groups)
+        return dr.dispatch(bsdf, target, bsdf_ctx, si, sample1, sample2, active)
+
+    def _bsdf_eval_pdf(self, bsdf, bsdf_ctx, si, wo, active):
+        """``bsdf.eval_pdf`` and the colour ratios f_g / f_0 at ``wo``."""
+        if self.colour_groups == 1:
+            return (*bsdf.eval_pdf(bsdf_ctx, si, wo, active), _ONE)
+        groups = self.colour_groups
+
+        def target(self_, ctx, si, wo, active):
+            f, pdf = self_.eval_pdf(ctx, si, wo, active)
+            return f, pdf, colour_ratios(self_, si, wo, active, groups)
+        return dr.dispatch(bsdf, target, bsdf_ctx, si, wo, active)
 
     def _light_sample(self, scene, emitter, bsdf, bsdf_ctx, si, sampler, active):
-        """β-free NEE term of one light: f cos L_e / p_light × w_light, zero where the shadow ray is blocked."""
+        """β-free NEE term of one light: f cos L_e / p_light × w_light, zero where the shadow ray is
+        blocked, and the colour ratios at the light's direction."""
         ds, em_weight = emitter.sample_direction(si, sampler.next_2d(active), active)
         active = active & (ds.pdf != 0.0)         # a new mask: Dr.Jit's &= would change the caller's
         visibility = True  # MUTATION:no_shadow_rays visibility = False
         if visibility:
             active = active & ~scene.ray_test(si.spawn_ray_to(ds.p), active)
             self._count(active)
-        f_em, pdf_bsdf_em = bsdf.eval_pdf(bsdf_ctx, si, si.to_local(ds.d), active)
+        f_em, pdf_bsdf_em, ratios = self._bsdf_eval_pdf(bsdf, bsdf_ctx, si, si.to_local(ds.d), active)
         w_light = dr.select(ds.delta, 1.0, power_heuristic(ds.pdf, pdf_bsdf_em))
-        return dr.select(active, w_light * f_em * em_weight, 0.0)
+        return dr.select(active, w_light * f_em * em_weight, 0.0), ratios
 
     def _pass_aovs(self, sampler, L) -> list:
         """Per pass k and colour channel, L where the sample belongs to pass k, else 0."""
@@ -242,6 +279,52 @@ class _BrdfsPathMethods:
             return []
         k = pass_index(dr.width(L), sampler.sample_count(), self.passes)
         return [dr.select(k == p, channel, 0.0) for p in range(self.passes) for channel in _channels(L)]
+
+
+#: The colour ratios of a single colour group.
+_ONE = (1.0,)
+
+
+def _add_each(Ls, mask, betas, value, ratios) -> tuple:
+    """L_g + β_g · value · r_g per colour group, where ``mask``."""
+    return tuple(dr.select(mask, Lg + beta * value * r, Lg) for Lg, beta, r in zip(Ls, betas, ratios))
+
+
+def _scale_each(betas, mask, factor, ratios) -> tuple:
+    """β_g · factor · r_g per colour group, where ``mask``."""
+    return tuple(dr.select(mask, beta * factor * r, beta) for beta, r in zip(betas, ratios))
+
+
+def _group_channels(Ls) -> list:
+    """The channels of colour groups 1 … G − 1 (the AOVs ``c<g>_*``)."""
+    return [channel for Lg in Ls[1:] for channel in _channels(Lg)]
+
+
+def _largest(betas):
+    """The largest channel of any colour group's throughput (Russian roulette's survival)."""
+    out = dr.max(betas[0])
+    for beta in betas[1:]:
+        out = dr.maximum(out, dr.max(beta))
+    return out
+
+
+def colour_ratios(bsdf, si, wo, active, groups: int) -> tuple:
+    """(1, f_1 / f_0, …) of ``bsdf`` at (``si.wi``, ``wo``): its ``colour_ratios`` where it has
+    colour groups, else 1 (a gray material: the scene builder gives a material that differs between
+    groups its groups' parameters)."""
+    own = getattr(bsdf, "colour_ratios", None)
+    ratios = list(own(si, wo, active)) if own is not None else []
+    if not ratios:
+        ratios = [mi.Spectrum(1.0)] * (groups - 1)
+    if len(ratios) != groups - 1:
+        raise ValueError(f"brdfs_path: colour_groups = {groups}, but {bsdf} has {len(ratios) + 1}")
+    return (mi.Spectrum(1.0), *ratios)
+
+
+def colour_group_aov_names(groups: int) -> list[str]:
+    """AOV names of the radiance of colour groups 1 … G − 1: ``c<g>_<channel>`` (group 0 is the image)."""
+    channels = "RGB" if mi.is_rgb else "Y"
+    return [f"c{g}_{c}" for g in range(1, groups) for c in channels]
 
 
 def pass_index(lanes: int, spp: int, passes: int):

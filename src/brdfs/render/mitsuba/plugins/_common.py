@@ -145,6 +145,25 @@ def read_float(props, name, default=None):
     return value
 
 
+def _more_colour_groups(props, has_eta) -> list:
+    """The (eta_g, k_g) textures of colour groups g = 1, 2, … (``eta_1``, ``k_1``, …), for a panel
+    whose wavelengths are rendered as several colour groups along the same paths."""
+    out = []
+    while f"eta_{len(out) + 1}" in props:
+        g = len(out) + 1
+        if not has_eta:
+            raise ValueError(f"{props.plugin_name()}: eta_{g} given without eta")
+        out.append((props.get_unbounded_texture(f"eta_{g}"), props.get_unbounded_texture(f"k_{g}", 0.0)))
+    if f"k_{len(out) + 1}" in props:
+        raise ValueError(f"{props.plugin_name()}: k_{len(out) + 1} given without eta_{len(out) + 1}")
+    return out
+
+
+def _ratio(numerator, denominator):
+    """numerator / denominator per channel, 0 where the denominator is 0."""
+    return dr.select(denominator != 0, numerator / dr.select(denominator != 0, denominator, 1.0), 0.0)
+
+
 class ModelBSDF(mi.BSDF):
     """A Mitsuba BSDF from one scalar lobe of the package (subclasses: :meth:`lobe_eval`,
     :meth:`lobe_pdf`, :meth:`lobe_sample`, in the model frame, with N = (0, 0, 1)):
@@ -153,7 +172,9 @@ class ModelBSDF(mi.BSDF):
 
     ``specular`` (texture, default 1) is w_s; ``eta`` and ``k`` (unbounded textures, optional) make
     the lobe a metal with F the conductor Fresnel at :meth:`fresnel_cosine` (Θ_min of eq. 3.29 by
-    default); ``diffuse_reflectance`` (texture, optional) adds a Lambertian lobe ρ_d/π (eq. 3.31).
+    default); ``eta_1``, ``k_1``, ``eta_2``, … (optional) are the metal's n, k of further colour groups
+    (:meth:`colour_ratios`, the integrator's ``colour_groups``); ``diffuse_reflectance`` (texture,
+    optional) adds a Lambertian lobe ρ_d/π (eq. 3.31).
     With two lobes, :meth:`sample` picks one (one-sample MIS, no defensive share): the diffuse lobe
     with probability p_d = mean ρ_d / (mean ρ_d + mean w_s), and reports the mixture's pdf
     p_d cos θ/π + (1 − p_d) pdf_lobe.  ``strategy`` chooses the lobe's sampler among the model's
@@ -179,6 +200,7 @@ class ModelBSDF(mi.BSDF):
             raise ValueError(f"{props.plugin_name()}: k given without eta")
         self.eta = props.get_unbounded_texture("eta") if has_eta else None
         self.k = props.get_unbounded_texture("k", 0.0) if has_eta else None
+        self.colour_groups = [(self.eta, self.k)] + _more_colour_groups(props, has_eta)
         flags = self.lobe_flag | mi.BSDFFlags.FrontSide
         components = [flags]
         if self.diffuse is not None:
@@ -216,11 +238,12 @@ class ModelBSDF(mi.BSDF):
         return dr.clip(dr.maximum(L.z, V.z), 0.0, 1.0)
 
     # --- the material ----------------------------------------------------------------------------
-    def _specular_factor(self, si, L, V, active):
+    def _specular_factor(self, si, L, V, active, group=0):
         w = self.weight.eval(si, active)
         if self.eta is None:
             return w
-        return w * fresnel_conductor(self.fresnel_cosine(L, V), self.eta.eval(si, active), self.k.eval(si, active))
+        eta, k = self.colour_groups[group]
+        return w * fresnel_conductor(self.fresnel_cosine(L, V), eta.eval(si, active), k.eval(si, active))
 
     def _diffuse_probability(self, si, active):
         if self.diffuse is None:
@@ -230,13 +253,25 @@ class ModelBSDF(mi.BSDF):
         total = d + s
         return dr.select(total > 0, d / total, 0.5)
 
-    def _value(self, si, L, V, active):
-        """f_material(L, V) (Spectrum), 0 unless both directions lie above the horizon."""
+    def _value(self, si, L, V, active, group=0):
+        """f_material(L, V) (Spectrum) of colour group ``group``, 0 unless both directions lie above the horizon."""
         active = active & (L.z > 0) & (V.z > 0)
-        f = self._specular_factor(si, L, V, active) * self.lobe_eval(L, V, active)
+        f = self._specular_factor(si, L, V, active, group) * self.lobe_eval(L, V, active)
         if self.diffuse is not None:
             f = f + self.diffuse.eval(si, active) * INV_PI
         return dr.select(active, f, 0.0)
+
+    def colour_ratios(self, si, wo, active):
+        """f_g / f_0 at (``si.wi``, ``wo``) for each colour group g ≥ 1 (a list of Spectrum; empty
+        with one group): what turns group 0's path throughput into group g's (the samplers do not
+        read the colour, so every group follows the same paths).  A metal without a diffuse lobe
+        needs only the Fresnel factors F_g / F_0, not the lobe."""
+        if len(self.colour_groups) == 1:
+            return []
+        L, V = to_model(wo), to_model(si.wi)
+        part = self._specular_factor if self.diffuse is None else self._value
+        base = part(si, L, V, active)
+        return [_ratio(part(si, L, V, active, g), base) for g in range(1, len(self.colour_groups))]
 
     def mis_lobe_pdf(self, L, V, active):
         """The lobe's density in the MIS weights of :meth:`eval_pdf` (next-event estimation) and of a
@@ -300,6 +335,9 @@ class ModelBSDF(mi.BSDF):
         if self.eta is not None:
             callback.put("eta", self.eta, mi.ParamFlags.Differentiable)
             callback.put("k", self.k, mi.ParamFlags.Differentiable)
+        for g, (eta, k) in enumerate(self.colour_groups[1:], start=1):
+            callback.put(f"eta_{g}", eta, mi.ParamFlags.Differentiable)
+            callback.put(f"k_{g}", k, mi.ParamFlags.Differentiable)
 
     def parameters_changed(self, keys):
         pass
