@@ -7,7 +7,7 @@ import pytest
 
 from brdfs.core.gauss_kronrod import integrate
 from brdfs.numerics.integrate.hemisphere import (ONSET_MIN_SPAN, ONSET_SPLIT, horizon_onset, radial_breakpoints_many,
-                                                 square_root_onset)
+                                                 square_root_onset, touch_radii)
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.physics.models import model
 
@@ -74,3 +74,27 @@ def test_no_substitution_where_no_element_has_an_onset():
     f = lambda t, e: t
     assert square_root_onset(f, np.full(2, np.nan), np.full(2, np.nan)) is f
 
+
+
+def test_the_touch_radii_the_breakpoints_carry_are_those_horizon_onset_would_compute():
+    """``radial_breakpoints_many(touch=True)`` hands ``horizon_onset`` the radius t0 it found as the
+    candidate of the level N·V = 0; the onset intervals are the same as from t0 computed anew
+    (:func:`touch_radii`), for every example of every model at random angles, 0°, 90° and 90° − 1e-9."""
+    from brdfs.physics.models import MODELS
+
+    rng = np.random.default_rng(1)
+    theta = np.concatenate([rng.uniform(0.0, 90.0, 24), [0.0, 45.0, 89.9, 90.0 - 1e-9, 90.0]])
+    mu, st = np.cos(np.radians(theta)), np.sin(np.radians(theta))
+    onsets = 0
+    for name, cls in MODELS.items():
+        for params in cls.examples.values():
+            m = model(name, **params)
+            if not hasattr(m.lobe, "t_of"):           # no radial coordinate: not the engine's routes
+                continue
+            bp, t0 = radial_breakpoints_many([m] * theta.size, mu, st, theta, touch=True)
+            carried = horizon_onset([m] * theta.size, theta, bp, t0)
+            anew = horizon_onset([m] * theta.size, theta, bp, touch_radii([m] * theta.size, theta))
+            for a, b in zip(carried, anew):
+                assert np.array_equal(a, b, equal_nan=True), (name, params)
+            onsets += int(np.isfinite(carried[1]).sum())
+    assert onsets > 100              # the comparison saw onset intervals, not only NaN

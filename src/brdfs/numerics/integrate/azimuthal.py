@@ -107,10 +107,10 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     single = theta_deg.size == 1
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
-        bp, kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
-                                            root_rtol=single_angle_root_rtol(rtol), kinks=True)
+        bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
+                                                root_rtol=single_angle_root_rtol(rtol), kinks=True, touch=True)
     else:
-        bp, kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL), None
+        (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
     kernels = {members[0]: _RadialKernel.of(models[members[0]]) for members in indices_by_model(models)}
     if len(kernels) == 1:                  # one model: no regrouping of the nodes by model
         (kernel,) = kernels.values()
@@ -129,7 +129,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                 value[rows], rounding[rows] = kernels[k](t[rows], mu[e, None], st[e, None])
             return NodeValues(value, value, rounding)
 
-    bp, *onset = horizon_onset(models, theta_deg, bp)
+    bp, *onset = horizon_onset(models, theta_deg, bp, t0)
     if kinks is None or not kinks.element.size:
         # at ROOT_RTOL a misplaced kink costs ~1e-18 of the integral, below the 50 ε Σ|f| floor already in
         return integrate(square_root_onset(integrand, *onset), bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)

@@ -62,7 +62,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
         raise ValueError("albedo_many needs one model per angle")
     index = first_of_model(models)   # the same model object at many angles is evaluated together
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    bp = radial_breakpoints_many(models, mu, st, theta_deg)
+    bp, t0 = radial_breakpoints_many(models, mu, st, theta_deg, touch=True)
 
     def integrand(t, elem):
         high = np.empty_like(t)
@@ -75,7 +75,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
             rounding[rows] = models[k].lobe.rounding * _EPS * np.abs(high[rows]) + noise
         return NodeValues(high, low, rounding)
 
-    bp, *onset = horizon_onset(models, theta_deg, bp)
+    bp, *onset = horizon_onset(models, theta_deg, bp, t0)
     return integrate(square_root_onset(integrand, *onset), bp, rtol=rtol, atol=atol, chunk=192)
 
 
@@ -89,7 +89,7 @@ class Kinks(NamedTuple):
     hi: np.ndarray
 
 
-def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None, kinks=False):
+def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None, kinks=False, touch=False):
     """Breakpoints in t of ``models[i]`` at incidence ``theta_deg[i]`` (cos ``mu``, sin ``st``), one
     row per element, ascending and NaN-padded (:func:`.gauss_kronrod.integrate`'s ragged form):
     the range ends, the radii where N·V level sets touch the circles (closed form), the radii where
@@ -100,32 +100,38 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
 
     ``root_rtol`` (:data:`ROOT_RTOL` by default) is the precision of the kink radii found
     numerically; with ``kinks`` True, also returns their brackets (:class:`Kinks`), from which a
-    caller that loosens ``root_rtol`` bounds what a misplaced kink costs."""
+    caller that loosens ``root_rtol`` bounds what a misplaced kink costs; with ``touch`` True, last,
+    the radius t0 where the circles first reach below the horizon, as it stands in each row (NaN where
+    :func:`horizon_onset` has none), so that :func:`horizon_onset` need not compute it again."""
     tail = TAIL if tail is None else tail
     root_rtol = ROOT_RTOL if root_rtol is None else root_rtol
     groups = indices_by_model(models)
     if len(groups) == 1:                   # one model (a curve, or a single angle): no regrouping
-        rows, brackets = _radial_breakpoints(models[0], mu, st, theta_deg, tail, root_rtol)
+        rows, brackets, t0 = _radial_breakpoints(models[0], mu, st, theta_deg, tail, root_rtol)
     else:
-        rows, brackets = [None] * len(models), [None] * len(models)
+        rows, brackets, t0 = [None] * len(models), [None] * len(models), np.full(len(models), np.nan)
         for members in groups:
             idx = np.array(members)
-            for i, row, bracket in zip(members, *_radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx],
-                                                                     tail, root_rtol)):
+            found = _radial_breakpoints(models[idx[0]], mu[idx], st[idx], theta_deg[idx], tail, root_rtol)
+            for i, row, bracket in zip(members, *found[:2]):
                 rows[i], brackets[i] = row, bracket
+            t0[idx] = found[2]
     if len(rows) == 1:
         out = rows[0][None]
     else:
         out = np.full((len(rows), max(r.size for r in rows)), np.nan)
         for out_row, row in zip(out, rows):
             out_row[:row.size] = row
-    if not kinks:
-        return out
-    element = np.concatenate([np.full(lo.size, i) for i, (lo, _) in enumerate(brackets)]).astype(np.intp)
-    return out, Kinks(element, np.concatenate([lo for lo, _ in brackets]), np.concatenate([hi for _, hi in brackets]))
+    result = (out,)
+    if kinks:
+        element = np.concatenate([np.full(lo.size, i) for i, (lo, _) in enumerate(brackets)]).astype(np.intp)
+        result += (Kinks(element, np.concatenate([lo for lo, _ in brackets]), np.concatenate([hi for _, hi in brackets])),)
+    if touch:
+        result += (t0,)
+    return result[0] if len(result) == 1 else result
 
 
-def horizon_onset(models, theta_deg, bp):
+def horizon_onset(models, theta_deg, bp, t0=None):
     """The breakpoint rows ``bp`` with the onset interval split, and per element that interval
     (lo, hi): it starts at the radius where the circles first reach below the horizon (β = π/2 − θ
     mirror frame, δ = (π/2 − θ)/2 half frame) and ends at the next breakpoint, or halfway to it where
@@ -139,30 +145,38 @@ def horizon_onset(models, theta_deg, bp):
     1e-10).  :func:`square_root_onset` integrates the onset interval in w, t = lo cosh² w, which grades
     it geometrically; the split keeps that grading away from what lies beyond the next breakpoint
     (the lobe's tail at 1 − t = 1e-3: Blinn n = 12.46 at 84.56°, graded up to it, was 2.4×
-    over-confident at rtol 1e-4)."""
-    theta_deg = np.asarray(theta_deg, float)
-    lo, hi = np.full(theta_deg.size, np.nan), np.full(theta_deg.size, np.nan)
-    for members in indices_by_model(models):
-        idx = np.array(members)
-        lobe = models[idx[0]].lobe
-        if lobe.frame is not HALF and lobe.frame is not MIRROR:
-            continue
-        scale = 0.5 if lobe.frame is HALF else 1.0
-        touch = scale * (np.pi / 2 - np.radians(theta_deg[idx]))
-        # the same arithmetic as the breakpoint of _radial_breakpoints: the row holds t0 exactly
-        t0 = lobe.t_of(np.maximum(touch, 0.0))
-        rows = np.concatenate([bp[idx], np.full((idx.size, 1), np.nan)], axis=1)
-        at = rows == t0[:, None]
-        k = np.argmax(at, axis=1)
-        end = rows[np.arange(idx.size), k + 1]
-        ok = at.any(axis=1) & (touch > 0) & (t0 > ONSET_MIN_T) & np.isfinite(end) & (end > ONSET_MIN_SPAN * t0)
-        lo[idx], hi[idx] = np.where(ok, t0, np.nan), np.where(ok, end, np.nan)
+    over-confident at rtol 1e-4).
+
+    ``t0`` (per element, as :func:`radial_breakpoints_many` returns it with ``touch``) saves
+    computing the touch radii again."""
+    t0 = touch_radii(models, theta_deg) if t0 is None else t0
+    rows = np.concatenate([bp, np.full((bp.shape[0], 1), np.nan)], axis=1)
+    at = rows == t0[:, None]
+    end = rows[np.arange(bp.shape[0]), np.argmax(at, axis=1) + 1]
+    ok = at.any(axis=1) & (t0 > ONSET_MIN_T) & np.isfinite(end) & (end > ONSET_MIN_SPAN * t0)   # NaN compares False
+    lo, hi = np.where(ok, t0, np.nan), np.where(ok, end, np.nan)
     split = np.isfinite(lo) & (hi > ONSET_SPLIT * lo)
     if not split.any():
         return bp, lo, hi
     hi = np.where(split, 0.5 * (lo + hi), hi)
     extra = np.where(split, hi, np.nan)[:, None]
     return np.sort(np.concatenate([bp, extra], axis=1), axis=1), lo, hi
+
+
+def touch_radii(models, theta_deg):
+    """The radius t0 where the circles of ``models[i]`` at ``theta_deg[i]`` first reach below the
+    horizon (β = π/2 − θ mirror frame, δ = (π/2 − θ)/2 half frame), NaN for another frame or θ = 90°:
+    the same arithmetic as :func:`_radial_breakpoints`'s candidate of the level N·V = 0, so that a
+    row holds t0 exactly."""
+    theta_deg = np.asarray(theta_deg, float)
+    t0 = np.full(theta_deg.size, np.nan)
+    for members in indices_by_model(models):
+        idx = np.array(members)
+        lobe = models[idx[0]].lobe
+        if lobe.frame is HALF or lobe.frame is MIRROR:
+            touch = (0.5 if lobe.frame is HALF else 1.0) * (np.pi / 2 - np.radians(theta_deg[idx]))
+            t0[idx] = np.where(touch > 0, lobe.t_of(np.maximum(touch, 0.0)), np.nan)
+    return t0
 
 
 #: An onset interval longer than this many times its start is split in half (:func:`horizon_onset`).
@@ -220,8 +234,9 @@ ONSET_MIN_T = 1e-200
 
 
 def _radial_breakpoints(model, mu, st, theta_deg, tail=None, root_rtol=None):
-    """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows, and
-    a list of the brackets (lo, hi) of each row's numerically found kinks."""
+    """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows, a
+    list of the brackets (lo, hi) of each row's numerically found kinks, and the touch radii
+    (:func:`touch_radii`: the candidate of the level N·V = 0, the first)."""
     tail = TAIL if tail is None else tail
     lobe = model.lobe
     theta = np.radians(theta_deg)[:, None]
@@ -252,7 +267,9 @@ def _radial_breakpoints(model, mu, st, theta_deg, tail=None, root_rtol=None):
     for i in range(mu.size):
         row = np.concatenate([t_pts[i], 0.5 * (brackets[i][0] + brackets[i][1]), az[i]])
         out.append(_sorted_distinct(row[(row >= 0) & (row <= t_max[i, 0])]))
-    return out, brackets
+    onset_frame = lobe.frame is HALF or lobe.frame is MIRROR
+    t0 = np.where(onset_frame & (cand[:, 0] < beta_max[:, 0]), t_cand[:, 0], np.nan)
+    return out, brackets, t0
 
 
 #: Cuts at β_c ± w g (g of this tuple) about a radius β_c where a declared level N·V = c touches the
