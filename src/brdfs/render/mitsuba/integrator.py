@@ -29,8 +29,9 @@ Per camera ray the estimator is the usual one of pbrt-v4's ``PathIntegrator`` an
   plugins' ``colour_ratios``, 1 for a gray material, :func:`colour_ratios`), the emitters are white,
   and groups 1 … G − 1 leave in the AOVs ``c<g>_<channel>`` after ``cos_v``;
 * **Russian roulette** from depth ``rr_depth`` on: a path survives with probability
-  ``q = min(0.95, max β)`` (the largest channel of every colour group) and its throughput is divided by q (unbiased; this is *not* the 0/1
-  accept/reject sampling that section 4.2.4 of the thesis calls Russian roulette);
+  ``q = min(0.95, max β)`` (the largest channel of every colour group) and its throughput is
+  divided by q (unbiased; this is *not* the 0/1 accept/reject sampling that section 4.2.4 of the
+  thesis calls Russian roulette);
   ``max_depth = -1`` means no fixed limit. (Starting it at depth 2 or 1 instead of 4 saved no time
   on Fig. 3.9's scene and raised its p95 from 0.070 to 0.087 and 0.109.)
 
