@@ -7,7 +7,9 @@ import pytest
 
 from brdfs.core.gauss_kronrod import integrate
 from brdfs.numerics.integrate.hemisphere import (ONSET_MIN_SPAN, ONSET_SPLIT, horizon_onset, radial_breakpoints_many,
-                                                 square_root_onset, touch_radii)
+                                                 square_root_onset)
+from brdfs.numerics.integrate.grouping import indices_by_model
+from brdfs.physics.lobes import HALF, MIRROR
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.physics.models import model
 
@@ -56,8 +58,8 @@ def test_the_substitution_leaves_a_smooth_integral_unchanged():
 def test_the_onset_interval_starts_at_the_horizon_touch_radius_and_ends_at_or_halfway_to_the_next_breakpoint():
     f = model("cook_torrance", m=0.230153, G="none")
     theta = np.array([0.0, 45.0, 80.0, 89.99])
-    bp = radial_breakpoints_many([f] * 4, cos_incidence(theta), sin_incidence(theta), theta)
-    split, lo, hi = horizon_onset([f] * 4, theta, bp)
+    bp, t0 = radial_breakpoints_many([f] * 4, cos_incidence(theta), sin_incidence(theta), theta, touch=True)
+    split, lo, hi = horizon_onset(bp, t0)
     assert np.isnan(lo[0]) and np.isnan(hi[0])              # normal incidence: the circle ends at the horizon
     touch = f.lobe.t_of(0.5 * np.radians(90.0 - theta))
     start = np.where(np.isnan(lo), touch, lo)           # lo: the row's own value of the touch radius
@@ -76,10 +78,24 @@ def test_no_substitution_where_no_element_has_an_onset():
 
 
 
+def _touch_radii(models, theta_deg):
+    """t0 computed anew, as horizon_onset did before the breakpoints carried it: β = π/2 − θ (mirror
+    frame), δ = (π/2 − θ)/2 (half frame), NaN for another frame or θ = 90°."""
+    theta_deg = np.asarray(theta_deg, float)
+    t0 = np.full(theta_deg.size, np.nan)
+    for members in indices_by_model(models):
+        idx = np.array(members)
+        lobe = models[idx[0]].lobe
+        if lobe.frame is HALF or lobe.frame is MIRROR:
+            touch = (0.5 if lobe.frame is HALF else 1.0) * (np.pi / 2 - np.radians(theta_deg[idx]))
+            t0[idx] = np.where(touch > 0, lobe.t_of(np.maximum(touch, 0.0)), np.nan)
+    return t0
+
+
 def test_the_touch_radii_the_breakpoints_carry_are_those_horizon_onset_would_compute():
     """``radial_breakpoints_many(touch=True)`` hands ``horizon_onset`` the radius t0 it found as the
     candidate of the level N·V = 0; the onset intervals are the same as from t0 computed anew
-    (:func:`touch_radii`), for every example of every model at random angles, 0°, 90° and 90° − 1e-9."""
+    (:func:`_touch_radii`), for every example of every model at random angles, 0°, 90° and 90° − 1e-9."""
     from brdfs.physics.models import MODELS
 
     rng = np.random.default_rng(1)
@@ -92,8 +108,8 @@ def test_the_touch_radii_the_breakpoints_carry_are_those_horizon_onset_would_com
             if not hasattr(m.lobe, "t_of"):           # no radial coordinate: not the engine's routes
                 continue
             bp, t0 = radial_breakpoints_many([m] * theta.size, mu, st, theta, touch=True)
-            carried = horizon_onset([m] * theta.size, theta, bp, t0)
-            anew = horizon_onset([m] * theta.size, theta, bp, touch_radii([m] * theta.size, theta))
+            carried = horizon_onset(bp, t0)
+            anew = horizon_onset(bp, _touch_radii([m] * theta.size, theta))
             for a, b in zip(carried, anew):
                 assert np.array_equal(a, b, equal_nan=True), (name, params)
             onsets += int(np.isfinite(carried[1]).sum())

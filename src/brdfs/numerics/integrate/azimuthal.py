@@ -129,7 +129,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                 value[rows], rounding[rows] = kernels[k](t[rows], mu[e, None], st[e, None])
             return NodeValues(value, value, rounding)
 
-    bp, *onset = horizon_onset(models, theta_deg, bp, t0)
+    bp, *onset = horizon_onset(bp, t0)
     if kinks is None or not kinks.element.size:
         # at ROOT_RTOL a misplaced kink costs ~1e-18 of the integral, below the 50 ε Σ|f| floor already in
         return integrate(square_root_onset(integrand, *onset), bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)

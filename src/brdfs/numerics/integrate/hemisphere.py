@@ -75,7 +75,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14):
             rounding[rows] = models[k].lobe.rounding * _EPS * np.abs(high[rows]) + noise
         return NodeValues(high, low, rounding)
 
-    bp, *onset = horizon_onset(models, theta_deg, bp, t0)
+    bp, *onset = horizon_onset(bp, t0)
     return integrate(square_root_onset(integrand, *onset), bp, rtol=rtol, atol=atol, chunk=192)
 
 
@@ -131,7 +131,7 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
     return result[0] if len(result) == 1 else result
 
 
-def horizon_onset(models, theta_deg, bp, t0=None):
+def horizon_onset(bp, t0):
     """The breakpoint rows ``bp`` with the onset interval split, and per element that interval
     (lo, hi): it starts at the radius where the circles first reach below the horizon (β = π/2 − θ
     mirror frame, δ = (π/2 − θ)/2 half frame) and ends at the next breakpoint, or halfway to it where
@@ -147,9 +147,8 @@ def horizon_onset(models, theta_deg, bp, t0=None):
     (the lobe's tail at 1 − t = 1e-3: Blinn n = 12.46 at 84.56°, graded up to it, was 2.4×
     over-confident at rtol 1e-4).
 
-    ``t0`` (per element, as :func:`radial_breakpoints_many` returns it with ``touch``) saves
-    computing the touch radii again."""
-    t0 = touch_radii(models, theta_deg) if t0 is None else t0
+    ``t0`` is that radius per element, as :func:`radial_breakpoints_many` returns it with ``touch``
+    (the row holds it exactly)."""
     rows = np.concatenate([bp, np.full((bp.shape[0], 1), np.nan)], axis=1)
     at = rows == t0[:, None]
     end = rows[np.arange(bp.shape[0]), np.argmax(at, axis=1) + 1]
@@ -161,22 +160,6 @@ def horizon_onset(models, theta_deg, bp, t0=None):
     hi = np.where(split, 0.5 * (lo + hi), hi)
     extra = np.where(split, hi, np.nan)[:, None]
     return np.sort(np.concatenate([bp, extra], axis=1), axis=1), lo, hi
-
-
-def touch_radii(models, theta_deg):
-    """The radius t0 where the circles of ``models[i]`` at ``theta_deg[i]`` first reach below the
-    horizon (β = π/2 − θ mirror frame, δ = (π/2 − θ)/2 half frame), NaN for another frame or θ = 90°:
-    the same arithmetic as :func:`_radial_breakpoints`'s candidate of the level N·V = 0, so that a
-    row holds t0 exactly."""
-    theta_deg = np.asarray(theta_deg, float)
-    t0 = np.full(theta_deg.size, np.nan)
-    for members in indices_by_model(models):
-        idx = np.array(members)
-        lobe = models[idx[0]].lobe
-        if lobe.frame is HALF or lobe.frame is MIRROR:
-            touch = (0.5 if lobe.frame is HALF else 1.0) * (np.pi / 2 - np.radians(theta_deg[idx]))
-            t0[idx] = np.where(touch > 0, lobe.t_of(np.maximum(touch, 0.0)), np.nan)
-    return t0
 
 
 #: An onset interval longer than this many times its start is split in half (:func:`horizon_onset`).
@@ -235,8 +218,9 @@ ONSET_MIN_T = 1e-200
 
 def _radial_breakpoints(model, mu, st, theta_deg, tail=None, root_rtol=None):
     """Breakpoints of one model at the angles ``theta_deg`` (arrays): a list of ascending rows, a
-    list of the brackets (lo, hi) of each row's numerically found kinks, and the touch radii
-    (:func:`touch_radii`: the candidate of the level N·V = 0, the first)."""
+    list of the brackets (lo, hi) of each row's numerically found kinks, and the touch radii of
+    :func:`horizon_onset` (the candidate of the level N·V = 0, the first; NaN outside the half and
+    mirror frames and where the circles never reach below the horizon)."""
     tail = TAIL if tail is None else tail
     lobe = model.lobe
     theta = np.radians(theta_deg)[:, None]
