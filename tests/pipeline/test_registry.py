@@ -14,7 +14,6 @@ import brdfs.artifacts
 from brdfs.pipeline import declarations
 
 from brdfs.pipeline import registry as artifacts
-from brdfs.pipeline.published import COMPARISON_COLUMNS
 
 
 def test_registered_artifacts_and_their_paths():
@@ -126,12 +125,6 @@ def test_compute_must_return_a_dataframe(toy_registry):
     artifacts.table("extra_empty", chapter=None)(empty)
     with pytest.raises(TypeError, match="non-empty DataFrame"):
         artifacts.get_artifact("extra_empty").compute({"seed": 0, "tolerance": {}}, {})
-
-
-def test_compute_all_comparisons_gives_the_merged_comparison(all_comparisons):
-    merged = all_comparisons
-    assert tuple(merged.columns) == COMPARISON_COLUMNS
-    assert set(merged["artifact"]) == set(artifacts.comparisons())
 
 
 def test_the_scan_of_the_decorator_lines_declares_what_importing_the_modules_registers():
