@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from brdfs.numerics.integrate.mean import positive_part_azimuth
 from brdfs.physics.distributions import Beckmann
 
 
@@ -24,27 +25,17 @@ def test_cdf_and_its_inverse_agree_and_sampled_normals_are_unit(alpha):
     np.testing.assert_allclose(np.linalg.norm(H, axis=-1), 1.0, atol=1e-14)
 
 
-def _positive_cosine_azimuth_integral(a, b):
-    """∫₀^{2π} max(a cos φ + b, 0) dφ for a ≥ 0: 2π b where the whole circle is positive, 0 where
-    none is, else 2 (b φ₀ + a sin φ₀) with cos φ₀ = −b / a (elementary, no masking function in it)."""
-    if b >= a:
-        return 2 * np.pi * b
-    if b <= -a:
-        return 0.0
-    phi0 = np.arccos(-b / a)
-    return 2 * (b * phi0 + a * np.sin(phi0))
-
-
 @pytest.mark.parametrize("alpha, theta_deg", [(0.1, 80.0), (0.3, 72.54), (0.5, 45.0), (1.0, 85.0)])
 def test_exact_smith_g1_satisfies_the_projected_area_identity(alpha, theta_deg):
     """Smith's G1 is defined by G1(ω) ∫ ⟨ω·H⟩⁺ D(H) dω_H = cos θ (Heitz 2014, eq. 2): integrated
     here over the normal's polar angle t by adaptive quadrature split where ⟨ω·H⟩⁺ starts to clip
-    (t = 90° − θ), its azimuth in closed form, independently of Λ's closed form."""
+    (t = 90° − θ), its azimuth in closed form (∫ [a + b cos φ]₊ dφ, no masking function in it),
+    independently of Λ's closed form."""
     d = Beckmann(alpha)
     theta = np.radians(theta_deg)
 
     def integrand(t):
-        ring = _positive_cosine_azimuth_integral(np.sin(theta) * np.sin(t), np.cos(theta) * np.cos(t))
+        ring = float(positive_part_azimuth(np.cos(theta) * np.cos(t), np.sin(theta) * np.sin(t)))
         return ring * float(d.D(np.cos(t))) * np.sin(t)
 
     projected, _ = quad(integrand, 0, np.pi / 2, epsabs=1e-14, epsrel=1e-12, limit=200,
