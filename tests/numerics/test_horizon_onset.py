@@ -114,3 +114,30 @@ def test_the_touch_radii_the_breakpoints_carry_are_those_horizon_onset_would_com
                 assert np.array_equal(a, b, equal_nan=True), (name, params)
             onsets += int(np.isfinite(carried[1]).sum())
     assert onsets > 100              # the comparison saw onset intervals, not only NaN
+
+
+def test_a_single_row_gets_the_onset_interval_the_batch_gives_it():
+    """``horizon_onset`` on one row (Python floats) against the same row inside a batch (arrays): the
+    same split row, lo and hi to the bit, for every example of every model at random angles."""
+    from brdfs.physics.models import MODELS
+
+    rng = np.random.default_rng(2)
+    theta = np.concatenate([rng.uniform(0.0, 90.0, 16), [0.0, 89.9, 90.0 - 1e-9, 90.0]])
+    mu, st = np.cos(np.radians(theta)), np.sin(np.radians(theta))
+    splits = 0
+    for name, cls in MODELS.items():
+        for params in cls.examples.values():
+            m = model(name, **params)
+            if not hasattr(m.lobe, "t_of"):
+                continue
+            bp, t0 = radial_breakpoints_many([m] * theta.size, mu, st, theta, touch=True)
+            batch = horizon_onset(bp, t0)
+            for i in range(theta.size):
+                one = horizon_onset(bp[i:i + 1], t0[i:i + 1])
+                width = one[0].shape[1]
+                assert np.array_equal(one[0][0], batch[0][i, :width], equal_nan=True), (name, params, theta[i])
+                assert np.all(np.isnan(batch[0][i, width:]))
+                assert np.array_equal(one[1], batch[1][i:i + 1], equal_nan=True)
+                assert np.array_equal(one[2], batch[2][i:i + 1], equal_nan=True)
+                splits += one[0].shape[1] > bp.shape[1]
+    assert splits > 20               # the comparison saw rows that were split

@@ -58,6 +58,8 @@ GAUSS_WEIGHTS[_gauss_idx] = _WG_HALF
 GAUSS_WEIGHTS[20 - _gauss_idx] = _WG_HALF
 
 _EPS = np.finfo(float).eps
+#: Room for every status a caller may write into the array later (one element's status is built alone).
+_STATUS_DTYPE = f"<U{len(BUDGET_EXHAUSTED)}"
 SAFETY = 2.0
 # Splits without gain before an interval is frozen; 3 froze resolvable intervals of pumped Blinn
 # models (a smooth but poorly resolved start looks like a jump three splits running).
@@ -150,21 +152,32 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     elem, lo, hi = _initial_intervals(bp)
     vals = _evaluate(integrand, elem, lo, hi, chunk)           # rows: high, low, extra, |f|
     err = np.abs(vals[0] - vals[1])
-    fixed = _unrefinable(lo, hi, err, vals[2])
+    # a single element finds out first whether it has met its tolerance (most single calls, in
+    # one round), and only then which intervals no split can improve
+    fixed = None if n_el == 1 else _unrefinable(lo, hi, err, vals[2])
     stalls = np.zeros(elem.size, np.intp)
     evaluations = elem.size * NODES.size
     exhausted = True
     if n_el == 1:
-        atol_1 = float(np.ravel(atol)[0]) if np.ndim(atol) else float(atol)
+        rtol_1 = rtol if isinstance(rtol, float) else float(np.ravel(rtol)[0])
+        atol_1 = atol if isinstance(atol, float) else float(np.ravel(atol)[0])
+    sums_1 = None              # a single element's sums over its current intervals
     for _ in range(max_rounds):
-        frozen = fixed | (stalls >= STALL_LIMIT)
         if n_el == 1:          # the same arithmetic on Python floats: a single element's round is mostly overhead
-            high_1, extra_1, absval_1, total_1, movable_1 = _single_sums(elem, vals, err, frozen)
-            total = np.array([total_1])
-            budget_1 = _budget(max(rtol * abs(high_1), atol_1), extra_1 + 50 * _EPS * absval_1)
-            budget = np.array([budget_1])
+            sums_1 = _single_sums(elem, vals, err)
+            high_1, _, extra_1, absval_1, total_1 = sums_1
+            budget_1 = _budget(max(rtol_1 * abs(high_1), atol_1), extra_1 + 50 * _EPS * absval_1)
+            if not total_1 > budget_1:                   # met (or NaN): :func:`_still_open`'s first test
+                exhausted = False
+                break
+            if fixed is None:
+                fixed = _unrefinable(lo, hi, err, vals[2])
+            frozen = fixed | (stalls >= STALL_LIMIT)
+            movable_1 = float(np.bincount(elem, np.where(frozen, 0.0, err), 1)[0])
+            total, budget = np.array([total_1]), np.array([budget_1])
             cand = ~frozen if _still_open(total_1, movable_1, budget_1) else np.zeros(elem.size, bool)
         else:
+            frozen = fixed | (stalls >= STALL_LIMIT)
             total = np.bincount(elem, err, n_el)
             movable = np.bincount(elem, np.where(frozen, 0.0, err), n_el)
             high, extra, absval = (np.bincount(elem, v, n_el) for v in (vals[0], vals[2], vals[3]))
@@ -179,6 +192,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         groups = _split_groups(np.flatnonzero(split), stalls, lo, hi, fill)
         c_elem, c_lo, c_hi = _children_of(elem, lo, hi, groups)
         c_vals = _evaluate(integrand, c_elem, c_lo, c_hi, chunk)
+        sums_1 = None
         evaluations += c_elem.size * NODES.size
         c_err = np.abs(c_vals[0] - c_vals[1])
         c_stalls = _child_stalls(groups, c_err, err, stalls)
@@ -189,18 +203,25 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         err = np.concatenate([err[keep], c_err])
         fixed = np.concatenate([fixed[keep], _unrefinable(c_lo, c_hi, c_err, c_vals[2])])
         stalls = np.concatenate([stalls[keep], c_stalls])
+    if sums_1 is not None:     # the loop stopped before evaluating anything new: its sums stand
+        _, low_1, extra_1, absval_1, total_1 = sums_1
+        error_1 = SAFETY * total_1 + extra_1 + 50 * _EPS * absval_1
+        met = error_1 <= max(rtol_1 * abs(low_1), atol_1)
+        status = CONVERGED if met else BUDGET_EXHAUSTED if exhausted else STALLED
+        return Estimate(np.array([low_1]), np.array([error_1]), evaluations, np.array([status], _STATUS_DTYPE))
     high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
-    error = SAFETY * np.bincount(elem, err, n_el) + extra + 50 * _EPS * absval
+    total = np.bincount(elem, err, n_el)
+    error = SAFETY * total + extra + 50 * _EPS * absval
     met = error <= np.maximum(rtol * np.abs(low), atol)
     status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
     return Estimate(low, error, evaluations, status)
 
 
-def _single_sums(elem, vals, err, frozen):
-    """A single element's sums of the Kronrod values, known errors, |f|, |K − G| and the unfrozen
-    |K − G|, as Python floats: ``np.bincount``, as for a batch's elements (the same sums to the bit,
-    and on a few values the cheapest numpy sum: ~1 µs, a third of ``np.sum``'s dispatch)."""
-    return [float(np.bincount(elem, v, 1)[0]) for v in (vals[0], vals[2], vals[3], err, np.where(frozen, 0.0, err))]
+def _single_sums(elem, vals, err):
+    """A single element's sums of the Kronrod values, Gauss values, known errors, |f| and |K − G|, as
+    Python floats: ``np.bincount``, as for a batch's elements (the same sums to the bit, and on a few
+    values the cheapest numpy sum: ~1 µs, a third of ``np.sum``'s dispatch)."""
+    return [float(np.bincount(elem, v, 1)[0]) for v in (*vals, err)]
 
 
 def _budget(tol, floor):

@@ -42,6 +42,7 @@ breakpoints; the tests compare the two, and the accuracy map compares both with 
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -150,7 +151,7 @@ def single_angle_root_rtol(rtol):
     placed off by δ costs at most J δ² / 2 (:class:`_KinkProbes` adds a bound of it to the error); the radial integrand's slopes are of order |a| / min(t, 1 − t), so that is of order
     |a| 10⁻⁴ rtol, and each factor 64 of precision given up is one multisection round less (the
     Torrance–Sparrow switch radii: 4–5 rounds at ROOT_RTOL, a third of a single call's setup)."""
-    return float(min(1e-3, max(ROOT_RTOL, 1e-2 * np.sqrt(np.min(rtol)))))
+    return min(1e-3, max(ROOT_RTOL, 1e-2 * math.sqrt(_smallest(rtol))))
 
 
 class _KinkProbes:
@@ -232,7 +233,12 @@ TIGHT_RTOL = 1e-7
 def _single_angle_tail(rtol):
     """The initial tail breakpoints 1 − t of a single-angle call at ``rtol``: finer where the
     tolerance is tight, so that the first evaluation meets it (a round costs more than its nodes)."""
-    return TIGHT_SINGLE_ANGLE_TAIL if np.min(rtol) < TIGHT_RTOL else SINGLE_ANGLE_TAIL
+    return TIGHT_SINGLE_ANGLE_TAIL if _smallest(rtol) < TIGHT_RTOL else SINGLE_ANGLE_TAIL
+
+
+def _smallest(rtol):
+    """The smallest of ``rtol`` (a number or an array), as a Python float."""
+    return float(rtol) if isinstance(rtol, float) else float(np.min(rtol))
 
 
 @dataclass(frozen=True)

@@ -28,6 +28,7 @@ integrates) has φ run over [0, π] and the result doubled.
 """
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -123,7 +124,10 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
         for out_row, row in zip(out, rows):
             out_row[:row.size] = row
     result = (out,)
-    if kinks:
+    if kinks and len(brackets) == 1:
+        lo, hi = brackets[0]
+        result += (Kinks(np.zeros(lo.size, np.intp), lo, hi),)
+    elif kinks:
         element = np.concatenate([np.full(lo.size, i) for i, (lo, _) in enumerate(brackets)]).astype(np.intp)
         result += (Kinks(element, np.concatenate([lo for lo, _ in brackets]), np.concatenate([hi for _, hi in brackets])),)
     if touch:
@@ -149,6 +153,8 @@ def horizon_onset(bp, t0):
 
     ``t0`` is that radius per element, as :func:`radial_breakpoints_many` returns it with ``touch``
     (the row holds it exactly)."""
+    if bp.shape[0] == 1:
+        return _horizon_onset_of_one(bp, float(t0[0]))
     rows = np.concatenate([bp, np.full((bp.shape[0], 1), np.nan)], axis=1)
     at = rows == t0[:, None]
     end = rows[np.arange(bp.shape[0]), np.argmax(at, axis=1) + 1]
@@ -160,6 +166,21 @@ def horizon_onset(bp, t0):
     hi = np.where(split, 0.5 * (lo + hi), hi)
     extra = np.where(split, hi, np.nan)[:, None]
     return np.sort(np.concatenate([bp, extra], axis=1), axis=1), lo, hi
+
+
+def _horizon_onset_of_one(bp, t0):
+    """:func:`horizon_onset` of a single row, on Python floats (the same arithmetic: a single angle's
+    handful of array operations cost more than their work)."""
+    row = bp[0].tolist()
+    lo = hi = math.nan
+    if t0 in row:                                       # NaN is in no row
+        end = row[row.index(t0) + 1] if row.index(t0) + 1 < len(row) else math.nan
+        if t0 > ONSET_MIN_T and math.isfinite(end) and end > ONSET_MIN_SPAN * t0:
+            lo, hi = t0, end
+    if math.isfinite(lo) and hi > ONSET_SPLIT * lo:
+        hi = 0.5 * (lo + hi)
+        bp = np.sort(np.concatenate([bp, [[hi]]], axis=1), axis=1)
+    return bp, np.array([lo]), np.array([hi])
 
 
 #: An onset interval longer than this many times its start is split in half (:func:`horizon_onset`).
