@@ -81,6 +81,8 @@ CASES = {
     "phong_cosmin n=1e4": ({"type": "brdfs_phong_cosmin", "n": 1e4}, model("phong_cosmin", n=1e4), 1e4),
     "phong_cosmin n=20": ({"type": "brdfs_phong_cosmin", "n": 20}, model("phong_cosmin", n=20), 20),
     "blinn n=1e4": ({"type": "brdfs_blinn", "n": 1e4}, model("blinn", n=1e4), 1e4),
+    "blinn n=20": ({"type": "brdfs_blinn", "n": 20}, model("blinn", n=20), 20),
+    "blinn_cosmin n=1e4": ({"type": "brdfs_blinn_cosmin", "n": 1e4}, model("blinn_cosmin", n=1e4), 1e4),
     "blinn_cosmin n=20": ({"type": "brdfs_blinn_cosmin", "n": 20}, model("blinn_cosmin", n=20), 20),
     "ward m=0.005": ({"type": "brdfs_ward", "m": 0.005}, model("ward", m=0.005), 1 / 0.005 ** 2),
     "ward m=0.1": ({"type": "brdfs_ward", "m": 0.1}, model("ward", m=0.1), 1 / 0.1 ** 2),
