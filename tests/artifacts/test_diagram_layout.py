@@ -164,3 +164,32 @@ def test_fig_1_2_light_arrow_points_from_the_surface_to_the_light(cfg, monkeypat
         assert np.linalg.norm(source - head) < np.linalg.norm(source - tail)  # and ends toward the source
     finally:
         plt.close(fig)
+
+
+def test_fig_1_3_light_arrows_point_from_the_surface_to_the_light(cfg, monkeypatch):
+    """As in Fig. 1.2: L is the direction *to* the light, in both schemes (each with its star)."""
+    fig = drawn_figure("fig_1_3_integral_schemes", cfg, monkeypatch)
+    try:
+        for ax in fig.axes:
+            (source,) = [ln.get_xydata()[0] for ln in ax.get_lines() if ln.get_marker() == "*"]
+            orange = [t for t in ax.texts if isinstance(t, Annotation) and t.arrow_patch is not None
+                      and t.arrow_patch.get_edgecolor()[:3] == matplotlib.colors.to_rgb("tab:orange")]
+            (light,) = orange
+            tail, head = np.asarray(light.xyann, float), np.asarray(light.xy, float)
+            assert abs(tail[1]) < 1e-12                                       # starts on the surface
+            assert np.linalg.norm(source - head) < np.linalg.norm(source - tail)  # and ends toward the light
+    finally:
+        plt.close(fig)
+
+
+def test_fig_1_4_draws_every_angle_as_a_labelled_arc_delta_too(cfg, monkeypatch):
+    fig = drawn_figure("fig_1_4_notation", cfg, monkeypatch)
+    try:
+        (ax,) = fig.axes
+        names = {t.get_text() for t in ax.texts}
+        assert {"θ$_L$", "θ$_V$", "α", "φ", "δ"} <= names
+        green = [ln for ln in ax.get_lines() if ln.get_marker() in (None, "None", "none", "")
+                 and matplotlib.colors.to_rgb(ln.get_color()) == matplotlib.colors.to_rgb("tab:green")]
+        assert green                                                       # the arc of δ = ∠(N, H)
+    finally:
+        plt.close(fig)

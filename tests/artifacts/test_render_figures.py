@@ -4,6 +4,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import importlib
+import re
 
 import numpy as np
 import pytest
@@ -13,6 +14,7 @@ from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import fig_4_18_generalized_lambert as fig_4_18
 from brdfs.pipeline import registry
 from brdfs.pipeline.config import CONFIG_YAML
+from brdfs.pipeline.io import REPO_ROOT
 
 #: Figures whose geometry differs (tank, bust and pyramid, cube and capped cylinder).
 GEOMETRIES = ["fig_3_9_metals_new_model", "fig_3_11_silver_mirror", "fig_4_17_patch_shapes"]
@@ -120,3 +122,25 @@ def test_a_render_figure_written_twice_from_one_config_has_identical_csv_and_png
     assert _written_bytes(cfg, name, tmp_path / "b") == first
     cfg["seed"] = int(cfg["seed"]) + 1
     assert _written_bytes(cfg, name, tmp_path / "c")[0] != first[0]
+
+
+def _contract_render_columns() -> set:
+    """The column names docs/contract.md lists for the renders (its "- Renders" item)."""
+    (line,) = [line for line in (REPO_ROOT / "docs" / "contract.md").read_text().splitlines()
+               if line.startswith("- Renders")]
+    return set(re.findall(r"`([A-Za-z_0-9]+)`", line))
+
+
+def test_a_render_csv_records_the_caustics_setting_and_names_only_contract_columns(tiny_cfg):
+    """The ``caustics`` column is the integrator's setting (``renders.caustics``) as a bool, beside
+    ``variant``, ``preset`` and ``passes``; every column is one docs/contract.md lists for renders."""
+    cfg = copy.deepcopy(tiny_cfg)
+    name = "fig_3_12_plastics"                 # the cheapest figure: one rgb panel
+    listed = _contract_render_columns()
+    for caustics in (False, True):
+        cfg["renders"]["caustics"] = caustics
+        df = registry.get_artifact(name).compute(cfg, {})
+        assert df["caustics"].dtype == bool and (df["caustics"] == caustics).all()
+        assert {"variant", "preset", "passes", "caustics"} <= set(df.columns)
+        unlisted = {c for c in df.columns if c not in listed and not c.endswith("_per_pixel")}
+        assert not unlisted, f"render columns missing from docs/contract.md: {sorted(unlisted)}"

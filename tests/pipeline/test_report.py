@@ -1,14 +1,18 @@
 """The HTML report's grouping, captions and verdicts (brdfs.pipeline.report)."""
 
+import importlib
 import re
 from types import SimpleNamespace
 
 import pandas as pd
+import pytest
 from docutils.core import publish_parts
 from jinja2 import Environment
 
 from brdfs.pipeline import registry, report
+from brdfs.pipeline.config import load_config
 from brdfs.pipeline.io import REPO_ROOT
+from brdfs.render.mitsuba.scenes import LIGHT_RADIUS
 
 
 def test_every_artifact_has_a_written_caption_naming_its_thesis_number():
@@ -109,3 +113,51 @@ def test_the_front_pages_landing_table_counts_each_chapter_and_links_only_result
     assert "Without printed numbers: Figure 3.1." in html                    # named, not linked: not in the report
     assert report.CHAPTERS[2] not in html                                    # a chapter without artifacts here
     assert "not built yet" in report.landing(None, None, targets)
+
+
+def test_a_caption_include_line_is_replaced_by_the_shared_file_so_report_and_docs_show_one_text(tmp_path):
+    (tmp_path / "shared").mkdir()
+    (tmp_path / "shared" / "outer.rst").write_text("Shared *paragraph*.\n\n.. include:: shared/inner.rst\n")
+    (tmp_path / "shared" / "inner.rst").write_text("Inner sentence.\n")
+    (tmp_path / "fig_9_9_x.rst").write_text("**Figure 9.9.** Own text.\n\n.. include:: shared/outer.rst\n")
+    assert report.caption("fig_9_9_x", tmp_path) == ("**Figure 9.9.** Own text.\n\nShared *paragraph*.\n\n"
+                                                      "Inner sentence.")
+    (tmp_path / "fig_9_8_y.rst").write_text("**Figure 9.8.**\n\n.. include:: shared/missing.rst\n")
+    with pytest.raises(FileNotFoundError, match="missing.rst"):
+        report.caption("fig_9_8_y", tmp_path)
+    (tmp_path / "shared" / "inner.rst").write_text(".. include:: shared/outer.rst\n")
+    with pytest.raises(ValueError, match="cycle"):
+        report.caption("fig_9_9_x", tmp_path)
+
+
+def _render_figures():
+    """{name: panels} of the rendered figures (the modules built on ``_render_figures``)."""
+    cfg = load_config()
+    out = {}
+    for name in registry.artifacts():
+        if "_render_figures" in (REPO_ROOT / "src" / "brdfs" / "artifacts" / f"{name}.py").read_text():
+            out[name] = importlib.import_module(f"brdfs.artifacts.{name}").panels(cfg)
+    return cfg, out
+
+
+def test_every_render_caption_states_its_lights_and_the_caustics_as_configured():
+    """One renderer paragraph per kind (issue 23): path-traced figures say spherical lights of the
+    scenes' radius and the caustics setting of config.yaml with the bias the integrator's docstring
+    measured; direct-lit ones (max_depth 1, delta point lights) say so. No caption repeats them."""
+    cfg, figures = _render_figures()
+    assert len(figures) == 12
+    shared = REPO_ROOT / "workflow" / "report" / "captions" / "shared"
+    path_traced, direct = ((shared / f"render_{kind}.rst").read_text().strip() for kind in ("path_tracer", "direct"))
+    caustics = cfg["renders"]["caustics"]
+    assert ("**Caustics are not rendered**" in path_traced) == (not caustics)
+    assert f"``renders.caustics: {str(caustics).lower()}``" in path_traced
+    assert f"radius {LIGHT_RADIUS:g}" in path_traced and "delta point lights" in direct
+    # the measured bias, as the integrator's docstring states it (its one home)
+    docstring = (REPO_ROOT / "src" / "brdfs" / "render" / "mitsuba" / "integrator.py").read_text().split('"""')[1]
+    measured = re.findall(r"\d+\.\d+(?:–\d+\.\d+)? %", path_traced)
+    assert len(measured) == 3 and all(m.replace("–", "-") in docstring for m in measured), measured
+    for name, panels in figures.items():
+        text = report.caption(name)
+        is_direct = all(p.max_depth == 1 and p.point_lights for p in panels)
+        assert (direct in text) == is_direct and (path_traced in text) == (not is_direct), name
+        assert ".. include::" not in text and text.count("Rendered by Mitsuba 3") == 1, name

@@ -25,7 +25,8 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   An ``rgb`` panel (eq. 3.31) is its plugins' r, g, b.
 * **Rows**: one per (panel, object): the mean luminance Y of the object's pixels and its standard
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
-  ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset`` and ``variant``. The
+  ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset``, ``variant`` and
+  ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1). The
   display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
 
 All panels of a figure share one display scale (from the reference objects of its first panel,
@@ -382,6 +383,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
                          **_describe(specs.get(row["object"], {})),
                          "width": width, "height": height, "spp": rendered.spp, "passes": setup["passes"],
                          "max_depth": panel.max_depth, "preset": setup["preset"], "variant": setup["variant"],
+                         "caustics": bool(setup["caustics"]),
                          "point_lights": len(panel.lights),
                          "sky_radiance": cfg[SECTION]["sky_radiance"] if panel.sky else 0.0,
                          "p95_relative_se": noise.p95_relative_se, "fireflies": noise.fireflies,

@@ -13,11 +13,17 @@ from brdfs.physics.sampling import russian_roulette_point
 from brdfs.pipeline import plotting
 
 SECTION = "sampling"
+#: Display names of the samplers (legend entries), in Fig. 4.9's wording: the 0/1 sampling of
+#: section 4.2.4 that the thesis calls "Russian roulette" (not path termination) is accept/reject.
+SAMPLER_NAMES = {"russian_roulette": "accept/reject"}
+#: Panel titles where the name alone would not say which of the thesis's samplers it is.
+SAMPLER_TITLES = {"russian_roulette": "accept/reject ('Russian roulette', sec. 4.2.4)"}
 
 
 def sample_points(theta_deg: float, R: float, strategies, n_points: int, seed) -> pd.DataFrame:
     """Points V_P of ``n_points`` samples of ``patch_basic`` (radius ``R``) for light at ``theta_deg``,
-    per strategy; a Russian-roulette miss keeps its point (drawn in C_min) with ``accepted`` False."""
+    per strategy; an accept/reject (the thesis's "Russian roulette") miss keeps its point (drawn in
+    C_min) with ``accepted`` False."""
     brdf = model("patch_basic", R=R)
     L = light_direction(theta_deg)
     d = float(np.hypot(L[0], L[1]))
@@ -68,7 +74,7 @@ def _panel(ax, group, strategy, cx, cy, R, alpha, reach) -> None:
     markers = {"exact": ("C0", "."), "russian_roulette": ("C2", "+")}
     color, marker = markers.get(strategy, ("C1", "."))
     acc = group["accepted"].to_numpy(bool)
-    name = strategy.replace("_", " ")
+    name = SAMPLER_NAMES.get(strategy, strategy.replace("_", " "))
     ax.plot(group["x"][acc], group["y"][acc], marker, color=color, markersize=2, linestyle="none", alpha=0.6,
             zorder=1, label=f"{name}: accepted")
     if (~acc).any():
@@ -88,4 +94,4 @@ def _panel(ax, group, strategy, cx, cy, R, alpha, reach) -> None:
     ax.set_xlim(-reach, reach)
     ax.set_ylim(-reach, reach)
     ax.set_xlabel("x on the base plane")
-    ax.set_title(f"{name} sampler", fontsize=9)
+    ax.set_title(SAMPLER_TITLES.get(strategy, f"{name} sampler"), fontsize=9)

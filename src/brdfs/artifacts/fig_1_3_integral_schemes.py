@@ -4,7 +4,9 @@ Left: light from L on a surface f is reflected into the whole hemisphere; the re
 is the albedo a_f(L). Right: the construction of the composition C_{f1,f2}(L, V) (Sec. 1.1.4):
 light from L on f1 is reflected into the hemisphere, returned unaltered by a (nearly) spherical
 mirror and arrives on f2 from the whole hemisphere; the radiance leaving f2 in V is the
-composition. The elements sit at ∓a of the mirror's centre: a spherical mirror images its centre
+composition. L is the direction *to* the light, as in Fig. 1.2: its arrow starts at the surface
+(at f1) and points toward the light (a star beyond the label), like V toward the observer. The
+elements sit at ∓a of the mirror's centre: a spherical mirror images its centre
 of curvature onto itself inverted, so rays leaving −a return near +a (to O(a²)). The rays are
 traced (reflection r' = r − 2(r·n)n at the mirror); sizes and angles are choices (config
 ``diagrams.fig_1_3``).
@@ -55,9 +57,11 @@ def plot(df: pd.DataFrame, path) -> None:
     left.plot([-0.12, 0.12], [0, 0], "k", lw=4)
     for ang in np.radians(df["angle_deg"]):
         dg.arrow(left, (0, 0), 0.7 * np.array([np.cos(ang), np.sin(ang)]), color="tab:blue", lw=0.7)
-    # L is drawn on top of the rays; its label sits beyond its tail, outside the fan of rays.
-    dg.arrow(left, 0.95 * L, 0.05 * L, color="tab:orange", lw=2.0, zorder=4)
-    dg.label(left, 1.05 * L, "L", color="tab:orange")
+    # L (to the light, as in Fig. 1.2) is drawn on top of the rays from the surface out, its head,
+    # label and the light (star) beyond the fan of rays.
+    dg.arrow(left, (0, 0), 0.86 * L, color="tab:orange", lw=2.0, zorder=4)
+    dg.label(left, 0.96 * L, "L", color="tab:orange")
+    left.plot(*(1.09 * L), "*", color="tab:orange", ms=11, zorder=4)
     left.text(-0.1, -0.18, "f", fontsize=10)
     left.text(-1.0, 1.0, r"$a_f(L)=\int_\Omega f(L,V)\cos\Theta_V\,d\omega_V$", fontsize=9)
     left.set_xlim(-1.15, 1.15), left.set_ylim(-0.3, 1.15)
@@ -72,8 +76,9 @@ def plot(df: pd.DataFrame, path) -> None:
     for row in df.itertuples():
         right.plot([-a, row.hit_x, row.land_x], [0, row.hit_y, 0], color="tab:blue", lw=0.5, alpha=0.45, zorder=1)
     # L and V on top of the rays, thick; their labels on an opaque ground that masks the rays only.
-    dg.arrow(right, (-a, 0) + 0.6 * L, (-a, 0) + 0.04 * L, color="tab:orange", lw=2.0, zorder=4)
+    dg.arrow(right, (-a, 0), (-a, 0) + 0.6 * L, color="tab:orange", lw=2.0, zorder=4)
     dg.label(right, (-a, 0) + 0.72 * L, "L", color="tab:orange", masked=True)
+    right.plot(*((-a, 0) + 0.85 * L), "*", color="tab:orange", ms=11, zorder=4)
     dg.arrow(right, (a, 0), (a, 0) + 0.6 * V, color="tab:green", lw=2.0, zorder=4)
     dg.label(right, (a, 0) + 0.72 * V, "V", color="tab:green", masked=True)
     right.text(-1.05, 1.02, "spherical mirror", fontsize=8, color="0.3")

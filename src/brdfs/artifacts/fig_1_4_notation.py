@@ -3,6 +3,7 @@
 The vectors come from :mod:`brdfs.physics.geometry` (``direction``, ``mirror``, ``half_vector``,
 ``r_dot_v``, ``n_dot_h``) for directions of L and V that are choices (config
 ``diagrams.fig_1_4``); the CSV holds them and the angles θ_L, θ_V, α = ∠(R, V), δ = ∠(N, H).
+Every angle is drawn as an arc along its great circle (δ's too) and printed below with its value.
 """
 from __future__ import annotations
 
@@ -19,6 +20,8 @@ NAME = "fig_1_4_notation"
 #: (H runs almost along N; V's tip is next to R's drop line) and relative to a projection's foot.
 LABEL_OFFSETS = {"H": (-0.12, -0.03), "V": (-0.05, 0.05)}
 FOOT_OFFSETS = {"L": (0.03, -0.13), "V": (0.03, -0.13), "R": (0.05, -0.03)}
+#: Radius of the arc of δ = ∠(N, H) and its label's offset from the arc's end on N.
+DELTA_RADIUS, DELTA_LABEL_OFFSET = 0.78, (0.07, 0.0)
 
 
 @figure(NAME, config=(dg.SECTION,), resources={"runtime": 1})
@@ -53,6 +56,10 @@ def plot(df: pd.DataFrame, path) -> None:
     dg.arc3(ax, N, V, 0.3, "θ$_V$", color="tab:blue", label_radius=0.42, fontsize=8)
     dg.arc3(ax, R, V, 0.55, "α", color="tab:red", label_radius=0.72, fontsize=8)
     dg.arc3(ax, L * [1, 1, 0], V * [1, 1, 0], 0.3, "φ", color="0.3", label_radius=0.5, fontsize=8)
+    # δ = ∠(N, H): H leans mostly toward the viewer, so the arc is short in the projection; its label
+    # sits just right of N at the arc's end (between N and H there is no room for it).
+    dg.arc3(ax, N, H, DELTA_RADIUS, color="tab:green")
+    dg.label(ax, dg.project(DELTA_RADIUS * N) + DELTA_LABEL_OFFSET, "δ", color="tab:green", fontsize=8)
     text = (f"θ$_L$ = {v['theta_l_deg']:.1f}°,  θ$_V$ = {v['theta_v_deg']:.1f}°,  "
             f"α = ∠(R, V) = {v['alpha_deg']:.1f}°,  δ = ∠(N, H) = {v['delta_deg']:.1f}°\n"
             f"|L'$_p$ − V$_p$| = |h − (N·h)N| = {v['projected_distance']:.3f}")

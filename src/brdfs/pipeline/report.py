@@ -77,12 +77,35 @@ def subcategory(name: str) -> str:
     return "Checks beyond the print"
 
 
+#: A caption line ``.. include:: shared/<part>.rst``: a paragraph several captions share (the render
+#: figures' renderer and outputs), written once under ``captions/shared/`` and expanded by
+#: :func:`caption`, so the report and the docs show the same text (neither resolves the directive).
+_INCLUDE = re.compile(r"^\.\. include:: +(\S+)[ \t]*$", re.MULTILINE)
+
+
 def caption(name: str, directory: str | os.PathLike = CAPTIONS_DIR) -> str:
-    """The reStructuredText caption of ``name`` (a placeholder if none has been written)."""
+    """The reStructuredText caption of ``name`` (a placeholder if none has been written).
+
+    A line ``.. include:: <path>`` (relative to ``directory``) is replaced by that file's text, which
+    may include further files: a fact several captions state is written in one place.
+    """
     path = Path(directory) / f"{name}.rst"
     if path.is_file():
-        return path.read_text(encoding="utf-8").strip()
+        return _expand(path.read_text(encoding="utf-8"), Path(directory)).strip()
     return f"*{name}: no caption written yet (add* ``workflow/report/captions/{name}.rst`` *).*"
+
+
+def _expand(text: str, directory: Path, seen: tuple = ()) -> str:
+    """``text`` with every ``.. include::`` line replaced by the (expanded) text of its file."""
+    def include(match):
+        path = (directory / match[1]).resolve()
+        if path in seen:
+            raise ValueError(f"caption include cycle: {' -> '.join(map(str, (*seen, path)))}")
+        if not path.is_file():
+            raise FileNotFoundError(f"caption include {match[1]!r}: no file {path}")
+        return _expand(path.read_text(encoding="utf-8"), directory, (*seen, path)).strip()
+
+    return _INCLUDE.sub(include, text)
 
 
 def _format(value) -> str:

@@ -7,7 +7,8 @@ an optional constant sky and a :class:`Camera`. Every part becomes one Mitsuba s
 numbers the BSDFs, and :func:`object_labels` maps them back to the labels.
 
 Point lights become small spherical area emitters (the caustics of diffuse → near-mirror → light
-paths are then reachable by BSDF sampling and weighted by MIS, instead of being unreachable): a
+paths are then reachable by BSDF sampling and weighted by MIS, instead of being unreachable; the
+integrator's ``caustics`` property, ``renders.caustics``, may still drop them): a
 sphere of radius r and radiance L_e radiates the intensity I = L_e π r² in every direction, so a
 point light of intensity I becomes L_e = I / (π r²), with r = :data:`LIGHT_RADIUS`.
 
