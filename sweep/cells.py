@@ -63,6 +63,9 @@ class Family:
     n_params: int = 8
     n_random_angles: int = 6
     grazing: tuple = GRAZING            # the angles 90° − 10⁻ᵏ of every parameter set
+    #: False: the model without its own albedo route (``albedo_estimate``, e.g. Oren–Nayar's closed
+    #: form), as a user writes it, so that the engine integrates its BRDF (and honours its kinks)
+    own_route: bool = True
 
     @property
     def fixed_dict(self):
@@ -107,6 +110,9 @@ FAMILIES = (
     # cell; H4, session 5): its two examples and four draws, at four random angles and 90° − 10⁻ᵏ
     Family("he_torrance_total", "he_torrance", ("sigma0_um", "tau_um"), (("term", "total"),), n_params=6,
            n_random_angles=4),
+    # Oren–Nayar answers with its closed form; integrated, it is the engine's test of azimuthal kinks
+    # (the half-planes Δφ = ±90°) in a user's model.  Last, so that the cells before it stay as drawn.
+    Family("oren_nayar_integrated", "oren_nayar", ("rho", "sigma"), own_route=False),
 )
 #: Families declared but left out of the committed sweep: He–Torrance's density alone (term 'dd'),
 #: the same integral as ``he_torrance_total`` without the delta's closed form.
@@ -179,6 +185,17 @@ def table_to_json(table: AlbedoTable) -> dict:
             "error": float(table.error), "model_rtol": float(table.model_rtol)}
 
 
+class _OrenNayarIntegrated(MODELS["oren_nayar"]):
+    """Oren–Nayar without its closed-form albedo route: the engine integrates its BRDF."""
+
+    def albedo_estimate(self, theta_deg, rtol, atol):
+        return None
+
+
+#: The models of the families with ``own_route`` False, by model name.
+_INTEGRATED = {"oren_nayar": _OrenNayarIntegrated}
+
+
 def needs_table(family: Family) -> bool:
     return family.pumped is not None or family.fixed_dict.get("compensation") == "kulla_conty"
 
@@ -186,7 +203,7 @@ def needs_table(family: Family) -> bool:
 def build(family_name: str, params: dict, tables: dict | None = None):
     """The package's model of a cell (with its stored table, where it needs one)."""
     family = FAMILY[family_name]
-    cls = MODELS[family.model]
+    cls = MODELS[family.model] if family.own_route else _INTEGRATED[family.model]
     kwargs = {**family.fixed_dict, **params}
     if family.model == "patch_mixture":
         weight = {"uniform": lambda R: np.full(np.shape(R), 0.5), "falling": lambda R: 1.0 - 0.5 * np.asarray(R, float)}

@@ -7,7 +7,7 @@ cross-checked there against Westin's reference code ``heBRDF``), printed to 7 si
 import numpy as np
 import pytest
 from scipy.integrate import quad
-from scipy.special import erfc, gammaln
+from scipy.special import erfc, gammaln, lambertw
 
 from brdfs import model
 from brdfs import albedo
@@ -16,6 +16,7 @@ from brdfs.physics.models.he_torrance import (
     HeTorrance,
     effective_roughness,
     kirchhoff_series,
+    lambert_w,
     shadowing,
 )
 
@@ -86,6 +87,19 @@ def test_lambert_w_roughness_matches_newton_iteration(theta_i, theta_r, sigma):
     z0 = 0.1 * np.sqrt(0.1 ** 2 / s ** 2 - 1)
     k = sum(t * erfc(1.7 / (2 * 0.1 * t)) for t in (si / ci, sr / cr))
     assert np.sqrt(np.pi / 2) * z0 == pytest.approx(0.1 / 4 * k * np.exp(-z0 ** 2 / (2 * 0.1 ** 2)), rel=1e-12)
+
+
+def test_lambert_w_is_the_principal_branch_to_rounding_from_zero_to_overflow(rng=np.random.default_rng(5)):
+    """The real iteration against scipy's complex lambertw (within 4 ulps) and against its defining
+    equation w e^w = x (in logs: ln w + w = ln x, within 4 ulps of ln x + 1), from 1e-8 to 1e300,
+    plus its ends W(0) = 0 and W(inf) = inf."""
+    x = np.concatenate([np.logspace(-8, 300, 20001), rng.uniform(0.0, 10.0, 20000)])
+    w = lambert_w(x)
+    reference = lambertw(x).real
+    assert np.all(np.abs(w - reference) <= 4 * np.spacing(reference))
+    big = x > 1e-3
+    assert np.all(np.abs(np.log(w[big]) + w[big] - np.log(x[big])) <= 4 * np.spacing(np.abs(np.log(x[big])) + 1.0))
+    assert lambert_w(0.0) == 0.0 and lambert_w(np.inf) == np.inf
 
 
 def test_shadowing_includes_the_erratum_of_eq_25():

@@ -1,6 +1,7 @@
 """Oren–Nayar (qualitative model), a built-in model beyond the thesis: Lambert at σ = 0 to the bit,
 its albedo against a third route (nested scipy quad written here, importing nothing from
-brdfs.numerics), and the engine honouring its declared azimuthal kink."""
+brdfs.numerics), its closed-form albedo, and the engine honouring its declared azimuthal kink (on
+:class:`Integrated`, the same BRDF without its closed form, as a user would write it)."""
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -8,8 +9,15 @@ from scipy.integrate import quad
 from brdfs import albedo, model
 from brdfs.physics.geometry import direction
 from brdfs.physics.models import MODELS
+from brdfs.physics.models.base import BRDF
+from brdfs.physics.models.oren_nayar import OrenNayar
 
 RNG = np.random.default_rng(24)
+
+
+class Integrated(OrenNayar):
+    """Oren–Nayar without its own albedo route: the engine integrates it in two dimensions."""
+    albedo_estimate = BRDF.albedo_estimate
 
 
 def _directions(k):
@@ -78,13 +86,30 @@ def test_its_albedo_at_normal_incidence_is_rho_times_a():
     assert abs(est.value[0] - brdf.exact_albedo(0.0)) <= est.error[0]
 
 
+@pytest.mark.parametrize("rho, sigma", [(0.9, 0.5), (1.0, np.pi / 2), (0.4, 0.05)])
+def test_its_closed_form_albedo_matches_the_nested_quad_and_the_engines_integral_of_its_brdf(rho, sigma):
+    """The closed form (the default method's route, ``engine/own``) against the third route, and the
+    engine's two-dimensional integral of the BRDF (kinks declared) against the closed form, each
+    within the reported errors, from normal to grazing incidence."""
+    theta = np.array([0.0, 20.0, 55.0, 85.0, 90 - 1e-7])
+    closed = albedo(model("oren_nayar", rho=rho, sigma=sigma), theta, rtol=1e-12)
+    assert set(closed.route) == {"engine/own"} and np.all(closed.error <= 1e-14)
+    for t, value, error in zip(theta[2:4], closed.value[2:4], closed.error[2:4]):
+        truth, truth_error = _nested_quad_albedo(t, rho, sigma)
+        assert abs(value - truth) <= error + truth_error
+    integrated = albedo(Integrated(rho=rho, sigma=sigma), theta, "engine", rtol=1e-10)
+    assert set(integrated.route) == {"engine/hemisphere"} and set(integrated.status) == {"converged"}
+    assert np.all(np.abs(integrated.value - closed.value) <= integrated.error + closed.error)
+
+
 def test_the_engine_honours_the_declared_azimuthal_kink_and_needs_it():
-    brdf = model("oren_nayar", rho=1.0, sigma=0.5)
+    brdf = Integrated(rho=1.0, sigma=0.5)
     theta = np.array([30.0, 70.0])
     est = albedo(brdf, theta, "engine", rtol=1e-8)
     assert list(est.status) == ["converged"] * 2 and set(est.route) == {"engine/hemisphere"}
+    assert np.all(np.abs(est.value - brdf.exact_albedo(theta)) <= est.error)
 
-    class Undeclared(type(brdf)):                   # the same BRDF without its half-plane kinks
+    class Undeclared(Integrated):                   # the same BRDF without its half-plane kinks
         def azimuth_levels(self, nl):
             return ()
 
@@ -110,7 +135,7 @@ def test_it_is_registered_with_its_declarations():
 def test_at_sigma_zero_it_declares_no_kinks_so_the_engine_integrates_lambert_in_few_evaluations():
     """B = 0: neither N·V = N·L nor the half-planes Δφ = ±90° is a kink of ρ/π; declared anyway they
     cost the 2-D engine ~10× the evaluations (and the sweep's Lambert cells 60 s)."""
-    brdf = model("oren_nayar", rho=0.7, sigma=0.0)
+    brdf = Integrated(rho=0.7, sigma=0.0)
     mu = np.array([0.5])
     assert brdf.nv_levels(mu) == () and brdf.azimuth_levels(mu) == ()
     theta = np.array([0.0, 45.0, 89.9, 90 - 1e-9])

@@ -305,7 +305,7 @@ def _child_stalls(groups, c_err, err, stalls):
         localised = pieces.max(0) >= LOCALISED * kept
         no_gain = kept > 0.8 * err[g]
         level = (stalls[g] + int(np.log2(s)) * ~localised) * no_gain
-        out.append(np.tile(level, s))
+        out.append(np.concatenate([level] * s))       # np.tile, without its dispatch cost
     return out[0] if len(out) == 1 else np.concatenate(out)
 
 
@@ -340,10 +340,11 @@ def _children(elem, lo, hi, idx, s):
     a, b = lo[idx], hi[idx]
     if s == 2:
         mid = a * 0.5 + b * 0.5
-        return np.tile(elem[idx], 2), np.concatenate([a, mid]), np.concatenate([mid, b])
+        e = elem[idx]
+        return np.concatenate([e, e]), np.concatenate([a, mid]), np.concatenate([mid, b])
     f = (np.arange(1, s) / s)[:, None]
     bounds = np.vstack([a[None], a * (1.0 - f) + b * f, b[None]])
-    return np.tile(elem[idx], s), bounds[:-1].ravel(), bounds[1:].ravel()
+    return np.concatenate([elem[idx]] * s), bounds[:-1].ravel(), bounds[1:].ravel()
 
 
 def bp_span(bp):

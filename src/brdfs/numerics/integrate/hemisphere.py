@@ -304,7 +304,7 @@ def _tangency_layers(lobe, a, theta, st, scale, beta_max):
         w = scale * np.abs(np.sin(x)) * st[:, None] / np.sin(np.concatenate([a, a, a], axis=1))
     thin = (beta_c > 0) & (beta_c < beta_max) & (w < TANGENCY_LAYER_MAX * beta_c) & (w > 64 * _EPS * beta_c)
     pts = np.concatenate([beta_c + s * g * w for s in (-1.0, 1.0) for g in TANGENCY_LAYER], axis=1)
-    keep = np.tile(thin, 2 * len(TANGENCY_LAYER)) & (pts > 0) & (pts < beta_max)
+    keep = np.concatenate([thin] * (2 * len(TANGENCY_LAYER)), axis=1) & (pts > 0) & (pts < beta_max)
     return np.where(keep, lobe.t_of(np.where(keep, pts, 0.0)), np.nan)
 
 
