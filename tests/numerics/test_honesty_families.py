@@ -174,6 +174,17 @@ def test_oren_nayar_engine_is_honest_near_grazing_at_a_loose_tolerance(sigma, th
     _honest(albedo(model("oren_nayar", rho=0.988493, sigma=sigma), np.array([theta]), rtol=rtol), truth)
 
 
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6])
+def test_oren_nayar_engine_is_honest_where_a_wide_tangency_layer_ends_an_interval(rtol):
+    """The sweep's family ``oren_nayar_integrated`` (ρ = 0.870136, σ = 0.139879, 76.455833°): the
+    interval ending at δ = θ, where N·V = N·L touches the circles, spans that tangency layer (w = 0.17 δ,
+    wider than the 1-D route's cut limit) and its (δ_c − δ)^(3/2) onset: 3.0e-8 off at a reported
+    2.1e-8 (1.44×) until the 2-D route cut every layer narrower than its radius
+    (``hemisphere.TANGENCY_LAYER_MAX_2D``).  Truth: the closed form at 50 digits."""
+    est = albedo(IntegratedOrenNayar(rho=0.870136, sigma=0.139879), np.array([76.455833]), "engine", rtol=rtol)
+    _honest(est, 0.8747295986274258)
+
+
 class IntegratedOrenNayar(OrenNayar):
     """Oren–Nayar without its closed-form albedo route, as a user writes it: the engine integrates it."""
     albedo_estimate = BRDF.albedo_estimate

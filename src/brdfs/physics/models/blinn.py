@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -20,7 +21,7 @@ class _BlinnFamily(BRDF):
         check_positive("n", self.n, allow_zero=True)
         check_positive("C", self.C)
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         return PowerCosine(self.n, HALF)
 

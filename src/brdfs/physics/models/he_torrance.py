@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.special import erfc, gammaln
@@ -312,7 +313,7 @@ class HeTorrance(BRDF):
         gauss = np.exp(-r2 / (2.0 * width * width)) / (2.0 * np.pi * width * width)
         return 0.5 * V[..., 2] * (1.0 / np.pi + gauss)
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         """A function of r = |L_xy + V_xy| of width λ/(πτ) (h = 1 for m = 1), with a horizon layer of N·V ~ 2σ0/τ."""
         return ScatteringLobe(self.lambda_um / (np.pi * self.tau_um), 2.0 * self.sigma0_um / self.tau_um)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from scipy.integrate import quad
@@ -35,7 +36,7 @@ class _BeckmannFamily(BRDF):
         """The Beckmann distribution of slopes with roughness α = m."""
         return Beckmann(self.m)
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         return MicrofacetLobe(self.distribution)
 
@@ -332,7 +333,7 @@ class SmithGrazingLimit(BRDF):
     C: float = 1.0
     name = "cook_torrance_smith_grazing_limit"
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         return MicrofacetLobe(Beckmann(self.m))
 
@@ -361,7 +362,7 @@ class TorranceSparrowGrazingLimit(BRDF):
     C: float = 1.0
     name = "cook_torrance_ts_grazing_limit"
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         return MicrofacetLobe(Beckmann(self.m))
 

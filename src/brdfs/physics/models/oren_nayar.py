@@ -24,6 +24,7 @@ model of the same shape (the tests hold the two together).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -75,7 +76,7 @@ class OrenNayar(BRDF):
                 raise ValueError(f"oren_nayar: {key} must lie in {tuple(self.param_ranges[key][:2])}, "
                                  f"got {getattr(self, key)!r}")
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         return PowerCosine(0.0, HALF)          # Lambertian: the half-vector frame covers the hemisphere
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import cached_property
 
 import numpy as np
 
@@ -65,7 +66,7 @@ class _PhongFamily(BRDF):
     #: (R·V)⁺ⁿ: nothing where R·V < 0, beyond the reach of its lobe about R.
     zero_beyond_lobe = True
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         return PowerCosine(self.n, MIRROR)
 

@@ -31,6 +31,7 @@ E(μ_L) + 1 − E_table(μ_L) = 1 up to the table's error.  f_ms is symmetric in
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import ClassVar
 
 import numpy as np
@@ -161,7 +162,7 @@ class _SmithMicrofacet(BRDF):
     def distribution(self):
         return self.distribution_type(self.alpha)
 
-    @property
+    @cached_property                 # a frozen model's lobe: built once, not on every look-up
     def lobe(self):
         """Half-vector lobe coordinates: Beckmann's own CDF for the Beckmann single scattering; the
         tangent coordinate t = tan δ/(α + tan δ) (:class:`TangentCoordinate`) for GGX and for every
