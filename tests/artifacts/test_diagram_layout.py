@@ -155,15 +155,19 @@ def test_fig_1_2_light_arrow_points_from_the_surface_to_the_light(cfg, monkeypat
     fig = drawn_figure("fig_1_2_point_light_pupil", cfg, monkeypatch)
     try:
         (ax,) = fig.axes
-        source = [ln for ln in ax.get_lines() if ln.get_marker() == "*"][0].get_xydata()[0]
-        orange = [t for t in ax.texts if isinstance(t, Annotation) and t.arrow_patch is not None
-                  and t.arrow_patch.get_edgecolor()[:3] == matplotlib.colors.to_rgb("tab:orange")]
-        (light,) = orange
-        tail, head = np.asarray(light.xyann, float), np.asarray(light.xy, float)
+        source, tail, head = _light_arrow(ax)
         assert np.linalg.norm(tail) < 1e-12                               # starts at the surface point
         assert np.linalg.norm(source - head) < np.linalg.norm(source - tail)  # and ends toward the source
     finally:
         plt.close(fig)
+
+
+def _light_arrow(ax):
+    """The light's star and the one orange arrow (L) of a diagram's axes: (source, tail, head)."""
+    (source,) = [ln.get_xydata()[0] for ln in ax.get_lines() if ln.get_marker() == "*"]
+    (light,) = [t for t in ax.texts if isinstance(t, Annotation) and t.arrow_patch is not None
+                and t.arrow_patch.get_edgecolor()[:3] == matplotlib.colors.to_rgb("tab:orange")]
+    return source, np.asarray(light.xyann, float), np.asarray(light.xy, float)
 
 
 def test_fig_1_3_light_arrows_point_from_the_surface_to_the_light(cfg, monkeypatch):
@@ -171,11 +175,7 @@ def test_fig_1_3_light_arrows_point_from_the_surface_to_the_light(cfg, monkeypat
     fig = drawn_figure("fig_1_3_integral_schemes", cfg, monkeypatch)
     try:
         for ax in fig.axes:
-            (source,) = [ln.get_xydata()[0] for ln in ax.get_lines() if ln.get_marker() == "*"]
-            orange = [t for t in ax.texts if isinstance(t, Annotation) and t.arrow_patch is not None
-                      and t.arrow_patch.get_edgecolor()[:3] == matplotlib.colors.to_rgb("tab:orange")]
-            (light,) = orange
-            tail, head = np.asarray(light.xyann, float), np.asarray(light.xy, float)
+            source, tail, head = _light_arrow(ax)
             assert abs(tail[1]) < 1e-12                                       # starts on the surface
             assert np.linalg.norm(source - head) < np.linalg.norm(source - tail)  # and ends toward the light
     finally:

@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from brdfs.artifacts._sampling_figures import SAMPLER_NAMES
 from brdfs.physics import patch_geometry as patch
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.models import model
@@ -126,7 +127,7 @@ def plot(df: pd.DataFrame, path) -> None:
         if finite.any():
             ax.plot(g["theta_deg"][finite], g["efficiency_vs_cosine"][finite], styles[quantity],
                     marker=markers[name], color=colors[strategy], markersize=3,
-                    label=f"{strategy.replace('_', ' ')}, {quantity}, {name.replace('patch_', '')}")
+                    label=f"{SAMPLER_NAMES.get(strategy, strategy)}, {quantity}, {name.replace('patch_', '')}")
     ax.axhline(1.0, color="k", linewidth=0.8)
     ax.set_yscale("log")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7)
