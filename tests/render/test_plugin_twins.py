@@ -148,6 +148,27 @@ def test_pumped_phong_carries_the_package_albedo_table(mitsuba, n, pumping):
     assert margin <= 1.0, f"off by {margin:.3g} x the tolerance"
 
 
+@pytest.mark.parametrize("n", [20, 5000])
+def test_the_albedo_table_texture_is_the_package_table_within_its_measured_interpolation_bound(mitsuba, n):
+    """The pumped plugins' texture (values at cos θ = u², linear in u) against the package's table at
+    2·10⁵ points, grazing-heavy: within the interpolation bound it measured when built, plus 2⁻²⁰ for
+    float32 (the texel values, and the texel coordinate, whose rounding to 2⁻²⁴ of its ~16,383 moves
+    the position by ~1e-3 texel: ~ε₃₂ |u dg/du|; 2.9e-7 at most for n = 20); and a texture too coarse
+    for the table is refused when built, not rendered."""
+    from brdfs.numerics.tables import pump
+    from brdfs.render.mitsuba.plugins.phong import PUMPING_ENGINE_RTOL, PUMPING_TABLE_RTOL, DrJitAlbedoTable
+    table = pump(model("phong", n=n), "g1", target_rtol=PUMPING_TABLE_RTOL, engine_rtol=PUMPING_ENGINE_RTOL).table
+    texture = DrJitAlbedoTable.of(table)
+    x = np.random.default_rng(n).random(100_000)
+    x = np.concatenate([x, x ** 4, [0.0, 1.0]]).astype(np.float32)
+    got = np.array(texture(mitsuba.Float(x)), float)
+    exact = table(x.astype(float))
+    assert np.max(np.abs(got - exact) / exact) <= texture.interpolation_rtol + 2.0 ** -20
+    assert texture.interpolation_rtol < 2e-7
+    with pytest.raises(ValueError, match="more texels"):
+        DrJitAlbedoTable.of(table, texels=16 if n == 20 else 256)
+
+
 #: Samplers whose Dr.Jit twin uses the package's very formulas (u → V), so the directions agree too;
 #: Lambert's cosine (Mitsuba's concentric map) and Beckmann's visible normals (Mitsuba's inversion)
 #: draw the same distributions by other maps, which the chi-square tests check.
