@@ -151,17 +151,6 @@ def test_diagram_labels_sit_clear_of_lines_markers_and_each_other(name, cfg, mon
         plt.close(fig)
 
 
-def test_fig_1_2_light_arrow_points_from_the_surface_to_the_light(cfg, monkeypatch):
-    fig = drawn_figure("fig_1_2_point_light_pupil", cfg, monkeypatch)
-    try:
-        (ax,) = fig.axes
-        source, tail, head = _light_arrow(ax)
-        assert np.linalg.norm(tail) < 1e-12                               # starts at the surface point
-        assert np.linalg.norm(source - head) < np.linalg.norm(source - tail)  # and ends toward the source
-    finally:
-        plt.close(fig)
-
-
 def _light_arrow(ax):
     """The light's star and the one orange arrow (L) of a diagram's axes: (source, tail, head)."""
     (source,) = [ln.get_xydata()[0] for ln in ax.get_lines() if ln.get_marker() == "*"]
@@ -170,13 +159,15 @@ def _light_arrow(ax):
     return source, np.asarray(light.xyann, float), np.asarray(light.xy, float)
 
 
-def test_fig_1_3_light_arrows_point_from_the_surface_to_the_light(cfg, monkeypatch):
-    """As in Fig. 1.2: L is the direction *to* the light, in both schemes (each with its star)."""
-    fig = drawn_figure("fig_1_3_integral_schemes", cfg, monkeypatch)
+@pytest.mark.parametrize("name", ["fig_1_2_point_light_pupil", "fig_1_3_integral_schemes"])
+def test_light_arrows_point_from_the_surface_to_the_light(name, cfg, monkeypatch):
+    """L is the direction *to* the light: in every panel its arrow starts on the surface (y = 0) and
+    ends nearer the light's star than it starts."""
+    fig = drawn_figure(name, cfg, monkeypatch)
     try:
         for ax in fig.axes:
             source, tail, head = _light_arrow(ax)
-            assert abs(tail[1]) < 1e-12                                       # starts on the surface
+            assert abs(tail[1]) < 1e-12                                           # starts on the surface
             assert np.linalg.norm(source - head) < np.linalg.norm(source - tail)  # and ends toward the light
     finally:
         plt.close(fig)
