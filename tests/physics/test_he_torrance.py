@@ -158,6 +158,15 @@ def test_series_at_normal_incidence_and_its_limits():
     assert float(kirchhoff_series(small, 2.0)[0]) == pytest.approx(small * np.exp(-2.0), rel=1e-5)
 
 
+def test_series_at_non_finite_arguments_ends_with_nan_or_its_limit():
+    """T(g, +inf) = 0 (every term e^(−h/m) vanishes); NaN or infinite g, or NaN h, give NaN with an
+    infinite tail bound, at once (they used to keep the adaptive sum looping)."""
+    value, tail = kirchhoff_series(np.array([1.0, np.nan, np.inf, 1.0, 2.0]), np.array([np.inf, 1.0, 1.0, np.nan, 3.0]))
+    assert value[0] == 0.0 and tail[0] == 0.0
+    assert np.all(np.isnan(value[1:4])) and np.all(tail[1:4] == np.inf)
+    assert value[4] == kirchhoff_series(2.0, 3.0)[0] > 0
+
+
 @pytest.mark.parametrize("theta_i, theta_r, phi, ratio", [(0, 5, 180, 1.0002), (30, 35, 180, 1.0003),
                                                           (50, 45, 170, 0.9999), (60, 60, 180, 1.0010)])
 def test_geometric_optics_limit_is_cook_torrance_beckmann(theta_i, theta_r, phi, ratio):

@@ -165,6 +165,11 @@ def test_the_albedo_table_texture_is_the_package_table_within_its_measured_inter
     exact = table(x.astype(float))
     assert np.max(np.abs(got - exact) / exact) <= texture.interpolation_rtol + 2.0 ** -20
     assert texture.interpolation_rtol < 2e-7
+    # the bound measured at the midpoints holds between them, in float64 (7 points an interval)
+    u = np.linspace(0.0, 1.0, texture.texels)
+    dense = np.linspace(0.0, 1.0, 8 * (texture.texels - 1) + 1)
+    linear = np.interp(dense, u, table(u * u))
+    assert np.max(np.abs(linear - table(dense * dense)) / table(dense * dense)) <= 1.01 * texture.interpolation_rtol
     with pytest.raises(ValueError, match="more texels"):
         DrJitAlbedoTable.of(table, texels=16 if n == 20 else 256)
 

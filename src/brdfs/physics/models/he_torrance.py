@@ -123,8 +123,13 @@ def kirchhoff_series(g, h):
     with np.errstate(divide="ignore"):
         log_g = np.log(g)
     total, tail = np.zeros(g.size), np.zeros(g.size)
-    active, last = np.arange(g.size), 0
-    lg, ga, ha = log_g, g, h                      # of the active points: all of them in the first block
+    # T(g, +inf) = 0 exactly; a NaN or an infinite g has no sum (NaN, tail +inf), and neither would end the loop
+    undefined = np.isnan(h) | ~np.isfinite(g)
+    total[undefined], tail[undefined] = np.nan, np.inf
+    active, last = np.flatnonzero(~undefined & (h < np.inf)), 0
+    if active.size == 0:
+        return total.reshape(shape), tail.reshape(shape)
+    lg, ga, ha = log_g[active], g[active], h[active]
     while True:
         m = np.arange(last + 1.0, last + SERIES_BLOCK + 1.0)
         log_t = np.multiply.outer(lg, m)          # m ln g − ln(m! m) − h/m − g, in place

@@ -174,7 +174,7 @@ class DrJitAlbedoTable:
         middle = 0.5 * (u[1:] + u[:-1])
         exact = np.asarray(table(middle * middle), float)
         rtol = float(np.max(np.abs(0.5 * (values[1:] + values[:-1]) - exact) / np.abs(exact)))
-        if rtol > INTERPOLATION_RTOL:
+        if not rtol <= INTERPOLATION_RTOL:                 # NaN too (a table value of 0 or NaN)
             raise ValueError(f"albedo table texture: {texels} texels interpolate the table to {rtol:.2g}, "
                              f"more than {INTERPOLATION_RTOL:g}; build it with more texels")
         return cls(values, rtol)
