@@ -11,11 +11,11 @@ of the chart, so the pdf is multiplied by the Jacobian dω/(dφ dt) = 2 s/(1 −
 
 R1b's patch-model tests reuse :func:`chi2_test` (a ``"disk"`` sampler is a direction sampler too).
 The generic plugin ``brdfs_model`` (the package's numpy model) runs in Dr.Jit's wavefront mode only:
-:func:`chi2_test` switches to it for that plugin and restores the flags afterwards (:func:`wavefront_mode`).
+:func:`chi2_test` switches to it for that plugin and restores the flags afterwards
+(:func:`brdfs.render.mitsuba.integrator.wavefront`).
 """
 from __future__ import annotations
 
-from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
@@ -110,24 +110,10 @@ def chi2_test(bsdf: dict, theta_deg: float, scale: float, about="mirror", sample
     domain = LobeDomain(lobe_axis(wi, about), float(scale))
     test = mi.chi2.ChiSquareTest(domain=domain, sample_func=sample_func, pdf_func=chart_pdf(domain, pdf_func),
                                  sample_dim=3, sample_count=sample_count, res=res, ires=ires, seed=seed)
-    with wavefront_mode(bsdf["type"] == "brdfs_model"):
+    from brdfs.render.mitsuba.integrator import wavefront
+    with wavefront(bsdf["type"] == "brdfs_model"):
         test.passed = bool(test.run(0.01, quiet=True))
     return test
-
-
-@contextmanager
-def wavefront_mode(enabled: bool = True):
-    """Dr.Jit's calls and loops evaluated one kernel at a time (``enabled``), as the generic plugin
-    ``brdfs_model`` needs; the flags as they were afterwards."""
-    import drjit as dr
-    flags = {flag: dr.flag(flag) for flag in (dr.JitFlag.SymbolicCalls, dr.JitFlag.SymbolicLoops)}
-    try:
-        for flag in flags:
-            dr.set_flag(flag, flags[flag] and not enabled)
-        yield
-    finally:
-        for flag, value in flags.items():
-            dr.set_flag(flag, value)
 
 
 def describe(test) -> str:

@@ -96,16 +96,10 @@ def test_generic_plugin_renders_a_users_own_model_as_mitsuba_renders_its_own_lam
     """A white sphere of the user's model f = 1/π under a sky of radiance 1, through ``brdfs_model`` with
     Mitsuba's own path integrator in wavefront mode: the same image as Mitsuba's ``diffuse`` BSDF gives
     with the same random numbers (same sampler, same pdf), and 1 on the ball (a white furnace)."""
-    import drjit as dr
-    flags = {flag: dr.flag(flag) for flag in (dr.JitFlag.SymbolicCalls, dr.JitFlag.SymbolicLoops)}
-    try:
-        for flag in flags:
-            dr.set_flag(flag, False)
+    from brdfs.render.mitsuba.integrator import wavefront
+    with wavefront():
         image = np.asarray(mitsuba.render(_furnace(mitsuba, {"type": "brdfs_model", "model": users_model.name}),
                                           seed=1))
-    finally:
-        for flag, value in flags.items():
-            dr.set_flag(flag, value)
     reference = np.asarray(mitsuba.render(_furnace(mitsuba, {"type": "diffuse",
                                                               "reflectance": {"type": "rgb", "value": 1.0}}), seed=1))
     ball = (slice(4, 12), slice(4, 12))

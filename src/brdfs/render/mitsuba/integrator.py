@@ -36,7 +36,7 @@ Per camera ray the estimator is the usual one of pbrt-v4's ``PathIntegrator`` an
   on Fig. 3.9's scene and raised its p95 from 0.070 to 0.087 and 0.109.)
 
 The bounce loop is a Python ``while`` loop that ``@dr.syntax`` turns into ``dr.while_loop``: with
-Dr.Jit's default flags it is traced once into one kernel (fast); after :func:`wavefront` (symbolic
+Dr.Jit's default flags it is traced once into one kernel (fast); inside :func:`wavefront` (symbolic
 calls and loops switched off) it runs one evaluated iteration at a time, so that a BSDF implemented
 in numpy (the generic plugin ``brdfs_model``) can read its arguments. The integrator writes the AOVs
 ``id``, the index + 1 of the BSDF of the shape the camera ray hits first (:func:`scene_bsdfs`; 0 for the
@@ -51,6 +51,7 @@ test to fail).
 """
 from __future__ import annotations
 
+import contextlib
 import functools
 
 import drjit as dr
@@ -63,11 +64,19 @@ UNLIMITED = 1 << 30
 RR_MAX_SURVIVAL = 0.95
 
 
-def wavefront(enabled: bool = True) -> None:
-    """Evaluate calls and loops one kernel at a time (a numpy BSDF can then read its inputs);
-    ``enabled = False`` restores Dr.Jit's symbolic default (one traced kernel, fast)."""
-    dr.set_flag(dr.JitFlag.SymbolicCalls, not enabled)
-    dr.set_flag(dr.JitFlag.SymbolicLoops, not enabled)
+@contextlib.contextmanager
+def wavefront(enabled: bool = True):
+    """Inside the ``with`` block (where ``enabled``), Dr.Jit evaluates calls and loops one kernel at a
+    time, so that a numpy BSDF (the generic plugin ``brdfs_model``) can read its inputs; afterwards its
+    flags are as they were (symbolic by default: one traced kernel, fast)."""
+    flags = {flag: dr.flag(flag) for flag in (dr.JitFlag.SymbolicCalls, dr.JitFlag.SymbolicLoops)}
+    try:
+        for flag, value in flags.items():
+            dr.set_flag(flag, value and not enabled)
+        yield
+    finally:
+        for flag, value in flags.items():
+            dr.set_flag(flag, value)
 
 
 def power_heuristic(pdf_a, pdf_b):

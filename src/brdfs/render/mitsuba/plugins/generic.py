@@ -11,7 +11,7 @@ and returned as float32; ``strategy`` is any of the model's :attr:`~brdfs.physic
 ``eta``, ``k``) are :class:`~brdfs.render.mitsuba.plugins._common.ModelBSDF`'s.
 
 Slower, and wavefront only.  Each call converts Dr.Jit arrays to numpy, which needs evaluated arrays:
-Dr.Jit must run in wavefront mode (``dr.set_flag(dr.JitFlag.SymbolicCalls, False)``,
+Dr.Jit must run in wavefront mode (:func:`brdfs.render.mitsuba.integrator.wavefront`: ``dr.set_flag(dr.JitFlag.SymbolicCalls, False)``,
 ``dr.set_flag(dr.JitFlag.SymbolicLoops, False)``) under an integrator that evaluates every bounce
 (``brdfs_path``); inside a symbolic loop or call the plugin raises one line saying so.
 """
@@ -26,8 +26,8 @@ from brdfs.render.mitsuba.plugins._common import ModelBSDF
 #: Scene keys that are the material's, not the model's parameters.
 MATERIAL_KEYS = ("type", "model", "strategy", "pumping", "specular", "diffuse_reflectance", "eta", "k")
 WAVEFRONT_ONLY = ("brdfs_model evaluates the package's numpy model and runs in wavefront mode only: "
-                  "dr.set_flag(dr.JitFlag.SymbolicCalls, False); dr.set_flag(dr.JitFlag.SymbolicLoops, False), "
-                  "with an integrator that evaluates each bounce (brdfs_path)")
+                  "render inside `with brdfs.render.mitsuba.integrator.wavefront():` (symbolic calls and "
+                  "loops off), with an integrator that evaluates each bounce (brdfs_path)")
 
 
 def build_model(props):
