@@ -28,7 +28,7 @@ import numpy as np
 import pandas as pd
 
 from brdfs.core import gauss_kronrod
-from brdfs.numerics.integrate import hemisphere
+from brdfs.numerics.integrate import azimuthal, hemisphere
 from brdfs.numerics.albedo import albedo
 from brdfs.pipeline.io import REPO_ROOT
 from brdfs.physics.models import model
@@ -100,6 +100,49 @@ def _single_evaluations(brdf):
     return out
 
 
+def _single_floor(brdf):
+    """CPU ms per single call (best of ``ROUNDS``) spent on the work of the answer itself: the
+    breakpoints (``radial_breakpoints_many``, the kink search included) and the integration
+    (``gauss_kronrod.integrate``: the integrand at the nodes, the rule's sums, the driver's rounds).
+    What a call costs besides (checking its arguments, choosing the route, assembling the answer) is
+    the same at both tolerances, so without any of it the loose/tight ratio would be
+    ``floor_loose_over_tight`` and the single/curve ratio ``floor_single_over_curve``: where those are
+    above the targets, only cheaper breakpoints or integration can meet them."""
+    spent, depth = [0.0], [0]
+
+    def timed(fn):
+        def run(*args, **kwargs):
+            depth[0] += 1
+            start = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                depth[0] -= 1
+                if depth[0] == 0:            # an integration inside another counts once
+                    spent[0] += time.process_time() - start
+        return run
+
+    patched = [(gauss_kronrod, "integrate"), (azimuthal, "integrate"),
+               (hemisphere, "radial_breakpoints_many"), (azimuthal, "radial_breakpoints_many")]
+    originals = [getattr(module, name) for module, name in patched]
+    for (module, name), fn in zip(patched, originals):
+        setattr(module, name, timed(fn))
+    out = {}
+    try:
+        for rtol in (TIGHT, LOOSE):
+            best = np.inf
+            for _ in range(ROUNDS):
+                spent[0] = 0.0
+                for t in SINGLE_THETA:
+                    albedo(brdf, float(t), rtol=rtol)
+                best = min(best, spent[0] / SINGLE_THETA.size)
+            out[f"floor_ms_{rtol:g}"] = 1e3 * best
+    finally:
+        for (module, name), fn in zip(patched, originals):
+            setattr(module, name, fn)
+    return out
+
+
 def curve_ratios():
     """Best-of-``ROUNDS`` times of every curve model, all models interleaved in each round."""
     brdfs = {_label(n, p): model(n, **p) for n, p in CURVES}
@@ -117,7 +160,9 @@ def curve_ratios():
         row["single_over_curve"] = b["single_ms_1e-10"] / b["curve_ms_per_point"]
         row["loose_over_tight"] = b["single_ms_1e-6"] / b["single_ms_1e-10"]
         row["meets_targets"] = bool(row["single_over_curve"] <= SINGLE_TARGET and row["loose_over_tight"] <= LOOSE_TARGET)
-        row |= _single_evaluations(brdfs[label])
+        row |= _single_evaluations(brdfs[label]) | _single_floor(brdfs[label])
+        row["floor_loose_over_tight"] = row["floor_ms_1e-06"] / row["floor_ms_1e-10"]
+        row["floor_single_over_curve"] = row["floor_ms_1e-10"] / row["curve_ms_per_point"]
         rows.append(row)
     return pd.DataFrame(rows)
 
