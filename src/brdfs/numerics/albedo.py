@@ -184,10 +184,10 @@ def _short_ones_in_two_dimensions(est, models, theta, rtol, atol, name):
     max(N·L, N·V) models loses ε / cos θ to rounding and can stop short of the tolerance.  ``name``:
     the 1-D route's."""
     status = np.asarray(est.status, str)
-    short = status != CONVERGED
     route = np.full(theta.size, f"engine/{name}")
-    if not short.any():
+    if _all_converged(status):
         return Estimate(est.value, est.error, est.evaluations, status, route)
+    short = status != CONVERGED
     second = albedo_many([m for m, s in zip(models, short) if s], theta[short], rtol=rtol, atol=atol)
     value, error = np.array(est.value, float), np.array(est.error, float)
     better = second.error < error[short]
@@ -238,6 +238,15 @@ def _azimuthal(model, theta, rtol, atol):
 
 # --- independent and historical methods ------------------------------------------------------
 
+def _all_converged(status) -> bool:
+    """Whether every value's status is ``converged`` (one value compared as a str: numpy's string
+    comparison costs a single-angle call more than the answer it checks)."""
+    status = np.asarray(status)
+    if status.size == 1:
+        return status.item() == CONVERGED
+    return bool(np.all(status == CONVERGED))
+
+
 def _status(value, error, rtol, atol):
     met = np.asarray(error) <= np.maximum(rtol * np.abs(value), atol)
     return np.where(met, CONVERGED, BUDGET_EXHAUSTED)
@@ -273,9 +282,9 @@ def _auto(model, theta, rtol, atol):
         first = _engine(model, theta, rtol, atol)
     except EngineCannotIntegrate:
         return _disk(model, theta, rtol, atol)
-    short = np.asarray(first.status) != CONVERGED
-    if not short.any():
+    if _all_converged(first.status):
         return first
+    short = np.asarray(first.status) != CONVERGED
     second = _disk(model, theta[short], rtol, atol)
     value, error = np.array(first.value, float), np.array(first.error, float)
     status, route = np.array(first.status, object), np.array(first.route, object)
@@ -583,8 +592,10 @@ def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
     """Warn (or, ``strict``, raise) when a value is neither ``converged`` nor ``diverged``: how many,
     the worst reported error against the tolerance asked for, and what to try."""
     status = np.asarray(est.status)
+    if not (strict or warn) or (status.size == 1 and status.item() in (CONVERGED, DIVERGED)):
+        return
     short = (status != CONVERGED) & (status != DIVERGED)
-    if not short.any() or not (strict or warn):
+    if not short.any():
         return
     value, error = np.asarray(est.value, float), np.asarray(est.error, float)
     target = np.fmax(rtol * np.abs(value), atol)          # atol where the value itself is NaN

@@ -21,6 +21,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import inspect
+import math
 import numbers
 import typing
 
@@ -63,6 +64,8 @@ def _is_real(value) -> bool:
 
 def _check_real(where, argument, value, interval=None):
     """A finite real number (not a bool, not a string), inside ``interval`` if one is declared."""
+    if type(value) is float and math.isfinite(value) and interval is None:
+        return                                        # the common case, without numpy's scalar dispatch
     if not _is_real(value):
         _fail(where, argument, value, f"must be a real number, not {type(value).__name__}")
     if np.isnan(value):
@@ -134,8 +137,7 @@ def check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=Fals
     """Refuse a bad :func:`brdfs.albedo` call (``options``: the method's keyword options): the model
     (a model object, not its name), the angles (finite, in [0°, 90°]), the method, the tolerances
     (finite, > 0), ``strict`` and ``warn`` (bools) and every option of the method."""
-    from brdfs.numerics.albedo import ALBEDO_METHODS
-    from brdfs.physics.models import BRDF, MODELS
+    ALBEDO_METHODS, BRDF, MODELS = _albedo_front_door_names()
     where = "albedo()"
     if isinstance(model, str):
         hint = ", ".join(f"{k}=..." for k in MODELS[model].param_columns()) if model in MODELS else "..."
@@ -154,6 +156,16 @@ def check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=Fals
         if not isinstance(value, (bool, np.bool_)):
             _fail(where, argument, value, f"must be True or False, not {type(value).__name__}")
     _check_options(f"albedo(method={method!r})", ALBEDO_METHODS[method], options)
+
+
+@functools.cache
+def _albedo_front_door_names():
+    """The methods and the model classes :func:`check_albedo_call` checks against, imported on first
+    use (their modules import this one) and kept: an import statement on every call cost a single-angle
+    albedo call two microseconds."""
+    from brdfs.numerics.albedo import ALBEDO_METHODS
+    from brdfs.physics.models import BRDF, MODELS
+    return ALBEDO_METHODS, BRDF, MODELS
 
 
 def check_table_call(models, theta_deg, rtol, atol) -> None:
