@@ -26,11 +26,11 @@ def _rounds(monkeypatch, brdf, theta, rtol):
     return est, len(calls)
 
 
-def _assert_converges_on_its_first_partition(monkeypatch, name, params, rtol):
-    """One driver round at ``rtol`` (48.5°), converged, within its error of a 1e-13 answer."""
+def _assert_converges_on_its_first_partition(monkeypatch, name, params, rtol, theta=48.5):
+    """One driver round at ``rtol`` (at ``theta``), converged, within its error of a 1e-13 answer."""
     brdf = model(name, **params)
-    tight = azimuthal.albedo_many([brdf], np.array([48.5]), rtol=1e-13)
-    est, rounds = _rounds(monkeypatch, brdf, 48.5, rtol)
+    tight = azimuthal.albedo_many([brdf], np.array([theta]), rtol=1e-13)
+    est, rounds = _rounds(monkeypatch, brdf, theta, rtol)
     assert rounds == 1
     assert est.status[0] == "converged"
     assert abs(est.value[0] - tight.value[0]) <= est.error[0] + tight.error[0]
@@ -62,6 +62,16 @@ def test_one_angle_meets_a_tight_tolerance_on_its_first_partition(monkeypatch, n
     """At rtol 1e-10 the tail graded by half decades (``TIGHT_SINGLE_ANGLE_TAIL``) leaves no interval
     to refine: one evaluation of the integrand, and a value within its error of a 1e-13 one."""
     _assert_converges_on_its_first_partition(monkeypatch, name, params, 1e-10)
+
+
+@pytest.mark.parametrize("theta", [8.09, 24.27, 40.45, 64.73, 72.82])
+def test_a_wide_lobes_level_onsets_are_graded_for_a_tight_tolerance(monkeypatch, theta):
+    """Corrected Blinn, n = 2: its N·V = N·L level touches the circles where its layer is as wide as
+    its radius, and the radial integrand closes onto that radius like (β_c − β)^(3/2); the range ends
+    short of t = 1 and the horizon onset lies 1.1 t0 from the next breakpoint.  Graded toward all
+    three (``radial_breakpoints_many(graded=True)``, ``horizon_onset(min_span=1)``), its first partition
+    meets rtol 1e-10 where it took a second round at these angles."""
+    _assert_converges_on_its_first_partition(monkeypatch, "blinn_cosmin", {"n": 2}, 1e-10, theta)
 
 
 @pytest.mark.parametrize("name, params", [("phong", {"n": 150}), ("blinn_cosmin", {"n": 2}), ("ward", {"m": 0.1}),
@@ -131,13 +141,15 @@ def test_one_angles_breakpoints_on_python_floats_are_the_array_versions_row_to_t
     numerically) against the array version it stands in for, forced: every example of every model
     with a lobe in the mirror or half frame, Cook–Torrance with a cone kink at N (Smith's G) and without
     masking, and two pumped models, at 40 angles from 0° to 90° − 1e-9, with the 2-D route's tail and
-    layer cuts and the single angle's tails: the same row and touch radius to the bit."""
+    layer cuts and the single angle's tails, the tight one also graded (``graded``): the same row and
+    touch radius to the bit."""
     from brdfs.numerics.tables import pump
     from brdfs.physics.geometry import cos_incidence, sin_incidence
     from brdfs.physics.models import MODELS
 
     angles = np.concatenate([np.linspace(0.0, 90.0, 31), 90.0 - np.logspace(-9, -1, 5), np.logspace(-9, -3, 4)])
-    tails = (hemisphere.TAIL, azimuthal._single_angle_tail(1e-10), azimuthal._single_angle_tail(1e-6))
+    tails = (hemisphere.TAIL, azimuthal._single_angle_tail(1e-10), azimuthal._single_angle_tail(1e-10),
+             azimuthal._single_angle_tail(1e-6))
     brdfs = [cls(**params) for cls in MODELS.values() for params in cls.examples.values()]
     brdfs += [model("cook_torrance", m=0.1, G="smith"), model("cook_torrance", m=0.3, G="none"),
               pump(model("phong", n=20), "g1", target_rtol=1e-6), pump(model("blinn", n=20), "g2", target_rtol=1e-6)]
@@ -151,12 +163,14 @@ def test_one_angles_breakpoints_on_python_floats_are_the_array_versions_row_to_t
             mu, st = cos_incidence(th), sin_incidence(th)
             if hemisphere._has_searched_kinks(brdf, mu):
                 continue
-            for tail, layer_max in zip(tails, (hemisphere.TANGENCY_LAYER_MAX_2D, None, None)):
-                one = hemisphere._radial_breakpoints(brdf, mu, st, th, tail, layer_max=layer_max)
+            for tail, layer_max, graded in zip(tails, (hemisphere.TANGENCY_LAYER_MAX_2D, None, None, None),
+                                               (False, False, True, False)):
+                one = hemisphere._radial_breakpoints(brdf, mu, st, th, tail, layer_max=layer_max, graded=graded)
                 with monkeypatch.context() as forced:
                     forced.setattr(hemisphere, "_has_searched_kinks", lambda *args: True)
-                    array = hemisphere._radial_breakpoints(brdf, mu, st, th, tail, layer_max=layer_max)
+                    array = hemisphere._radial_breakpoints(brdf, mu, st, th, tail, layer_max=layer_max,
+                                                           graded=graded)
                 assert np.array_equal(one[0][0], array[0][0]), (brdf, theta)
                 assert np.array_equal(one[2], array[2], equal_nan=True), (brdf, theta)
                 compared += 1
-    assert compared > 2000
+    assert compared > 2500

@@ -108,9 +108,12 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     single = theta_deg.size == 1
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
+        tight = _smallest(rtol) < TIGHT_RTOL
         bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
-                                                root_rtol=single_angle_root_rtol(rtol), kinks=True, touch=True)
+                                                root_rtol=single_angle_root_rtol(rtol), kinks=True, touch=True,
+                                                graded=tight)
     else:
+        tight = False
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
     kernels = {members[0]: _RadialKernel.of(models[members[0]]) for members in indices_by_model(models)}
     if len(kernels) == 1:                  # one model: no regrouping of the nodes by model
@@ -130,7 +133,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                 value[rows], rounding[rows] = kernels[k](t[rows], mu[e, None], st[e, None])
             return NodeValues(value, value, rounding)
 
-    bp, *onset = horizon_onset(bp, t0)
+    bp, *onset = horizon_onset(bp, t0, min_span=TIGHT_ONSET_MIN_SPAN if tight else None)
     if kinks is None or not kinks.element.size:
         # at ROOT_RTOL a misplaced kink costs ~1e-18 of the integral, below the 50 ε Σ|f| floor already in
         return integrate(square_root_onset(integrand, *onset), bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)
@@ -226,8 +229,14 @@ SINGLE_ANGLE_TAIL = np.concatenate([[0.75, 0.5, 0.25], 10.0 ** -np.arange(1.0, 3
 #: 3.0, with fewer evaluations in all: the refinement rounds it saves cost 32 intervals each).  Loose
 #: tolerances keep the coarser :data:`SINGLE_ANGLE_TAIL`, which meets them in one round already.
 TIGHT_SINGLE_ANGLE_TAIL = np.concatenate([1.0 - np.arange(1, 16) / 16, 10.0 ** -np.arange(1.0, 13.0, 0.5)])
-#: The rtol below which a single angle starts from :data:`TIGHT_SINGLE_ANGLE_TAIL`.
+#: The rtol below which a single angle starts from :data:`TIGHT_SINGLE_ANGLE_TAIL`, graded toward
+#: the declared levels' tangency radii and the range's end (``radial_breakpoints_many(graded=True)``,
+#: :data:`.hemisphere.LEVEL_GRADING`), with every horizon onset mapped (:data:`TIGHT_ONSET_MIN_SPAN`).
 TIGHT_RTOL = 1e-7
+#: ``horizon_onset``'s ``min_span`` for a single angle below :data:`TIGHT_RTOL`: every onset interval
+#: is mapped, the short ones too (corrected Blinn, n = 2, 8°: [0.5692, 0.625], the onset at t0 and a
+#: breakpoint of the tail 1.1 t0 beyond it, kept K − G 5.1e-9 and cost a second round).
+TIGHT_ONSET_MIN_SPAN = 1.0
 
 
 def _single_angle_tail(rtol):
