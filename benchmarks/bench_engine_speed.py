@@ -12,7 +12,10 @@ machine's load hits all alike:
 * ``single_evals_1e-10`` / ``single_evals_1e-06``: the mean evaluations of those single calls,
   ``single_rounds_1e-10`` / ``single_rounds_1e-06`` their mean driver rounds and
   ``single_root_rounds_1e-10`` / ``single_root_rounds_1e-06`` their mean multisection rounds of the
-  kink radii found numerically (exact counts).
+  kink radii found numerically (exact counts);
+* ``floor_ms_*``, ``kernel_ms_*``, ``floor_loose_over_tight`` and ``floor_single_over_curve``: the
+  part of a single call spent on its breakpoints and its integration, of that on the 1-D route's
+  kernel, and the ratios a call would reach with every other cost removed (:func:`_single_floor`).
 
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
@@ -39,7 +42,7 @@ SMITH = [("ggx", {"alpha": 0.3}), ("beckmann", {"alpha": 0.3}), ("cook_torrance"
 CURVE_THETA = np.linspace(0.0, 89.0, 100)
 SINGLE_THETA = np.linspace(0.0, 89.0, 12)
 SMITH_THETA = np.linspace(0.0, 89.9, 12)
-ROUNDS = 3
+ROUNDS = 7
 TIGHT, LOOSE = 1e-10, 1e-6
 SINGLE_TARGET, LOOSE_TARGET, EVALUATIONS_TARGET = 5.0, 0.5, 5000
 
