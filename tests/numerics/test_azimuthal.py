@@ -93,3 +93,18 @@ def test_many_models_in_one_call_equal_one_model_at_a_time():
     single = [albedo_azimuthal(m, t, rtol=1e-11) for m, t in zip(models, theta)]
     value, error = np.array([float(s.value) for s in single]), np.array([float(s.error) for s in single])
     assert np.all(np.abs(many.value - value) <= many.error + error)
+
+
+@pytest.mark.parametrize("n", [2.0, 20.0])
+def test_the_half_frame_max_kernel_keeps_its_digits_next_to_grazing(n):
+    """At 90° − 1e-9 corrected Blinn's 1-D route divides the difference of two nearly equal level
+    integrals by cos θ = 1.7e-11 and reports a rounding bound of ε / cos θ (it stalls there, and
+    ``albedo`` takes the 2-D route).  Both levels by the same operations, their roundings cancel and
+    the value keeps ten digits; sin φ and sin 2φ taken from the level's cosine (√(1 − cos² φ) and
+    2 sin φ cos φ, exact for the exact angle while φ itself is rounded) lost that (2e-8 relative at
+    n = 2, commit 5160c5c)."""
+    brdf = model("blinn_cosmin", n=n)
+    theta = 90.0 - 1e-9
+    one_d = albedo_many([brdf], np.array([theta]), rtol=1e-10)
+    reference = albedo(brdf, theta, method="disk", rtol=1e-12)
+    assert abs(one_d.value[0] - reference.value) <= 1e-10 * reference.value

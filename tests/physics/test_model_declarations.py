@@ -149,3 +149,20 @@ def test_a_compensated_model_built_in_physics_without_its_table_raises_and_compu
     assert physics_model(name, alpha=0.5).energy is None      # single scattering needs none
     assert MODELS[name].table_requests(alpha=0.5) == {}
     assert set(MODELS[name].table_requests(alpha=0.5, compensation="kulla_conty")) == {"energy"}
+
+
+def test_evaluation_counters_nest_reenter_survive_a_raise_and_leave_nothing_behind():
+    from brdfs.physics.models import base
+
+    brdf = physics_model("phong", n=2)
+    light, views = [0.0, 0.0, 1.0], [[0.0, 0.0, 1.0]] * 3
+    counter = counting_evaluations()
+    with counter as outer:
+        brdf(light, views)
+        with counter as inner:                       # the same instance, entered again
+            brdf(light, views[:2])
+        with pytest.raises(RuntimeError), counting_evaluations() as failed:
+            brdf(light, views[:1])
+            raise RuntimeError
+    assert (outer[0], inner[0], failed[0]) == (6, 2, 1)
+    assert base._COUNTERS == []

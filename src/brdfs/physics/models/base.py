@@ -132,16 +132,22 @@ class counting_evaluations:
     5
 
     A class rather than a generator-based context manager: a single-angle albedo call enters one,
-    and the generator's machinery cost it a microsecond more."""
+    and the generator's machinery cost it a microsecond more.  One instance may be entered again
+    inside its own block: each entry counts in a box of its own."""
+
+    def __init__(self):
+        self._boxes = []
 
     def __enter__(self):
-        self.box = [0]
-        _COUNTERS.append(self.box)
-        return self.box
+        box = [0]
+        _COUNTERS.append(box)
+        self._boxes.append(box)
+        return box
 
     def __exit__(self, *exc):
+        box = self._boxes.pop()
         # by identity: nested counters hold equal lists
-        del _COUNTERS[next(i for i, b in enumerate(_COUNTERS) if b is self.box)]
+        del _COUNTERS[next(i for i, b in enumerate(_COUNTERS) if b is box)]
         return False
 
 
