@@ -53,6 +53,7 @@ ALBEDO_CALLS = [
     ("rtol", "inf", lambda: albedo(PHONG, 45.0, rtol=math.inf)),
     ("rtol", "'1e-6'", lambda: albedo(PHONG, 45.0, rtol="1e-6")),
     ("rtol", "True", lambda: albedo(PHONG, 45.0, rtol=True)),
+    ("rtol", "1000000000", lambda: albedo(PHONG, 45.0, rtol=10 ** 400)),       # an int beyond the floats
     ("atol", "-1e-14", lambda: albedo(PHONG, 45.0, atol=-1e-14)),
     ("atol", "nan", lambda: albedo(PHONG, 45.0, atol=math.nan)),
     ("atol", "[1e-14]", lambda: albedo(PHONG, 45.0, atol=[1e-14])),
@@ -149,6 +150,12 @@ def test_model_refuses_a_bad_argument_with_one_line_naming_it(argument, shown, c
 
 def test_infinity_is_not_finite_rather_than_negative():
     assert "must be finite" in _refused(lambda: model("phong", n=math.inf), "n", "inf")
+
+
+def test_an_int_beyond_the_floats_is_not_finite():
+    """numpy's isnan raised its own TypeError on 10**400 before the check could name the argument."""
+    assert "must be finite" in _refused(lambda: albedo(PHONG, 45.0, atol=10 ** 400), "atol", "1000000000")
+    assert "must be finite" in _refused(lambda: model("phong", n=-(10 ** 400)), "n", "-1000000000")
 
 
 def test_a_missing_parameter_is_named():

@@ -68,9 +68,13 @@ def _check_real(where, argument, value, interval=None):
         return                                        # the common case, without numpy's scalar dispatch
     if not _is_real(value):
         _fail(where, argument, value, f"must be a real number, not {type(value).__name__}")
-    if np.isnan(value):
+    try:
+        real = float(value)
+    except OverflowError:                             # an int beyond the floats (numpy's isnan raised TypeError)
+        _fail(where, argument, value, "must be finite")
+    if math.isnan(real):
         _fail(where, argument, value, "must be a number, not NaN")
-    if not np.isfinite(value):
+    if not math.isfinite(real):
         _fail(where, argument, value, "must be finite")
     if interval is not None and not interval.contains(value):
         _fail(where, argument, value, f"must be {_describe_interval(interval)}")
