@@ -51,6 +51,15 @@ SWEEP_BOUNDS = {"n": (0.5, 1.0e4), "m": (0.005, 1.0), "alpha": (0.01, 1.0), "p":
 GRAZING = tuple(90.0 - 10.0 ** -k for k in range(1, 10))
 
 
+class OrenNayarIntegrated(MODELS["oren_nayar"]):
+    """Oren–Nayar without its closed-form albedo route, as a user writes it: the engine integrates its
+    BRDF and honours its kinks (the family ``oren_nayar_integrated``'s model, and the tests' of the
+    engine on those kinks)."""
+
+    def albedo_estimate(self, theta_deg, rtol, atol):
+        return None
+
+
 @dataclass(frozen=True)
 class Family:
     """A model with its choices fixed: ``swept`` parameters drawn, ``fixed`` ones set."""
@@ -63,9 +72,9 @@ class Family:
     n_params: int = 8
     n_random_angles: int = 6
     grazing: tuple = GRAZING            # the angles 90° − 10⁻ᵏ of every parameter set
-    #: False: the model without its own albedo route (``albedo_estimate``, e.g. Oren–Nayar's closed
-    #: form), as a user writes it, so that the engine integrates its BRDF (and honours its kinks)
-    own_route: bool = True
+    #: The package's class of the cell's model where it is not ``MODELS[model]`` (a model without its
+    #: own albedo route, as a user writes it, so that the engine integrates its BRDF)
+    model_class: type | None = None
 
     @property
     def fixed_dict(self):
@@ -112,7 +121,7 @@ FAMILIES = (
            n_random_angles=4),
     # Oren–Nayar answers with its closed form; integrated, it is the engine's test of azimuthal kinks
     # (the half-planes Δφ = ±90°) in a user's model.  Last, so that the cells before it stay as drawn.
-    Family("oren_nayar_integrated", "oren_nayar", ("rho", "sigma"), own_route=False),
+    Family("oren_nayar_integrated", "oren_nayar", ("rho", "sigma"), model_class=OrenNayarIntegrated),
 )
 #: Families declared but left out of the committed sweep: He–Torrance's density alone (term 'dd'),
 #: the same integral as ``he_torrance_total`` without the delta's closed form.
@@ -185,18 +194,6 @@ def table_to_json(table: AlbedoTable) -> dict:
             "error": float(table.error), "model_rtol": float(table.model_rtol)}
 
 
-class OrenNayarIntegrated(MODELS["oren_nayar"]):
-    """Oren–Nayar without its closed-form albedo route, as a user writes it: the engine integrates its
-    BRDF and honours its kinks (this family's model, and the tests' of the engine on those kinks)."""
-
-    def albedo_estimate(self, theta_deg, rtol, atol):
-        return None
-
-
-#: The models of the families with ``own_route`` False, by model name.
-_INTEGRATED = {"oren_nayar": OrenNayarIntegrated}
-
-
 def needs_table(family: Family) -> bool:
     return family.pumped is not None or family.fixed_dict.get("compensation") == "kulla_conty"
 
@@ -204,7 +201,7 @@ def needs_table(family: Family) -> bool:
 def build(family_name: str, params: dict, tables: dict | None = None):
     """The package's model of a cell (with its stored table, where it needs one)."""
     family = FAMILY[family_name]
-    cls = MODELS[family.model] if family.own_route else _INTEGRATED[family.model]
+    cls = family.model_class or MODELS[family.model]
     kwargs = {**family.fixed_dict, **params}
     if family.model == "patch_mixture":
         weight = {"uniform": lambda R: np.full(np.shape(R), 0.5), "falling": lambda R: 1.0 - 0.5 * np.asarray(R, float)}

@@ -6,9 +6,6 @@ The truths are literals; ``tests/data/honesty_reproducers.py`` recomputes every 
 BRDF written there again from the thesis's equations.  The basic patch model's truths are closed forms,
 evaluated here by mpmath at 50 digits.
 """
-import sys
-from pathlib import Path
-
 import mpmath as mp
 import numpy as np
 import pytest
@@ -128,7 +125,6 @@ from dataclasses import dataclass                                        # noqa:
 from brdfs.numerics.albedo import EngineCannotIntegrate                  # noqa: E402
 from brdfs.physics.lobes import MIRROR, PowerCosine                      # noqa: E402
 from brdfs.physics.models.base import BRDF, Interval                     # noqa: E402
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 from sweep.cells import OrenNayarIntegrated as IntegratedOrenNayar       # noqa: E402
 
 

@@ -8,19 +8,13 @@ an error bound at :data:`RTOL` (truth_err ≤ 1e-12 |truth|).
 """
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT))
-
-from sweep.cells import TRUTHS            # noqa: E402
-from sweep.check import classify, run_group  # noqa: E402
-from sweep.config import config_seed     # noqa: E402
+from sweep.cells import TRUTHS
+from sweep.check import classify, run_group
+from sweep.config import config_seed
 
 N_CELLS = 40
 RTOL = 1e-8

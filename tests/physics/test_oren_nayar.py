@@ -2,9 +2,6 @@
 its albedo against a third route (nested scipy quad written here, importing nothing from
 brdfs.numerics), its closed-form albedo, and the engine honouring its declared azimuthal kink (on
 :class:`Integrated`, the same BRDF without its closed form, as a user would write it)."""
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -12,9 +9,7 @@ from scipy.integrate import quad
 from brdfs import albedo, model
 from brdfs.physics.geometry import direction
 from brdfs.physics.models import MODELS
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
-from sweep.cells import OrenNayarIntegrated as Integrated  # noqa: E402   (the sweep's family's model)
+from sweep.cells import OrenNayarIntegrated as Integrated     # the sweep's family's model
 
 RNG = np.random.default_rng(24)
 

@@ -185,7 +185,7 @@ def _short_ones_in_two_dimensions(est, models, theta, rtol, atol, name):
     the 1-D route's."""
     status = np.asarray(est.status, str)
     route = np.full(theta.size, f"engine/{name}")
-    if _all_converged(status):
+    if _all_in(status, CONVERGED):
         return Estimate(est.value, est.error, est.evaluations, status, route)
     short = status != CONVERGED
     second = albedo_many([m for m, s in zip(models, short) if s], theta[short], rtol=rtol, atol=atol)
@@ -238,13 +238,13 @@ def _azimuthal(model, theta, rtol, atol):
 
 # --- independent and historical methods ------------------------------------------------------
 
-def _all_converged(status) -> bool:
-    """Whether every value's status is ``converged`` (one value compared as a str: numpy's string
+def _all_in(status, *kinds) -> bool:
+    """Whether every value's status is one of ``kinds`` (one value compared as a str: numpy's string
     comparison costs a single-angle call more than the answer it checks)."""
     status = np.asarray(status)
     if status.size == 1:
-        return status.item() == CONVERGED
-    return bool(np.all(status == CONVERGED))
+        return status.item() in kinds
+    return bool(np.all(np.isin(status, kinds)))
 
 
 def _status(value, error, rtol, atol):
@@ -282,7 +282,7 @@ def _auto(model, theta, rtol, atol):
         first = _engine(model, theta, rtol, atol)
     except EngineCannotIntegrate:
         return _disk(model, theta, rtol, atol)
-    if _all_converged(first.status):
+    if _all_in(first.status, CONVERGED):
         return first
     short = np.asarray(first.status) != CONVERGED
     second = _disk(model, theta[short], rtol, atol)
@@ -591,12 +591,10 @@ def _with_the_declared_ends(run_pairs, models, groups, theta, at_90, method):
 def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
     """Warn (or, ``strict``, raise) when a value is neither ``converged`` nor ``diverged``: how many,
     the worst reported error against the tolerance asked for, and what to try."""
+    if not (strict or warn) or _all_in(est.status, CONVERGED, DIVERGED):
+        return
     status = np.asarray(est.status)
-    if not (strict or warn) or (status.size == 1 and status.item() in (CONVERGED, DIVERGED)):
-        return
     short = (status != CONVERGED) & (status != DIVERGED)
-    if not short.any():
-        return
     value, error = np.asarray(est.value, float), np.asarray(est.error, float)
     target = np.fmax(rtol * np.abs(value), atol)          # atol where the value itself is NaN
     ratio = np.where(np.isfinite(error), error / np.where(target > 0, target, np.inf), np.inf)

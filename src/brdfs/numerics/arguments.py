@@ -64,8 +64,6 @@ def _is_real(value) -> bool:
 
 def _check_real(where, argument, value, interval=None):
     """A finite real number (not a bool, not a string), inside ``interval`` if one is declared."""
-    if type(value) is float and math.isfinite(value) and interval is None:
-        return                                        # the common case, without numpy's scalar dispatch
     if not _is_real(value):
         _fail(where, argument, value, f"must be a real number, not {type(value).__name__}")
     try:
@@ -174,7 +172,7 @@ def _albedo_front_door_names():
 
 def check_table_call(models, theta_deg, rtol, atol) -> None:
     """Refuse a bad :func:`brdfs.albedo_table` call: a list of model objects, angles, tolerances."""
-    from brdfs.physics.models import BRDF
+    _, BRDF, _ = _albedo_front_door_names()
     where = "albedo_table()"
     if isinstance(models, (str, BRDF)) or not hasattr(models, "__iter__"):
         _fail(where, "models", models, "must be a list of models (brdfs.model(name, ...))")

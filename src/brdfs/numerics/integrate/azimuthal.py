@@ -108,7 +108,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     single = theta_deg.size == 1
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
-        tight = _smallest(rtol) < TIGHT_RTOL
+        tight = _tight(rtol)
         bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
                                                 root_rtol=single_angle_root_rtol(rtol), kinks=True, touch=True,
                                                 graded=tight)
@@ -242,7 +242,12 @@ TIGHT_ONSET_MIN_SPAN = 1.0
 def _single_angle_tail(rtol):
     """The initial tail breakpoints 1 − t of a single-angle call at ``rtol``: finer where the
     tolerance is tight, so that the first evaluation meets it (a round costs more than its nodes)."""
-    return TIGHT_SINGLE_ANGLE_TAIL if _smallest(rtol) < TIGHT_RTOL else SINGLE_ANGLE_TAIL
+    return TIGHT_SINGLE_ANGLE_TAIL if _tight(rtol) else SINGLE_ANGLE_TAIL
+
+
+def _tight(rtol):
+    """Whether a single angle at ``rtol`` starts from the tight first partition (:data:`TIGHT_RTOL`)."""
+    return _smallest(rtol) < TIGHT_RTOL
 
 
 def _smallest(rtol):
