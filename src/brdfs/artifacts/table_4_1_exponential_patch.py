@@ -18,8 +18,9 @@ import pandas as pd
 from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.pipeline.registry import comparison, get_artifact, table
-from brdfs.artifacts._patch_common import SECTION, tolerances, truncation_reason
+from brdfs.artifacts._patch_common import SECTION, tolerances
 
 NAME = "table_4_1_exponential_patch"
 ARTIFACT = "patch_exponential"
@@ -85,35 +86,39 @@ def plot(df: pd.DataFrame, path) -> None:
     plotting.save_table_png(table_df, path, "Table 4.1: parameters of f = C_max exp(-s m), printed and recomputed")
 
 
-def _i12_reading(computed: float, weight: float, weight_err: float, printed: str) -> dict:
-    """Reason and reading of an I_1,2 print that eq. 4.50 as printed does not give."""
-    return {
-        "reason": (
-            f"eq. 4.50 as printed, pi*int_1^2 p(R) dR, gives {computed:.5f}; the print is "
-            f"int_1^2 p(R) dR = {weight:.5f}, the weight (normal-incidence albedo) of the basic BRDFs "
-            "with R >= 1 (eq. 4.50 inherits eq. 4.40's c(R) = pi min(1,R^2), the inverse of eq. 4.7)"
-        ),
-        "reading": "I_12 = int_1^2 p(R) dR (no factor pi)",
-        "value_under_reading": weight if published.verdict(printed, weight, weight_err) == published.REPRODUCES else np.nan,
-    }
+#: The searches of how the table was printed (:mod:`brdfs.artifacts.extra_readings_table_4_1`).
+READINGS = "extra_readings_table_4_1"
 
 
-@comparison(ARTIFACT, tables=(NAME,))
+@comparison(ARTIFACT, tables=(NAME, READINGS))
 def rows(cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """Comparison rows of Table 4.1 with a reason for every print that differs."""
+    """Comparison rows of Table 4.1, completed by the searches of :mod:`extra_readings_table_4_1`
+    (a printing rule for C_max, a constant for I_1,2)."""
     df = tables[NAME]
-    prints = published.published_rows(ARTIFACT)
     evidence = get_artifact(NAME).csv
     records = []
-    for printed in prints.itertuples():
+    for printed in published.published_rows(ARTIFACT).itertuples():
         row = df[df["s"] == float(printed.param_value)].iloc[0]
         value, err = row[printed.quantity], row[f"{printed.quantity}_err"]
-        record = {"model": printed.model, "param_value": printed.param_value, "quantity": printed.quantity,
-                  "computed": value, "computed_err": err, "evidence": evidence}
-        if published.verdict(printed.published, value, err) == published.DIFFERS:
-            if printed.quantity == "I_12":
-                record |= _i12_reading(value, row["I_12_weight"], row["I_12_weight_err"], printed.published)
-            else:
-                record |= truncation_reason(printed.published, value)
-        records.append(record)
-    return pd.DataFrame.from_records(records)
+        records.append({"model": printed.model, "param_value": printed.param_value, "quantity": printed.quantity,
+                        "computed": value, "computed_err": err, "evidence": evidence,
+                        "as_printed": published.verdict(printed.published, value, err)})
+    from brdfs.artifacts.extra_readings_table_4_1 import GROUPS
+
+    records = pd.DataFrame.from_records(records)
+    searches = tables[READINGS]
+    where = get_artifact(READINGS).csv
+    for group, effect in ((GROUPS["C_max"], _printing_effect), (GROUPS["I_12"], _constant_effect)):
+        done = readings.with_search(records, searches, where, effect=effect, group=group)
+        done["as_printed"] = records["as_printed"]
+        records = done
+    return records.drop(columns="as_printed")
+
+
+def _printing_effect(value_under_reading: float, computed: float) -> str:
+    return "the column's printing rule cuts the fifth significant digit instead of rounding it"
+
+
+def _constant_effect(value_under_reading: float, computed: float) -> str:
+    return (f"eq. 4.50's factor pi is missing from the print (eq. 4.40's c(R) = pi min(1, R^2) is the inverse of "
+            f"eq. 4.7's), so the print is int_1^2 p(R) dR, {value_under_reading / computed:.4f} times eq. 4.50")

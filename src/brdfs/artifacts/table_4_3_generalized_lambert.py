@@ -15,8 +15,10 @@ import pandas as pd
 from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.pipeline.registry import comparison, get_artifact, table
-from brdfs.artifacts._patch_common import SECTION, tolerances, truncation_reason
+from brdfs.artifacts._patch_common import SECTION, tolerances
+from brdfs.artifacts.extra_readings_table_4_3 import NAME as READINGS
 
 NAME = "table_4_3_generalized_lambert"
 ARTIFACT = "patch_generalized_lambert"
@@ -71,41 +73,23 @@ def plot(df: pd.DataFrame, path) -> None:
     plotting.save_table_png(table_df, path, f"Table 4.3: generalized Lambertian, xi clipped at xi({df['m_clip'].iloc[0]:g})")
 
 
-def _unexplained(row: pd.Series, prints: dict[str, str]) -> dict:
-    """Reason for a C_max or a_diffuse print that neither rounds nor truncates the computed value.
-
-    Both columns are albedo integrals in disguise: 1/C_max = a^ξ(90°) and a_diffuse/C_max =
-    a^ξ(0°); the reason compares the integrals the prints imply with ours.
-    """
-    c_printed, a_printed = float(prints["C_max"]), float(prints["a_diffuse"])
-    a90, a0 = 1.0 / row["C_max"], row["a_diffuse"] / row["C_max"]
-    return {
-        "reason": (
-            f"eq. 4.59 with C_max = 1/a(90 deg) gives C_max = {row['C_max']:.6f}, a_diffuse = {row['a_diffuse']:.6f} "
-            f"(two independent quadratures agree to 1e-10); the prints imply albedo integrals "
-            f"a_xi(90) = 1/C_max = {1 / c_printed:.5f} ({1 / c_printed / a90 - 1:+.1e} relative) and "
-            f"a_xi(0) = a_diffuse/C_max = {a_printed / c_printed:.5f} ({a_printed / c_printed / a0 - 1:+.1e} relative), "
-            "both low by an amount growing with d, as from a coarse numerical integration in the original; "
-            "no reading of eqs. 4.58/4.59 found that reproduces them"
-        ),
-    }
-
-
-@comparison(ARTIFACT, tables=(NAME,))
+@comparison(ARTIFACT, tables=(NAME, READINGS))
 def rows(cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """Comparison rows of Table 4.3 with a reason for every print that differs."""
+    """Comparison rows of Table 4.3: each print against eq. 4.59 with C_max = 1/a(90°), and the
+    C_max and a_diffuse prints against the reconstructed sum of eq. 4.22 (:mod:`extra_readings_table_4_3`)."""
     df = tables[NAME]
     evidence = get_artifact(NAME).csv
     records = []
-    printed_rows = published.published_rows(ARTIFACT)
-    for printed in printed_rows.itertuples():
+    for printed in published.published_rows(ARTIFACT).itertuples():
         row = df[np.isclose(df["d"], float(printed.param_value), rtol=0, atol=1e-12)].iloc[0]
         value, err = row[printed.quantity], row[f"{printed.quantity}_err"]
-        record = {"model": printed.model, "param_value": printed.param_value, "quantity": printed.quantity,
-                  "computed": value, "computed_err": err, "evidence": evidence}
-        if published.verdict(printed.published, value, err) == published.DIFFERS:
-            same_d = printed_rows[printed_rows["param_value"] == printed.param_value]
-            prints = dict(zip(same_d["quantity"], same_d["published"]))
-            record |= truncation_reason(printed.published, value) or _unexplained(row, prints)
-        records.append(record)
-    return pd.DataFrame.from_records(records)
+        records.append({"model": printed.model, "param_value": printed.param_value, "quantity": printed.quantity,
+                        "computed": value, "computed_err": err, "evidence": evidence,
+                        "as_printed": published.verdict(printed.published, value, err)})
+    return readings.with_search(pd.DataFrame.from_records(records), tables[READINGS], get_artifact(READINGS).csv,
+                                effect=_effect)
+
+
+def _effect(value_under_reading: float, computed: float) -> str:
+    return (f"the sum's node at the clip m = 1.9 counts xi'(1.9) for a whole step, which lowers both albedo "
+            f"integrals by the same amount, so the print is {value_under_reading - computed:+.2g} off eq. 4.59")

@@ -42,7 +42,8 @@ PUBLISHED_COLUMNS = ("artifact", "source", "model", "param", "param_value", "qua
 #: Columns an artifact's comparison rows must have.
 ROW_COLUMNS = ("model", "param_value", "quantity", "computed", "computed_err")
 #: Optional columns of comparison rows.
-OPTIONAL_ROW_COLUMNS = ("reason", "reading", "value_under_reading", "evidence", "claim_holds")
+OPTIONAL_ROW_COLUMNS = ("reason", "reading", "value_under_reading", "evidence", "claim_holds", "reading_verdict",
+                        "family_size", "group_score", "z_score")
 #: The columns of a fragment and of the merged comparison, in this order.
 COMPARISON_COLUMNS = PUBLISHED_COLUMNS + (
     "computed",
@@ -51,9 +52,13 @@ COMPARISON_COLUMNS = PUBLISHED_COLUMNS + (
     "reason",
     "reading",
     "value_under_reading",
+    "reading_error",
+    "family_size",
+    "group_score",
+    "z_score",
     "evidence",
 )
-FLOAT_COLUMNS = ("computed", "computed_err", "value_under_reading")
+FLOAT_COLUMNS = ("computed", "computed_err", "value_under_reading", "reading_error", "z_score")
 TEXT_COLUMNS = tuple(c for c in COMPARISON_COLUMNS if c not in FLOAT_COLUMNS)
 
 #: Exact expressions the thesis prints, and their values.
@@ -62,6 +67,11 @@ EXACT_VALUES = {"1/pi": 1.0 / math.pi, "3/4": 0.75, "2/3": 2.0 / 3.0, "1/2": 0.5
 EXACT_ATOL = 1e-15
 
 REPRODUCES, DIFFERS, AMBIGUOUS = "reproduces", "differs", "ambiguous"
+#: Every verdict a row of the comparison may carry (:mod:`brdfs.pipeline.readings`).
+VERDICTS = (REPRODUCES, "reproduces under a reading", "input misprint", "within Monte Carlo error",
+            "consistent with a reading", DIFFERS)
+#: The verdicts that name a reading and its value.
+READING_VERDICTS = VERDICTS[1:5]
 
 # Enough digits to quantize any finite double to any printed decimal place.
 _DECIMAL_CONTEXT = Context(prec=1200)
@@ -267,11 +277,11 @@ def _checked_rows(artifact: str, rows: pd.DataFrame) -> pd.DataFrame:
     if missing or unknown:
         raise FragmentError(f"{artifact}: rows lack columns {missing} / have unknown columns {unknown}")
     rows = rows.reset_index(drop=True).copy()
-    for column in ("reason", "reading", "evidence"):
+    for column in ("reason", "reading", "evidence", "reading_verdict", "family_size", "group_score"):
         values = rows[column] if column in rows else pd.Series([""] * len(rows))
         rows[column] = [("" if v is None or (isinstance(v, float) and math.isnan(v)) else str(v)) for v in values]
     for column in FLOAT_COLUMNS:
-        values = rows[column] if column in rows else pd.Series([np.nan] * len(rows))
+        values = rows[column] if column in rows else pd.Series([np.nan] * len(rows), dtype=float)
         rows[column] = pd.to_numeric(values, errors="raise").astype(float)
     rows["claim_holds"] = [_claim_holds(v) for v in rows.get("claim_holds", [None] * len(rows))]
     bad = rows["computed"].isna() | rows["computed_err"].isna() | (rows["computed_err"] < 0)
@@ -333,12 +343,15 @@ def make_fragment(artifact: str, rows: pd.DataFrame, published: pd.DataFrame | N
     expected = published_rows(artifact, published)
     rows = _match_one_to_one(artifact, expected, _checked_rows(artifact, rows))
     fragment = expected[list(PUBLISHED_COLUMNS)].copy()
-    for column in ("computed", "computed_err", "reason", "reading", "value_under_reading", "evidence"):
+    for column in ("computed", "computed_err", "reason", "reading", "value_under_reading", "family_size",
+                   "group_score", "z_score", "evidence"):
         fragment[column] = rows[column]
-    fragment["verdict"] = [
+    fragment["reading_error"] = rows["value_under_reading"] - rows["computed"]
+    as_printed = [
         verdict(p, c, e, h)
         for p, c, e, h in zip(fragment["published"], rows["computed"], rows["computed_err"], rows["claim_holds"])
     ]
+    fragment["verdict"] = [v if v != DIFFERS or not r else r for v, r in zip(as_printed, rows["reading_verdict"])]
     _check_verdicts(artifact, fragment)
     return fragment[list(COMPARISON_COLUMNS)]
 
@@ -352,14 +365,21 @@ def _check_verdicts(artifact: str, fragment: pd.DataFrame) -> None:
             f"{artifact}: computed +- computed_err straddles a rounding boundary of the print, "
             f"tighten the tolerance: {_format_keys(_keys(ambiguous, columns), columns)}"
         )
-    unexplained = fragment[(fragment["verdict"] == DIFFERS) & (fragment["reason"] == "")]
-    if not unexplained.empty:
-        raise FragmentError(
-            f"{artifact}: 'differs' rows need a reason: {_format_keys(_keys(unexplained, columns), columns)}"
-        )
-    invalid = set(fragment["verdict"]) - {REPRODUCES, DIFFERS}
+    invalid = set(fragment["verdict"]) - set(VERDICTS)
     if invalid:
         raise FragmentError(f"{artifact}: invalid verdicts {sorted(invalid)}")
+    differs = fragment["verdict"] == DIFFERS
+    for label, bad in (
+        ("'differs' rows need a reason", differs & (fragment["reason"] == "")),
+        ("'differs' rows need their family's size and closest reading",
+         differs & ((fragment["family_size"] == "") | (fragment["reading"] == ""))),
+        ("rows explained by a reading need the reading and its value",
+         fragment["verdict"].isin(READING_VERDICTS) & ((fragment["reading"] == "") | fragment["value_under_reading"].isna())),
+        ("'within Monte Carlo error' rows need their z-score",
+         (fragment["verdict"] == VERDICTS[3]) & fragment["z_score"].isna()),
+    ):
+        if bad.any():
+            raise FragmentError(f"{artifact}: {label}: {_format_keys(_keys(fragment[bad], columns), columns)}")
 
 
 def read_fragment(path: str | os.PathLike) -> pd.DataFrame:

@@ -1,0 +1,421 @@
+"""Readings of printed numbers: declared procedures, searched per group with a placebo control.
+
+A *reading* is a numerical procedure that the thesis states or implies (a quadrature rule and
+step for an integral it names, a maximum over a grid of angles, a printing rule, a constant, an
+input anywhere in its rounding box), applied unchanged to every entry of a *group* of printed
+numbers (one table column, or one kind of claim). A *family* is a finite grid of readings,
+declared before any is scored. The search scores every reading of the family by the entries it
+reproduces, digit for digit, under the same rounding rule the comparison uses
+(:func:`brdfs.pipeline.published.rounds_to`, or the reading's own printing rule).
+
+A best reading is *accepted* for its group only when its score exceeds the 99th percentile of a
+placebo: the same search over the same family, on prints whose last digit has been moved by ±1
+at random (:data:`PLACEBO_DRAWS` draws, a fixed seed). A group of one or two prints cannot tell a
+reading from luck: a reading that reproduces it is *consistent*, counted apart.
+
+Everything here works on a matrix of *printed digits*: the value each reading gives for each
+entry, put into the printed form of that entry's print (an integer: the digits at the print's
+last decimal place). Moving a print's last digit by ±1 is then adding ±1, and a placebo draw
+costs one comparison of two integer arrays.
+
+The verdicts a row of the comparison can carry (``docs/contract.md``):
+
+* ``reproduces``: as printed, from the formula;
+* ``reproduces under a reading``: the thesis's own procedure reconstructed and accepted for the
+  group;
+* ``input misprint``: a corrected input (a transposition of its digits) reproduces the print;
+* ``within Monte Carlo error``: the print is within 3 standard deviations of the value, for the
+  estimator the thesis says it used;
+* ``consistent with a reading``: a group too small for the placebo, which a reading reproduces;
+* ``differs``: nothing in a family of N readings reproduces; the row names the closest reading.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from decimal import ROUND_DOWN, ROUND_HALF_EVEN, Context, Decimal, localcontext
+
+import numpy as np
+import pandas as pd
+
+from brdfs.pipeline.published import VERDICTS
+
+REPRODUCES, UNDER_READING, INPUT_MISPRINT, WITHIN_MC, CONSISTENT, DIFFERS = VERDICTS
+
+#: Placebo draws per group, and the percentile a reading's score must exceed.
+PLACEBO_DRAWS = 400
+PLACEBO_PERCENTILE = 99.0
+#: Groups with at most this many numeric prints get ``consistent with a reading``, never accepted.
+SMALL_GROUP = 2
+#: |z| a Monte Carlo reading may reach.
+MC_Z_MAX = 3.0
+
+_CONTEXT = Context(prec=1200)
+#: Printed digits of a value that has no printed form under a reading (NaN, inf, another exponent).
+NO_DIGITS = np.iinfo(np.int64).min
+
+
+def print_exponent(published: str) -> int:
+    """The decimal exponent of a print's last digit.
+
+    >>> print_exponent("0.30884"), print_exponent("41721."), print_exponent("7.8e-3")
+    (-5, 0, -4)
+    """
+    return Decimal(published).as_tuple().exponent
+
+
+def printed_digits(published: str) -> int:
+    """The print as an integer count of its last digit's units.
+
+    >>> printed_digits("0.30884"), printed_digits("41721."), printed_digits("7.8e-3")
+    (30884, 41721, 78)
+    """
+    return int(Decimal(published).scaleb(-print_exponent(published)))
+
+
+def digits_of(value: float, published: str, rule: str = "round") -> int:
+    """``value`` in the printed form of ``published`` under a printing rule, as an integer.
+
+    Rules: ``round`` (half to even, as the comparison), ``truncate`` (towards zero), and
+    ``fixed<N>_width<W>`` (``'%.Nf' % value`` cut to its first W characters, as a program of the
+    time writing into a fixed-width column; the cut must end at the print's last decimal place).
+
+    >>> digits_of(10.216762, "10.216", "round"), digits_of(10.216762, "10.216", "truncate")
+    (10217, 10216)
+    >>> digits_of(10.216762, "10.216", "fixed4_width6"), digits_of(0.375396, "0.3754", "fixed4_width6")
+    (10216, 3754)
+    """
+    value = float(value)
+    if not math.isfinite(value):
+        return NO_DIGITS
+    exponent = print_exponent(published)
+    if rule in ("round", "truncate"):
+        with localcontext(_CONTEXT):
+            quantum = Decimal((0, (1,), exponent))
+            q = Decimal(value).quantize(quantum, rounding=ROUND_HALF_EVEN if rule == "round" else ROUND_DOWN)
+            return int(q.scaleb(-exponent))
+    if rule.startswith("fixed"):
+        decimals, width = (int(part) for part in rule.removeprefix("fixed").split("_width"))
+        text = f"{value:.{decimals}f}"[:width]
+        printed = Decimal(text if not text.endswith(".") else text + "0")
+        cut_exponent = -len(text.split(".")[1]) if "." in text else 0
+        if cut_exponent != exponent and not (text.endswith(".") and exponent == 0):
+            return NO_DIGITS
+        return int(printed.scaleb(-exponent))
+    raise ValueError(f"unknown printing rule {rule!r}")
+
+
+def digits_matrix(values: np.ndarray, prints: list[str], rules) -> np.ndarray:
+    """Printed digits of ``values[r, e]`` in the form of ``prints[e]``, under ``rules[r]`` (one
+    rule per reading, or one rule for all)."""
+    values = np.asarray(values, float)
+    rules = [rules] * values.shape[0] if isinstance(rules, str) else list(rules)
+    return np.array([[digits_of(v, p, rule) for v, p in zip(row, prints)] for row, rule in zip(values, rules)],
+                    dtype=np.int64)
+
+
+@dataclass
+class Search:
+    """The outcome of one group's search over its family.
+
+    ``readings`` has one row per reading (its parameter columns, ``reading`` its name,
+    ``score``); ``values[r, e]`` the value reading r gives entry e; ``hits[r, e]`` whether it
+    reproduces the print.
+    """
+
+    group: str
+    entries: pd.DataFrame
+    readings: pd.DataFrame
+    values: np.ndarray
+    hits: np.ndarray
+    placebo_scores: np.ndarray
+    placebo_p99: float
+    procedure: str = ""
+    axes: tuple[str, ...] = ()
+    notes: dict = field(default_factory=dict)
+
+    @property
+    def family_size(self) -> int:
+        return len(self.readings)
+
+    @property
+    def size(self) -> int:
+        return len(self.entries)
+
+    @property
+    def best(self) -> int:
+        """Index of the best reading: the highest score, the first declared among ties."""
+        if getattr(self, "_best", None) is not None:
+            return self._best
+        return int(np.argmax(self.readings["score"].to_numpy()))
+
+    @property
+    def best_score(self) -> int:
+        return int(self.readings["score"].iloc[self.best])
+
+    @property
+    def small(self) -> bool:
+        return self.size <= SMALL_GROUP
+
+    @property
+    def accepted(self) -> bool:
+        """Whether the best reading beats the placebo (never for a small group)."""
+        return not self.small and self.best_score > self.placebo_p99
+
+    def closest(self, e: int) -> int:
+        """The reading whose value is nearest entry e's print (relative), for a row that differs."""
+        printed = float(self.entries["published"].iloc[e])
+        distance = np.abs(self.values[:, e] - printed) / max(abs(printed), 1e-300)
+        distance = np.where(np.isfinite(distance), distance, np.inf)
+        return int(np.argmin(distance))
+
+    @classmethod
+    def from_tidy(cls, df: pd.DataFrame, axes: tuple[str, ...] = ()) -> "Search":
+        """The search as written by :meth:`tidy` (an artifact's CSV), for the comparison."""
+        per_reading = df.drop_duplicates("reading", keep="first")
+        keys = ["model", "param_value", "quantity"]
+        first = df[df["reading"] == per_reading["reading"].iloc[0]]
+        entries = first[keys + ["published"]].astype(str).reset_index(drop=True)
+        size = len(entries)
+        values = df["value"].to_numpy(float).reshape(len(per_reading), size)
+        hits = df["reproduces"].to_numpy(bool).reshape(len(per_reading), size)
+        readings = per_reading.drop(columns=keys + ["published", "value", "reproduces"]).reset_index(drop=True)
+        s = cls(str(df["group"].iloc[0]), entries, readings, values, hits, np.empty(0),
+                float(per_reading["placebo_p99"].iloc[0]), axes=axes)
+        s._best = int(np.flatnonzero(per_reading["best"].to_numpy(bool))[0])
+        return s
+
+    def specificity(self) -> pd.DataFrame:
+        """The score of the best reading's neighbours: one grid step either way along each axis."""
+        best = self.readings.iloc[self.best]
+        rows = []
+        for axis in self.axes:
+            others = [a for a in self.axes if a != axis]
+            same = np.ones(len(self.readings), bool)
+            for a in others:
+                same &= (self.readings[a].astype(str) == str(best[a])).to_numpy()
+            line = self.readings[same]
+            position = list(line.index).index(self.best)
+            for step in (-1, 1):
+                if 0 <= position + step < len(line):
+                    neighbour = line.iloc[position + step]
+                    rows.append({"axis": axis, "step": step, "value": neighbour[axis], "score": int(neighbour["score"])})
+        return pd.DataFrame(rows, columns=["axis", "step", "value", "score"])
+
+    def tidy(self) -> pd.DataFrame:
+        """One row per (reading, entry): the reading's parameters, the entry, its value and digits
+        under the reading, whether it reproduces; with the group's family size, best reading,
+        placebo percentile and acceptance repeated on every row."""
+        r_idx, e_idx = np.meshgrid(np.arange(self.family_size), np.arange(self.size), indexing="ij")
+        r_idx, e_idx = r_idx.ravel(), e_idx.ravel()
+        out = self.readings.iloc[r_idx].reset_index(drop=True)
+        entries = self.entries.iloc[e_idx].reset_index(drop=True)
+        for column in ("model", "param_value", "quantity", "published"):
+            out[column] = entries[column]
+        out["value"] = self.values[r_idx, e_idx]
+        out["reproduces"] = self.hits[r_idx, e_idx]
+        out.insert(0, "group", self.group)
+        out["family_size"] = self.family_size
+        out["group_size"] = self.size
+        out["best"] = r_idx == self.best
+        out["placebo_p99"] = self.placebo_p99
+        out["accepted"] = self.accepted
+        out["small_group"] = self.small
+        return out
+
+
+def search(group: str, entries: pd.DataFrame, readings: pd.DataFrame, values: np.ndarray, rules="round",
+           seed: int = 0, axes: tuple[str, ...] = (), procedure: str = "", draws: int = PLACEBO_DRAWS) -> Search:
+    """Score every reading of a family on a group, with its placebo.
+
+    Parameters
+    ----------
+    group : str
+        The group's name.
+    entries : pandas.DataFrame
+        The group's printed rows (``model, param_value, quantity, published``), numeric prints only.
+    readings : pandas.DataFrame
+        One row per reading: ``reading`` (its name) and its parameter columns, in declared order
+        (along each axis in ``axes``, neighbouring rows are neighbouring grid steps).
+    values : array_like, shape (readings, entries)
+        The value each reading gives each entry.
+    rules : str or sequence of str
+        The printing rule of every reading (:func:`digits_of`).
+    seed : int
+        Seed of the placebo's draws.
+    draws : int
+        The placebo's draws.
+    """
+    prints = list(entries["published"])
+    digits = digits_matrix(values, prints, rules)
+    target = np.array([printed_digits(p) for p in prints], dtype=np.int64)
+    hits = digits == target[None, :]
+    readings = readings.reset_index(drop=True).copy()
+    readings["score"] = hits.sum(axis=1)
+    placebo = placebo_scores(digits, target, seed, draws)
+    return Search(group, entries.reset_index(drop=True), readings, np.asarray(values, float), hits, placebo,
+                  float(np.percentile(placebo, PLACEBO_PERCENTILE)), procedure, tuple(axes))
+
+
+def placebo_scores(digits: np.ndarray, target: np.ndarray, seed: int, draws: int = PLACEBO_DRAWS) -> np.ndarray:
+    """The best score of the family on ``draws`` sets of prints, each print's last digit moved by
+    ±1 at random: what the search finds in prints that no procedure made."""
+    rng = np.random.default_rng(seed)
+    moved = target[None, :] + rng.choice(np.array([-1, 1]), size=(draws, target.size))
+    return np.array([(digits == row[None, :]).sum(axis=1).max() for row in moved])
+
+
+def planted(values: np.ndarray, reading: int, prints: list[str], rules="round") -> list[str]:
+    """Synthetic prints that reading ``reading`` makes: its values in the printed form of ``prints``
+    (for the test that the search finds a planted rule)."""
+    digits = digits_matrix(np.asarray(values)[[reading]], prints, rules if isinstance(rules, str) else [rules[reading]])[0]
+    return [str(Decimal(int(d)).scaleb(print_exponent(p))) for d, p in zip(digits, prints)]
+
+
+def entry_verdicts(s: Search, as_printed: list[str], name_of=None) -> pd.DataFrame:
+    """The reading columns of the comparison for every entry of a searched group.
+
+    ``as_printed[e]`` is the entry's verdict from the formula (``reproduces`` or ``differs``);
+    a differing entry becomes ``reproduces under a reading`` when the group's reading is accepted
+    and reproduces it, ``consistent with a reading`` when the group is small and the best reading
+    reproduces every entry; otherwise it stays ``differs`` and names its closest reading.
+    """
+    name_of = name_of or (lambda r: s.readings["reading"].iloc[r])
+    best, rows = s.best, []
+    whole_small_group = s.small and bool(s.hits[best].all())
+    for e, verdict in enumerate(as_printed):
+        row = {"model": s.entries["model"].iloc[e], "param_value": s.entries["param_value"].iloc[e],
+               "quantity": s.entries["quantity"].iloc[e], "family_size": str(s.family_size),
+               "group_score": f"{s.best_score}/{s.size}", "placebo_p99": s.placebo_p99}
+        reproduced = bool(s.hits[best, e])
+        if verdict == REPRODUCES:
+            row |= {"reading_verdict": "", "reading": name_of(best) if reproduced and s.accepted else "",
+                    "value_under_reading": s.values[best, e] if reproduced and s.accepted else np.nan}
+        elif reproduced and (s.accepted or whole_small_group):
+            row |= {"reading_verdict": UNDER_READING if s.accepted else CONSISTENT, "reading": name_of(best),
+                    "value_under_reading": s.values[best, e]}
+        else:
+            closest = best if reproduced else s.closest(e)
+            row |= {"reading_verdict": "", "reading": name_of(closest), "value_under_reading": s.values[closest, e],
+                    "closest_hits": bool(s.hits[closest, e])}
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def describe(s: Search) -> str:
+    """One sentence on a group's search: family, best reading, score, placebo."""
+    best = s.readings.iloc[s.best]
+    status = ("accepted" if s.accepted else
+              "a group too small for the placebo" if s.small else "not above the placebo")
+    return (f"{s.group}: best of {s.family_size} readings '{best['reading']}' reproduces {s.best_score}/{s.size} "
+            f"(placebo 99th percentile {s.placebo_p99:g}; {status})")
+
+
+def plot_scores(df: pd.DataFrame, path, x: str, lines: tuple[str, ...], title: str, xlabel: str,
+                log_x: bool = False) -> None:
+    """One group's search as :func:`plot_groups` draws it, alone."""
+    plot_groups(df, path, [dict(group=df["group"].iloc[0], x=x, lines=lines, title=title, xlabel=xlabel, log_x=log_x)])
+
+
+def plot_groups(df: pd.DataFrame, path, panels: list[dict]) -> None:
+    """Entries reproduced against a reading's parameter, one panel per group: one line per value of
+    the panel's first ``lines`` axis (the best over the others), the chosen reading's own line thick
+    and its point starred, readings without that parameter as dashed levels, and the placebo's 99th
+    percentile as a grey band."""
+    from brdfs.pipeline import plotting
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 4.2), squeeze=False)
+    for ax, panel in zip(axes[0], panels):
+        _score_panel(ax, df[df["group"] == panel["group"]], **{k: v for k, v in panel.items() if k != "group"})
+    fig.tight_layout()
+    plotting.savefig(fig, path)
+
+
+def _label(value) -> str:
+    """A parameter value for a legend: whole numbers without '.0'."""
+    number = pd.to_numeric(pd.Series([value]), errors="coerce").iloc[0]
+    return f"{number:g}" if pd.notna(number) else str(value)
+
+
+def _score_panel(ax, df: pd.DataFrame, x: str, lines: tuple[str, ...], title: str, xlabel: str,
+                 log_x: bool = False) -> None:
+    per_reading = df.drop_duplicates("reading")
+    size, p99 = int(per_reading["group_size"].iloc[0]), float(per_reading["placebo_p99"].iloc[0])
+    ax.axhspan(0, p99, color="0.88", label=f"placebo 99th pct. ({p99:g})")
+    on_axis = per_reading[pd.to_numeric(per_reading[x], errors="coerce").notna()]
+    for value, part in on_axis.groupby(lines[0], sort=False):
+        best = part.groupby(x, sort=True)["score"].max()
+        ax.plot(best.index.astype(float), best.to_numpy(), marker=".", lw=1, label=f"{lines[0]} {_label(value)}")
+    for r in per_reading[pd.to_numeric(per_reading[x], errors="coerce").isna()].itertuples():
+        ax.axhline(r.score, ls="--", lw=1, color="0.4")
+        ax.annotate(r.reading, (0.01, r.score), xycoords=("axes fraction", "data"), fontsize=7,
+                    va="bottom", color="0.3")
+    chosen = per_reading[per_reading["best"]].iloc[0]
+    if pd.notna(pd.to_numeric(chosen[x], errors="coerce")):
+        same = np.ones(len(on_axis), bool)
+        for axis in lines:
+            same &= (on_axis[axis].astype(str) == str(chosen[axis])).to_numpy()
+        own = on_axis[same].sort_values(x)
+        ax.plot(own[x].astype(float), own["score"], color="black", lw=2.2, label="chosen reading's line")
+        ax.plot([float(chosen[x])], [chosen["score"]], marker="*", ms=14, color="black", ls="none")
+    if log_x:
+        from matplotlib.ticker import NullFormatter
+
+        ax.set_xscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_ylim(0, size + 0.5)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"entries reproduced (of {size})")
+    ax.set_title(title)
+    ax.legend(fontsize=7, loc="lower right", framealpha=0.9)
+
+
+def with_search(records: pd.DataFrame, tidy: pd.DataFrame, evidence: str, effect=None, group: str | None = None) -> pd.DataFrame:
+    """Comparison rows (``records``, with an ``as_printed`` verdict column) completed by a group's
+    search (``tidy``, as an artifact wrote it): the reading verdict, reading, its value, the
+    family's size, the group's score and a reason for every row of the group that the formula does
+    not reproduce. Rows outside the group pass unchanged.
+
+    ``effect(value_under_reading, computed) -> str`` says what the reading did to the printed digits.
+    """
+    s = Search.from_tidy(tidy if group is None else tidy[tidy["group"] == group])
+    keys = ["model", "param_value", "quantity"]
+    in_group = {tuple(str(v) for v in row) for row in s.entries[keys].itertuples(index=False)}
+    position = {k: i for i, k in enumerate(tuple(str(v) for v in row) for row in s.entries[keys].itertuples(index=False))}
+    as_printed = []
+    for r in records.itertuples():
+        key = (str(r.model), str(r.param_value), str(r.quantity))
+        as_printed.append((position.get(key), r.as_printed))
+    verdicts = entry_verdicts(s, [REPRODUCES] * s.size)
+    for e, v in [(e, v) for e, v in as_printed if e is not None]:
+        verdicts.iloc[e] = entry_verdicts(s, [v if i == e else REPRODUCES for i in range(s.size)]).iloc[e]
+    out = []
+    for (e, verdict), record in zip(as_printed, records.to_dict("records")):
+        record.pop("as_printed")
+        if e is None:
+            out.append(record)
+            continue
+        row = verdicts.iloc[e].to_dict()
+        record |= {k: row[k] for k in ("reading_verdict", "reading", "value_under_reading", "family_size", "group_score")}
+        record["evidence"] = f"{record.get('evidence', '')}; {evidence}".strip("; ")
+        if verdict != REPRODUCES:
+            record["reason"] = _reason(s, row, record["computed"], effect)
+        out.append(record)
+    return pd.DataFrame(out)
+
+
+def _reason(s: Search, row: dict, computed: float, effect) -> str:
+    """The reason of a row the formula does not reproduce, from its group's search."""
+    value = row["value_under_reading"]
+    if row["reading_verdict"]:
+        said = f"; {effect(value, computed)}" if effect else ""
+        return (f"the thesis's procedure '{row['reading']}' gives {value:.6g}, which prints as the print "
+                f"(it reproduces {row['group_score']} of the group, best of {s.family_size} readings, "
+                f"placebo 99th percentile {s.placebo_p99:g}){said}")
+    why = ("not above the placebo" if not s.small and not s.accepted else
+           "the group is too small for the placebo" if s.small else "it does not reproduce this entry")
+    return (f"no reading of a family of {s.family_size} reproduces it; the closest, '{row['reading']}', gives "
+            f"{value:.6g} (the group's best reading reproduces {row['group_score']}; {why}); the formula "
+            f"gives {computed:.6g}")
