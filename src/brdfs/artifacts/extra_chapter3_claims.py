@@ -8,6 +8,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.numerics.albedo import albedo
 from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.physics.models import model
@@ -92,6 +93,21 @@ def overshoot_rows(cfg: dict, tables: dict) -> pd.DataFrame:
     return _claim_rows("overshoot", tables[NAME])
 
 
-@comparison("blinn_90deg", tables=(NAME,))
+@comparison("blinn_90deg", tables=(NAME, "extra_readings_chapter_3"))
 def blinn_90deg_rows(cfg: dict, tables: dict) -> pd.DataFrame:
-    return _claim_rows("blinn_90deg", tables[NAME])
+    """Sec. 3.7.4's two prints, completed by their search (the angle read as 90°, C_n computed or printed)."""
+    from brdfs.artifacts.extra_readings_chapter_3 import GROUPS, NAME as READINGS
+
+    df = tables[NAME]
+    prints = published.published_rows("blinn_90deg")
+    records = []
+    for r in df[(df["claim"] == "blinn_90deg") & (df["role"] == "claim")].itertuples():
+        hit = prints[(prints["model"] == r.model) & (prints["param_value"] == f"{r.n:g}")]
+        if hit.empty:
+            continue
+        records.append({"model": r.model, "param_value": f"{r.n:g}", "quantity": r.quantity, "computed": r.value,
+                        "computed_err": r.value_err, "evidence": get_artifact(NAME).csv,
+                        "as_printed": published.verdict(hit["published"].iloc[0], r.value, r.value_err)})
+    done = readings.with_search(pd.DataFrame.from_records(records), tables[READINGS], get_artifact(READINGS).csv,
+                                group=GROUPS["blinn_90deg"])
+    return done.drop(columns="as_printed")

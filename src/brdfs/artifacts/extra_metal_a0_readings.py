@@ -1,10 +1,9 @@
-"""Alternative readings of Table 1.2's inputs, each evaluated with eq. 1.40.
+"""How Table 1.2 was computed: eq. 1.40 of its inputs, searched over two declared families.
 
-For every metal: the inputs as printed; every transposition of two adjacent
-digits of ``n`` and of ``k`` (the decimal point kept in place); and the four
-corners ``n +- h_n``, ``k +- h_k`` of the printed rounding intervals (``h`` half
-a unit of the last printed digit). The readings use no printed output: the
-comparison ``metal_a0`` picks the one, if any, that reproduces a print.
+* the group's readings: the inputs n, k anywhere in a box of half-width w units of their last
+  printed digit, for each w of ``readings.table_1_2.box_half_widths`` (w = 1/2 is the rounding
+  box; w = 0 the inputs as printed), the box's extremes proven (:func:`box_range`);
+* input misprints: two adjacent digits of n, or of k, transposed (the decimal point kept).
 """
 
 from __future__ import annotations
@@ -13,82 +12,113 @@ from decimal import Decimal
 
 import pandas as pd
 
-from brdfs.pipeline import plotting
+import numpy as np
+
+from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.pipeline.registry import table
-from brdfs.artifacts.table_1_2_metal_reflectance import a0_percent
+from brdfs.artifacts.table_1_2_metal_reflectance import ARTIFACT, a0_percent
 
 
-def adjacent_transpositions(printed: str) -> list[str]:
-    """Distinct numbers obtained by swapping two adjacent digits of ``printed``.
+def box_range(n: str, k: str, half_width: float) -> tuple[float, float]:
+    """The smallest and largest a0 (percent, eq. 1.40) for inputs anywhere in the box
+    ``n ± w u_n``, ``k ± w u_k`` (u a unit of the printed input's last digit, w = ``half_width``).
 
-    Examples
-    --------
-    >>> adjacent_transpositions("4.58"), adjacent_transpositions("0.331")
-    (['5.48', '4.85'], ['3.031', '0.313'])
+    The extremes are proven to lie at two corners: with a0 = 1 − 4n/((n + 1)² + k²),
+    ∂a0/∂k = 8nk/((n + 1)² + k²)² > 0 and ∂a0/∂n = −4(1 − n² + k²)/((n + 1)² + k²)², which is < 0
+    wherever k² + 1 > n². Where that holds on the whole box (k_lo² + 1 > n_hi², checked), a0 falls
+    with n and rises with k, so its minimum is at (n_hi, k_lo) and its maximum at (n_lo, k_hi).
+
+    >>> low, high = box_range("2.06", "4.26", 0.5)
+    >>> round(low, 3), round(high, 3)
+    (69.978, 70.119)
     """
+    def ends(printed: str) -> tuple[float, float]:
+        unit = float(Decimal((0, (1,), Decimal(printed).as_tuple().exponent)))
+        return float(printed) - half_width * unit, float(printed) + half_width * unit
+
+    (n_lo, n_hi), (k_lo, k_hi) = ends(n), ends(k)
+    if not k_lo * k_lo + 1.0 > n_hi * n_hi or n_lo <= 0 or k_lo < 0:
+        raise ValueError(f"a0 is not monotone on the box n in [{n_lo}, {n_hi}], k in [{k_lo}, {k_hi}]")
+    low, _ = a0_percent(np.array([n_hi]), np.array([k_lo]))
+    high, _ = a0_percent(np.array([n_lo]), np.array([k_hi]))
+    return float(low[0]), float(high[0])
+
+
+def _inputs(cfg: dict, entries: pd.DataFrame) -> list[tuple[str, str]]:
+    metals = {m["name"]: m for m in cfg["metal_reflectance"]["metals"]}
+    return [(str(float(metals[e]["ior_re"])), str(float(metals[e]["ior_im"]))) for e in entries["param_value"]]
+
+
+def box_search(cfg: dict) -> readings.Search:
+    """The group's search: inputs anywhere in a box of each declared half-width, a set-valued
+    reading (the range of a0 over the box)."""
+    entries = published.published_rows(ARTIFACT).reset_index(drop=True)
+    inputs = _inputs(cfg, entries)
+    rows, low, high = [], [], []
+    for w in cfg["readings"]["table_1_2"]["box_half_widths"]:
+        rows.append({"reading": ("inputs as printed" if w == 0 else
+                                 f"inputs anywhere within {w:g} unit of their last printed digit"), "half_width": w})
+        ranges = np.array([box_range(n, k, w) for n, k in inputs])
+        low.append(ranges[:, 0])
+        high.append(ranges[:, 1])
+    return readings.search(GROUP, entries, pd.DataFrame(rows), np.array(low), values_hi=np.array(high),
+                           seed=cfg["seed"], draws=cfg["readings"]["placebo_draws"], axes=("half_width",),
+                           procedure="eq. 1.40 of the inputs anywhere in their rounding box")
+
+
+def misprint_search(cfg: dict) -> readings.Search:
+    """Input misprints: every swap of two adjacent digits of n, or of k (the decimal point kept),
+    one reading per (input, position); an entry whose input has no such pair gives NaN."""
+    entries = published.published_rows(ARTIFACT).reset_index(drop=True)
+    inputs = _inputs(cfg, entries)
+    rows, values = [], []
+    for symbol, which in (("n", 0), ("k", 1)):
+        for position in range(4):
+            rows.append({"reading": f"{symbol}: digits {position + 1} and {position + 2} transposed",
+                         "input": symbol, "position": position + 1})
+            row = []
+            for pair in inputs:
+                swapped = _swap(pair[which], position)
+                if swapped is None:
+                    row.append(np.nan)
+                    continue
+                n, k = (swapped, pair[1]) if which == 0 else (pair[0], swapped)
+                row.append(float(a0_percent(np.array([float(n)]), np.array([float(k)]))[0][0]))
+            values.append(row)
+    return readings.search(MISPRINTS, entries, pd.DataFrame(rows), np.array(values), seed=cfg["seed"],
+                           draws=cfg["readings"]["placebo_draws"], axes=("position", "input"),
+                           procedure="a misprinted input: two adjacent digits of n or k transposed")
+
+
+def _swap(printed: str, position: int) -> str | None:
+    """``printed`` with its digits ``position`` and ``position + 1`` (from 0) swapped; None if
+    there is no such pair or the swap changes nothing."""
     digits = [i for i, c in enumerate(printed) if c.isdigit()]
-    swapped = []
-    for i, j in zip(digits, digits[1:]):
-        chars = list(printed)
-        chars[i], chars[j] = chars[j], chars[i]
-        text = "".join(chars)
-        if text != printed and text not in swapped:
-            swapped.append(text)
-    return swapped
+    if position + 1 >= len(digits):
+        return None
+    chars = list(printed)
+    i, j = digits[position], digits[position + 1]
+    chars[i], chars[j] = chars[j], chars[i]
+    text = "".join(chars)
+    return None if text == printed else text
 
 
-def rounding_corners(printed_re: str, printed_im: str) -> list[tuple[str, str]]:
-    """The corners of the rounding intervals of two printed decimals.
-
-    Examples
-    --------
-    >>> rounding_corners("2.06", "4.26")[0]
-    ('2.055', '4.255')
-    """
-
-    def ends(printed: str) -> tuple[str, str]:
-        value = Decimal(printed)
-        half = Decimal((0, (5,), value.as_tuple().exponent - 1))
-        return str(value - half), str(value + half)
-
-    return [(re, im) for re in ends(printed_re) for im in ends(printed_im)]
+GROUP = "Table 1.2 a0"
+MISPRINTS = "Table 1.2 a0, input misprints"
 
 
-def _readings(ior_re: float, ior_im: float) -> list[tuple[str, str, str]]:
-    """``(reading, n, k)`` for the printed inputs (their shortest decimal reprs)."""
-    n, k = str(float(ior_re)), str(float(ior_im))
-    return [
-        ("printed", n, k),
-        *(("transposed_ior_re", t, k) for t in adjacent_transpositions(n)),
-        *(("transposed_ior_im", n, t) for t in adjacent_transpositions(k)),
-        *(("rounding_corner", re, im) for re, im in rounding_corners(n, k)),
-    ]
-
-
-@table("extra_metal_a0_readings", config=("metal_reflectance",), chapter=1)
+@table("extra_metal_a0_readings", config=("metal_reflectance", "readings", "seed"), chapter=1)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """Eq. 1.40 under each reading of each metal's inputs.
-
-    Returns
-    -------
-    pandas.DataFrame
-        Columns ``metal, reading, ior_re, ior_im, a0_percent, a0_percent_err``;
-        ``reading`` is ``printed``, ``transposed_ior_re``, ``transposed_ior_im``
-        or ``rounding_corner``.
-    """
-    records = [
-        {"metal": metal["name"], "reading": reading, "ior_re": float(n), "ior_im": float(k)}
-        for metal in cfg["metal_reflectance"]["metals"]
-        for reading, n, k in _readings(metal["ior_re"], metal["ior_im"])
-    ]
-    df = pd.DataFrame.from_records(records)
-    value, err = a0_percent(df["ior_re"].to_numpy(), df["ior_im"].to_numpy())
-    return df.assign(a0_percent=value, a0_percent_err=err)
+    """The two searches of Table 1.2, one row per (group, reading, entry)."""
+    return pd.concat([box_search(cfg).tidy(), misprint_search(cfg).tidy()], ignore_index=True)
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    """The readings as a table."""
-    shown = df[["metal", "reading", "ior_re", "ior_im"]].astype(str).assign(
-        **{"a0 eq. 1.40 [%]": [f"{v:.3f}" for v in df["a0_percent"]]}
-    )
-    plotting.save_table_png(shown, path, "Readings of Table 1.2's inputs n, k, each through eq. 1.40")
+    """Entries reproduced against the inputs' box and against the transposed digits."""
+    readings.plot_groups(df, path, [
+        dict(group=GROUP, x="half_width", lines=("group",), title="inputs in a box",
+             xlabel="half-width of the inputs' box (units of the last printed digit)"),
+        dict(group=MISPRINTS, x="position", lines=("input",), title="one input misprinted",
+             xlabel="position of the transposed pair of digits"),
+    ])

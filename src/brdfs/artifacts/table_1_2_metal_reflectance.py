@@ -15,6 +15,7 @@ import pandas as pd
 from brdfs.physics import fresnel
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.physics.fresnel import UNIT_ROUNDOFF
 
@@ -62,80 +63,27 @@ def plot(df: pd.DataFrame, path) -> None:
     plotting.save_table_png(shown, path, "Table 1.2: reflectance a0 = rho at normal incidence, printed and by eq. 1.40")
 
 
-def _text(value: float) -> str:
-    """A decimal input as printed (the shortest repr of the double)."""
-    return str(float(value))
-
-
-def _explain(printed: str, computed: float, readings: pd.DataFrame) -> dict:
-    """Reason, reading and value under the reading for a print eq. 1.40 does not reproduce.
-
-    Tries, in this order: truncation instead of rounding, a transposition of two
-    adjacent digits of ``n`` or ``k``, and ``n``, ``k`` at the ends of their
-    printed rounding intervals; within a kind, the reading closest to the
-    computed value wins.
-    """
-    evidence = get_artifact(READINGS).csv
-    if published.truncates_to(printed, computed):
-        return {"reason": f"truncated, not rounded: eq. 1.40 gives {computed:.3f}", "evidence": evidence}
-    printed_inputs = readings[readings["reading"] == "printed"].iloc[0]
-    for kind in ("transposed_ior_re", "transposed_ior_im", "rounding_corner"):
-        candidates = readings[readings["reading"] == kind]
-        candidates = candidates[[published.rounds_to(printed, v) for v in candidates["a0_percent"]]]
-        if not candidates.empty:
-            best = candidates.loc[(candidates["a0_percent"] - computed).abs().idxmin()]
-            return _explained_by(kind, best, printed_inputs, computed) | {"evidence": evidence}
-    return {
-        "reason": (
-            f"eq. 1.40 gives {computed:.3f}; neither truncation, nor a transposition of adjacent digits "
-            "of n or k, nor n, k at the ends of their printed rounding intervals reproduces the print"
-        ),
-        "evidence": evidence,
-    }
-
-
-def _explained_by(kind: str, best: pd.Series, printed_inputs: pd.Series, computed: float) -> dict:
-    """The reason and reading for the reading ``best`` of kind ``kind``."""
-    if kind == "rounding_corner":
-        inputs = f"n = {_text(best['ior_re'])}, k = {_text(best['ior_im'])}"
-        return {
-            "reason": (
-                f"eq. 1.40 gives {computed:.3f} for the printed n = {_text(printed_inputs['ior_re'])}, "
-                f"k = {_text(printed_inputs['ior_im'])}; no digit transposition reproduces the print, but {inputs}, "
-                f"within the rounding of the printed inputs, gives {best['a0_percent']:.3f}"
-            ),
-            "reading": f"inputs unrounded: {inputs}",
-            "value_under_reading": best["a0_percent"],
-        }
-    symbol, column = ("n", "ior_re") if kind == "transposed_ior_re" else ("k", "ior_im")
-    misprint, printed = _text(best[column]), _text(printed_inputs[column])
-    return {
-        "reason": (
-            f"misprinted input: {symbol} = {misprint} instead of {printed} "
-            f"gives {best['a0_percent']:.2f}; eq. 1.40 with the printed inputs gives {computed:.2f}"
-        ),
-        "reading": f"{symbol} = {misprint} (digits of the printed {printed} transposed)",
-        "value_under_reading": best["a0_percent"],
-    }
-
-
 @comparison(ARTIFACT, tables=("table_1_2_metal_reflectance", READINGS))
 def rows(cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """Comparison rows of Table 1.2: computed a0, and a reason wherever it differs."""
+    """Comparison rows of Table 1.2: computed a0, completed by the searches of
+    :mod:`extra_metal_a0_readings` (inputs in their box for the group, misprinted inputs per entry)."""
+    from brdfs.artifacts.extra_metal_a0_readings import GROUP, MISPRINTS
+
     computed = tables["table_1_2_metal_reflectance"]
-    readings = tables[READINGS]
     prints = published.published_rows(ARTIFACT).set_index("param_value")["published"]
     records = []
     for row in computed.itertuples(index=False):
-        record = {
-            "model": "fresnel_normal_incidence",
-            "param_value": row.metal,
-            "quantity": "a0_percent",
-            "computed": row.a0_percent,
-            "computed_err": row.a0_percent_err,
-        }
         printed = prints.get(row.metal)  # None for a metal the thesis does not print: make_fragment refuses it
-        if printed is not None and published.verdict(printed, row.a0_percent, row.a0_percent_err) == published.DIFFERS:
-            record |= _explain(printed, row.a0_percent, readings[readings["metal"] == row.metal])
-        records.append(record)
-    return pd.DataFrame.from_records(records)
+        records.append({"model": "fresnel_normal_incidence", "param_value": row.metal, "quantity": "a0_percent",
+                        "computed": row.a0_percent, "computed_err": row.a0_percent_err,
+                        "as_printed": published.verdict(printed, row.a0_percent, row.a0_percent_err) if printed else ""})
+    records = pd.DataFrame.from_records(records)
+    where = get_artifact(READINGS).csv
+    records = readings.with_search(records.assign(kept=records["as_printed"]), tables[READINGS], where,
+                                   effect=_box_effect, group=GROUP)
+    records = readings.with_misprints(records.assign(as_printed=records.pop("kept")), tables[READINGS], MISPRINTS, where)
+    return records.drop(columns="as_printed")
+
+
+def _box_effect(value_under_reading: float, computed: float) -> str:
+    return f"inputs rounded to the printed digits move a0 by {value_under_reading - computed:+.3f} percentage points"

@@ -12,6 +12,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.numerics.albedo import albedo_table
 from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.physics.models import model
@@ -53,25 +54,23 @@ def plot(df: pd.DataFrame, path) -> None:
                             "Table 3.1: maximal C_n of Blinn and Blinn/cos(theta_min), printed and computed")
 
 
-def readings_of(row) -> dict:
-    """The readings fixed in advance, by name, for one row of the table."""
-    out = {"albedo at normal incidence only": row.C_normal_incidence}
-    out |= {f"maximum over a {s} deg grid of theta": getattr(row, f"C_grid_{s}deg") for s in GRID_STEPS_DEG}
-    return out
+#: The searches of how chapter 3's tables were computed (:mod:`brdfs.artifacts.extra_readings_chapter_3`).
+READINGS = "extra_readings_chapter_3"
 
 
-@comparison("blinn_cn", tables=(NAME,))
+@comparison("blinn_cn", tables=(NAME, READINGS))
 def rows(cfg: dict, tables: dict) -> pd.DataFrame:
+    """Comparison rows of Table 3.1, completed by its search (maxima over θ grids, a(0) as sums)."""
+    from brdfs.artifacts.extra_readings_chapter_3 import GROUPS
+
     df = tables[NAME]
     printed_of = published.printed_lookup("blinn_cn")
     records = []
     for r in df.itertuples():
-        rec = {"model": r.model, "param_value": f"{r.n:g}", "quantity": "C_max", "computed": r.C, "computed_err": r.C_err}
         printed = printed_of(r.n, "C_max", r.model)
-        if printed and published.verdict(printed, r.C, r.C_err) == published.DIFFERS:
-            context = (f"the maximal albedo (C = 1) is {1 / r.C:.6f} at theta = {r.theta_max_deg:.3g} deg, so C_n = {r.C:.5f}"
-                       + (f" (at normal incidence a(0) has the closed form 8π[2(1−2^−(n+4)/2)/(n+4) − (1−2^−(n+2)/2)/(n+2)] "
-                          f"= {blinn_normal_incidence_albedo(r.n):.6f})" if r.theta_max_deg < 1e-3 else ""))
-            rec |= published.explain_with_readings(printed, r.C, readings_of(r), context, get_artifact(NAME).csv)
-        records.append(rec)
-    return pd.DataFrame.from_records(records)
+        records.append({"model": r.model, "param_value": f"{r.n:g}", "quantity": "C_max", "computed": r.C,
+                        "computed_err": r.C_err, "evidence": get_artifact(NAME).csv,
+                        "as_printed": published.verdict(printed, r.C, r.C_err) if printed else ""})
+    done = readings.with_search(pd.DataFrame.from_records(records), tables[READINGS], get_artifact(READINGS).csv,
+                                group=GROUPS["blinn_cn"])
+    return done.drop(columns="as_printed")

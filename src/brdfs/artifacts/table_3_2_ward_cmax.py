@@ -6,6 +6,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.physics.models import model
 from brdfs.numerics.quantities import maximal_constant
@@ -31,19 +32,23 @@ def plot(df: pd.DataFrame, path) -> None:
                             path, "Table 3.2: C_max of the corrected Ward model, printed and computed")
 
 
-@comparison("ward_cmax", tables=(NAME,))
+#: The searches of how chapter 3's tables were computed (:mod:`brdfs.artifacts.extra_readings_chapter_3`).
+READINGS = "extra_readings_chapter_3"
+
+
+@comparison("ward_cmax", tables=(NAME, READINGS))
 def rows(cfg: dict, tables: dict) -> pd.DataFrame:
+    """Comparison rows of Table 3.2, completed by its search (maxima over θ grids, a(0) as sums)."""
+    from brdfs.artifacts.extra_readings_chapter_3 import GROUPS
+
     df = tables[NAME]
     printed_of = published.printed_lookup("ward_cmax")
     records = []
     for r in df.itertuples():
-        rec = {"model": "ward_cosmin", "param_value": f"{r.m:g}", "quantity": "C_max", "computed": r.C, "computed_err": r.C_err}
         printed = printed_of(r.m, "C_max")
-        if printed and published.verdict(printed, r.C, r.C_err) == published.DIFFERS:
-            context = (f"the albedo is maximal at theta = {r.theta_max_deg:.2g} deg; the closed form a(0) = "
-                       f"(1/m²)∫₀¹e^(−s/m²)(1−s)/(1+s)³ds gives C_max = {r.C_normal_incidence_closed_form:.6f} "
-                       f"≈ 1 + 4m² = {r.C_series_1_plus_4m2:.6f}")
-            readings = {"albedo at normal incidence only": r.C_normal_incidence_closed_form}
-            rec |= published.explain_with_readings(printed, r.C, readings, context, get_artifact(NAME).csv)
-        records.append(rec)
-    return pd.DataFrame.from_records(records)
+        records.append({"model": "ward_cosmin", "param_value": f"{r.m:g}", "quantity": "C_max", "computed": r.C,
+                        "computed_err": r.C_err, "evidence": get_artifact(NAME).csv,
+                        "as_printed": published.verdict(printed, r.C, r.C_err) if printed else ""})
+    done = readings.with_search(pd.DataFrame.from_records(records), tables[READINGS], get_artifact(READINGS).csv,
+                                group=GROUPS["ward_cmax"])
+    return done.drop(columns="as_printed")

@@ -8,6 +8,7 @@ import pandas as pd
 
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.physics.models import model
 from brdfs.numerics.quantities import limit_mean_albedo, mean_albedo
@@ -66,30 +67,40 @@ def plot(df: pd.DataFrame, path) -> None:
     plotting.save_table_png(shown, path, "Table 3.3: mean albedo, printed and computed (Blinn with this project's C_n)")
 
 
-def _reason(name, n, computed, printed, df):
-    evidence = get_artifact(NAME).csv
-    if np.isinf(n):
-        checks = df[(df["model"] == name) & (df["role"] == "limit_check")]
-        trend = ", ".join(f"n={r.n:g}: {r.mean_albedo:.4f}" for r in checks.itertuples())
-        return {"reason": (f"the derived limit is {computed:.6g} (a(θ) → cos^k θ as n → ∞, A = 2/(k+2)), confirmed by "
-                           f"growing n ({trend}) and by the column's own finite-n prints; the printed {printed} is "
-                           f"inconsistent with them"), "evidence": evidence}
-    return {"reason": (f"eq. 3.37 gives {computed:.5f} (adaptive 2-D integration, azimuth in closed form, error "
-                       f"below 1e-10, agreeing with the nested integration of the engine's albedo in the tests); the print is {100 * (float(printed) / computed - 1):+.2f} % high, "
-                       "and the print's excess grows with n, as a fixed-resolution integration of an ever narrower lobe would "
-                       "produce; no reading of eq. 3.37 gives the print"), "evidence": evidence}
+def _limit_reason(name, computed, printed, df):
+    checks = df[(df["model"] == name) & (df["role"] == "limit_check")]
+    trend = ", ".join(f"n={r.n:g}: {r.mean_albedo:.4f}" for r in checks.itertuples())
+    context = (f"the derived limit is {computed:.6g} (a(θ) → cos^k θ as n → ∞, A = 2/(k+2)), confirmed by growing n "
+               f"({trend}) and by the column's own finite-n prints")
+    return readings.limit_law_reading(printed, computed, context) | {"evidence": get_artifact(NAME).csv}
 
 
-@comparison("mean_albedo", tables=(NAME,))
+#: The searches of how chapter 3's tables were computed (:mod:`brdfs.artifacts.extra_readings_chapter_3`).
+READINGS = "extra_readings_chapter_3"
+
+
+@comparison("mean_albedo", tables=(NAME, READINGS))
 def rows(cfg: dict, tables: dict) -> pd.DataFrame:
+    """Comparison rows of Table 3.3: the finite-n rows completed by their search (eq. 3.37's outer
+    integral as sums), the n → ∞ row against the limit laws."""
+    from brdfs.artifacts.extra_readings_chapter_3 import GROUPS
+
     df = tables[NAME]
     printed_of = published.printed_lookup("mean_albedo")
     records = []
     for r in df[df["role"] != "limit_check"].itertuples():
-        rec = {"model": r.model, "param_value": f"{r.n:g}", "quantity": "mean_albedo",
-               "computed": r.mean_albedo, "computed_err": r.mean_albedo_err}
         printed = printed_of(r.n, "mean_albedo", r.model)
-        if printed and published.verdict(printed, r.mean_albedo, r.mean_albedo_err) == published.DIFFERS:
-            rec |= _reason(r.model, r.n, r.mean_albedo, printed, df)
+        rec = {"model": r.model, "param_value": f"{r.n:g}", "quantity": "mean_albedo", "computed": r.mean_albedo,
+               "computed_err": r.mean_albedo_err, "evidence": get_artifact(NAME).csv,
+               "as_printed": published.verdict(printed, r.mean_albedo, r.mean_albedo_err) if printed else ""}
+        if np.isinf(r.n) and rec["as_printed"] == published.DIFFERS:
+            rec |= _limit_reason(r.model, r.mean_albedo, printed, df)
         records.append(rec)
-    return pd.DataFrame.from_records(records)
+    done = readings.with_search(pd.DataFrame.from_records(records), tables[READINGS], get_artifact(READINGS).csv,
+                                effect=_effect, group=GROUPS["mean_albedo"])
+    return done.drop(columns="as_printed")
+
+
+def _effect(value_under_reading: float, computed: float) -> str:
+    return (f"90 midpoints in u = cos^2 theta sample the fall of a narrow lobe's albedo next to grazing "
+            f"(u < 1/90) once, so the sum is {value_under_reading - computed:+.2g} off eq. 3.37")

@@ -19,6 +19,7 @@ import pandas as pd
 from brdfs.physics import patch_geometry as patch
 from brdfs.pipeline import plotting
 from brdfs.pipeline import published
+from brdfs.pipeline import readings
 from brdfs.numerics import quantities
 from brdfs.numerics.albedo import albedo_table
 from brdfs.pipeline.registry import comparison, get_artifact, table
@@ -140,15 +141,9 @@ def rows(cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
                   "computed": limit["value"], "computed_err": limit["value_err"], "evidence": evidence}
         if published.verdict(printed.published, limit["value"], limit["value_err"]) == published.DIFFERS:
             largest = numeric[(numeric["model"] == "phong") & (numeric["quantity"] == "mean_albedo")].iloc[-1]
-            blinn = limits.loc[("blinn", "mean_albedo"), "value"]
-            record |= {
-                "reason": (
-                    f"the reciprocal Phong c(R.V)^n tends to a(theta) = cos theta, mean albedo 2/3 "
-                    f"(n = {largest['param_value']:g} gives {largest['value']:.6f}); 1/2 is the limit of the "
-                    "Phong-Blinn C(N.H)^n model, a -> cos^2 theta, the mirror section 4.2.2 compares with"
-                ),
-                "reading": "the Phong-Blinn model C_n (N.H)^n with its maximal constant (blinn)",
-                "value_under_reading": blinn,
-            }
+            context = (f"the reciprocal Phong c(R.V)^n tends to a(theta) = cos theta, mean albedo 2/3 "
+                       f"(n = {largest['param_value']:g} gives {largest['value']:.6f}); 1/2 is the limit of the "
+                       "Phong-Blinn C(N.H)^n model, a -> cos^2 theta, the mirror section 4.2.2 compares with")
+            record |= readings.limit_law_reading(printed.published, limit["value"], context)
         records.append(record)
     return pd.DataFrame.from_records(records)

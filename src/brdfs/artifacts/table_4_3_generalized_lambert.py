@@ -86,8 +86,9 @@ def rows(cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
         records.append({"model": printed.model, "param_value": printed.param_value, "quantity": printed.quantity,
                         "computed": value, "computed_err": err, "evidence": evidence,
                         "as_printed": published.verdict(printed.published, value, err)})
-    return readings.with_search(pd.DataFrame.from_records(records), tables[READINGS], get_artifact(READINGS).csv,
+    done = readings.with_search(pd.DataFrame.from_records(records), tables[READINGS], get_artifact(READINGS).csv,
                                 effect=_effect)
+    return done.drop(columns="as_printed")
 
 
 def _effect(value_under_reading: float, computed: float) -> str:

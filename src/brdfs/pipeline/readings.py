@@ -226,7 +226,8 @@ class Search:
 
 
 def search(group: str, entries: pd.DataFrame, readings: pd.DataFrame, values: np.ndarray, rules="round",
-           seed: int = 0, axes: tuple[str, ...] = (), procedure: str = "", draws: int = PLACEBO_DRAWS) -> Search:
+           seed: int = 0, axes: tuple[str, ...] = (), procedure: str = "", draws: int = PLACEBO_DRAWS,
+           values_hi: np.ndarray | None = None) -> Search:
     """Score every reading of a family on a group, with its placebo.
 
     Parameters
@@ -239,7 +240,12 @@ def search(group: str, entries: pd.DataFrame, readings: pd.DataFrame, values: np
         One row per reading: ``reading`` (its name) and its parameter columns, in declared order
         (along each axis in ``axes``, neighbouring rows are neighbouring grid steps).
     values : array_like, shape (readings, entries)
-        The value each reading gives each entry.
+        The value each reading gives each entry; with ``values_hi``, the low end of the range of
+        values a set-valued reading (inputs anywhere in a box) gives.
+    values_hi : array_like, optional
+        The high end of each set-valued reading's range: the reading reproduces a print that some
+        value of the range prints as (rounding is monotone, so the print lies between the printed
+        ends), in the search and in every placebo draw alike.
     rules : str or sequence of str
         The printing rule of every reading (:func:`digits_of`).
     seed : int
@@ -248,22 +254,35 @@ def search(group: str, entries: pd.DataFrame, readings: pd.DataFrame, values: np
         The placebo's draws.
     """
     prints = list(entries["published"])
-    digits = digits_matrix(values, prints, rules)
+    low = digits_matrix(values, prints, rules)
+    high = low if values_hi is None else digits_matrix(values_hi, prints, rules)
     target = np.array([printed_digits(p) for p in prints], dtype=np.int64)
-    hits = digits == target[None, :]
+    hits = _within(low, high, target)
     readings = readings.reset_index(drop=True).copy()
     readings["score"] = hits.sum(axis=1)
-    placebo = placebo_scores(digits, target, seed, draws)
-    return Search(group, entries.reset_index(drop=True), readings, np.asarray(values, float), hits, placebo,
+    placebo = placebo_scores(low, target, seed, draws, high)
+    shown = np.asarray(values, float)
+    if values_hi is not None:        # the value of the range nearest the print
+        printed = np.array([float(p) for p in prints])[None, :]
+        shown = np.clip(printed, shown, np.asarray(values_hi, float))
+    return Search(group, entries.reset_index(drop=True), readings, shown, hits, placebo,
                   float(np.percentile(placebo, PLACEBO_PERCENTILE)), procedure, tuple(axes))
 
 
-def placebo_scores(digits: np.ndarray, target: np.ndarray, seed: int, draws: int = PLACEBO_DRAWS) -> np.ndarray:
+def _within(low: np.ndarray, high: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """Whether each print lies in a reading's printed range (a point: low == high)."""
+    valid = (low != NO_DIGITS) & (high != NO_DIGITS)
+    return valid & (low <= target) & (target <= high)
+
+
+def placebo_scores(digits: np.ndarray, target: np.ndarray, seed: int, draws: int = PLACEBO_DRAWS,
+                   high: np.ndarray | None = None) -> np.ndarray:
     """The best score of the family on ``draws`` sets of prints, each print's last digit moved by
     ±1 at random: what the search finds in prints that no procedure made."""
     rng = np.random.default_rng(seed)
     moved = target[None, :] + rng.choice(np.array([-1, 1]), size=(draws, target.size))
-    return np.array([(digits == row[None, :]).sum(axis=1).max() for row in moved])
+    high = digits if high is None else high
+    return np.array([_within(digits, high, row[None, :]).sum(axis=1).max() for row in moved])
 
 
 def planted(values: np.ndarray, reading: int, prints: list[str], rules="round") -> list[str]:
@@ -372,6 +391,17 @@ def _score_panel(ax, df: pd.DataFrame, x: str, lines: tuple[str, ...], title: st
     ax.legend(fontsize=7, loc="lower right", framealpha=0.9)
 
 
+def _key(row) -> tuple[str, str, str]:
+    """A row's (model, param_value, quantity), the parameter value normalised as the comparison does."""
+    from brdfs.pipeline.published import normalise_param_value
+
+    return str(row["model"]), normalise_param_value(row["param_value"]), str(row["quantity"])
+
+
+def _positions(s: Search) -> dict:
+    return {_key(row): i for i, row in enumerate(s.entries.to_dict("records"))}
+
+
 def with_search(records: pd.DataFrame, tidy: pd.DataFrame, evidence: str, effect=None, group: str | None = None) -> pd.DataFrame:
     """Comparison rows (``records``, with an ``as_printed`` verdict column) completed by a group's
     search (``tidy``, as an artifact wrote it): the reading verdict, reading, its value, the
@@ -381,19 +411,15 @@ def with_search(records: pd.DataFrame, tidy: pd.DataFrame, evidence: str, effect
     ``effect(value_under_reading, computed) -> str`` says what the reading did to the printed digits.
     """
     s = Search.from_tidy(tidy if group is None else tidy[tidy["group"] == group])
-    keys = ["model", "param_value", "quantity"]
-    in_group = {tuple(str(v) for v in row) for row in s.entries[keys].itertuples(index=False)}
-    position = {k: i for i, k in enumerate(tuple(str(v) for v in row) for row in s.entries[keys].itertuples(index=False))}
-    as_printed = []
-    for r in records.itertuples():
-        key = (str(r.model), str(r.param_value), str(r.quantity))
-        as_printed.append((position.get(key), r.as_printed))
-    verdicts = entry_verdicts(s, [REPRODUCES] * s.size)
-    for e, v in [(e, v) for e, v in as_printed if e is not None]:
-        verdicts.iloc[e] = entry_verdicts(s, [v if i == e else REPRODUCES for i in range(s.size)]).iloc[e]
+    position = _positions(s)
+    as_printed = [(position.get(_key(r)), r["as_printed"]) for r in records.to_dict("records")]
+    entry_as_printed = [REPRODUCES] * s.size
+    for e, v in as_printed:
+        if e is not None:
+            entry_as_printed[e] = v
+    verdicts = entry_verdicts(s, entry_as_printed)
     out = []
     for (e, verdict), record in zip(as_printed, records.to_dict("records")):
-        record.pop("as_printed")
         if e is None:
             out.append(record)
             continue
@@ -414,8 +440,54 @@ def _reason(s: Search, row: dict, computed: float, effect) -> str:
         return (f"the thesis's procedure '{row['reading']}' gives {value:.6g}, which prints as the print "
                 f"(it reproduces {row['group_score']} of the group, best of {s.family_size} readings, "
                 f"placebo 99th percentile {s.placebo_p99:g}){said}")
-    why = ("not above the placebo" if not s.small and not s.accepted else
-           "the group is too small for the placebo" if s.small else "it does not reproduce this entry")
+    if row.get("closest_hits"):
+        return (f"the reading '{row['reading']}' gives {value:.6g}, which prints as the print, but the group's best "
+                f"reading reproduces {row['group_score']}, not above the placebo's 99th percentile "
+                f"({s.placebo_p99:g}) of a family of {s.family_size}: no evidence of a procedure; the formula gives "
+                f"{computed:.6g}")
     return (f"no reading of a family of {s.family_size} reproduces it; the closest, '{row['reading']}', gives "
-            f"{value:.6g} (the group's best reading reproduces {row['group_score']}; {why}); the formula "
-            f"gives {computed:.6g}")
+            f"{value:.6g} (the group's best reading reproduces {row['group_score']}); the formula gives "
+            f"{computed:.6g}")
+
+
+def with_misprints(records: pd.DataFrame, tidy: pd.DataFrame, group: str, evidence: str) -> pd.DataFrame:
+    """Rows that still differ after their group's search, re-judged against a family of
+    misprinted inputs (``group`` of ``tidy``): ``input misprint`` where a reading of it reproduces
+    the print, naming the input. No placebo: a misprint is a fact about one entry."""
+    s = Search.from_tidy(tidy[tidy["group"] == group])
+    position = _positions(s)
+    out = []
+    for record in records.to_dict("records"):
+        e = position.get(_key(record))
+        if e is not None and record.get("as_printed") == DIFFERS and not record.get("reading_verdict"):
+            hits = np.flatnonzero(s.hits[:, e])
+            if hits.size:
+                r = int(hits[np.argmin(np.abs(s.values[hits, e] - record["computed"]))])
+                name = s.readings["reading"].iloc[r]
+                record |= {"reading_verdict": INPUT_MISPRINT, "reading": name, "value_under_reading": s.values[r, e],
+                           "family_size": str(s.family_size),
+                           "reason": f"misprinted input: {name} gives {s.values[r, e]:.6g}, which prints as the print; "
+                                     f"the inputs as printed give {record['computed']:.6g}",
+                           "evidence": f"{record.get('evidence', '')}; {evidence}".strip("; ")}
+        out.append(record)
+    return pd.DataFrame(out)
+
+
+#: The limit laws a(θ) → cos^k θ a family of lobes can tend to as they narrow, with their mean albedo
+#: 2/(k + 2) (eq. 3.37): the family of readings of a printed n → ∞ mean albedo.
+LIMIT_LAWS = {f"a(theta) -> cos^{k} theta as n -> inf (mean albedo 2/{k + 2})": 2.0 / (k + 2) for k in range(5)}
+
+
+def limit_law_reading(printed: str, computed: float, context: str) -> dict:
+    """Reason, closest reading and family size for an n → ∞ mean albedo print the derived limit does
+    not reproduce: the readings are the limit laws of :data:`LIMIT_LAWS`. One print of a row of
+    exact limits is no group a placebo can judge, so the row stays ``differs`` and names the law
+    that gives its digits."""
+    from brdfs.pipeline.published import EXACT_VALUES
+
+    target = EXACT_VALUES.get(printed, None)
+    target = float(printed) if target is None else target
+    name = min(LIMIT_LAWS, key=lambda k: abs(LIMIT_LAWS[k] - target))
+    return {"reason": (f"{context}; of the {len(LIMIT_LAWS)} limit laws a(theta) -> cos^k theta (k = 0..4), "
+                       f"'{name}' gives the print, which is the limit of another model than this row's"),
+            "reading": name, "value_under_reading": LIMIT_LAWS[name], "family_size": str(len(LIMIT_LAWS))}
