@@ -31,6 +31,8 @@ rule merge_comparison:
     output:
         csv=report(COMPARISON, caption="../report/comparison.rst", category="Comparison with the print"),
         html=report(COMPARISON_HTML, caption="../report/comparison.rst", category="Comparison with the print"),
+        counts_csv=VERDICT_COUNTS_CSV,
+        counts_png=report(VERDICT_COUNTS_PNG, caption="../report/verdict_counts.rst", category="Comparison with the print"),
     resources:
         mem_mb=1000,
         runtime=5,

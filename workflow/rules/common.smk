@@ -31,6 +31,8 @@ except ConfigError as error:
 PUBLISHED = "data/published_values.csv"
 COMPARISON = "results/checks/published_comparison.csv"
 COMPARISON_HTML = "results/checks/published_comparison.html"
+VERDICT_COUNTS_CSV = "results/checks/published_verdicts.csv"
+VERDICT_COUNTS_PNG = "results/checks/published_verdicts.png"
 
 ARTIFACTS = registry.artifacts()
 COMPARISONS = registry.comparisons()

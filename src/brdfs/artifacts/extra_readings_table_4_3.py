@@ -60,7 +60,7 @@ def _slopes(ds, R: np.ndarray, m_clip: float) -> np.ndarray:
     return np.where(R < m_clip, value, 0.0)
 
 
-def reading_values(ds, m_clip: float, steps) -> tuple[pd.DataFrame, dict]:
+def reading_values(ds, m_clip: float, steps, rules=RULES) -> tuple[pd.DataFrame, dict]:
     """The family's readings and, per reading, (C_max, a_diffuse) for every d.
 
     Per step, the products ξ'(R) Area(C(L'_P, R)) are formed once on the grid R = i h of [0, 2]
@@ -78,6 +78,8 @@ def reading_values(ds, m_clip: float, steps) -> tuple[pd.DataFrame, dict]:
         gauss = np.sort(np.concatenate([centres - h / (2 * np.sqrt(3.0)), centres + h / (2 * np.sqrt(3.0))]))
         products = {}
         for nodes_name, R in (("grid", grid), ("midpoint", centres), ("gauss2", gauss)):
+            if nodes_name != "grid" and nodes_name not in rules:
+                continue
             areas = np.stack([_lens_areas(R, theta) for theta in (0.0, 90.0)])          # (2, nodes)
             slope = _slopes(ds, R, m_clip)                                             # (d, nodes)
             products[nodes_name] = slope[:, None, :] * areas[None, :, :]               # (d, θ, nodes)
@@ -88,7 +90,7 @@ def reading_values(ds, m_clip: float, steps) -> tuple[pd.DataFrame, dict]:
             at_clip = _slopes(ds, np.array([m_clip * (1 - 1e-16)]), m_clip)[:, 0]
             unclipped[..., clip_index] = at_clip[:, None] * np.stack(
                 [_lens_areas(np.array([m_clip]), theta)[0] for theta in (0.0, 90.0)])[None, :]
-        for rule in RULES:
+        for rule in rules:
             for end_name in ENDS:
                 n = clip_index if end_name == "m_clip" else n2
                 for clip_node, P in (("clipped", clipped), ("unclipped", unclipped)):

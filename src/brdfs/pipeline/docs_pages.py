@@ -99,8 +99,9 @@ def tally_rst(tally: recomputed.Tally) -> str:
     """The count of a chapter's printed numbers, as an RST paragraph."""
     if not tally.printed:
         return "**The thesis prints no number for this chapter's artifacts**; they are compared by eye.\n"
-    return (f"**{tally.printed} printed numbers: {tally.reproduce} reproduce, {tally.differ} differ** "
-            "(each printed number counted once, under the chapter of the tables it is computed from).\n")
+    return (f"**{tally.sentence().rstrip('.')}** (each printed number counted once, under the chapter of the "
+            "tables it is computed from; *explained by a reading*: the thesis's own procedure reconstructed, a "
+            "misprinted input or Monte Carlo error, see ``published_verdicts.csv``).\n")
 
 
 def artifact_rst(name: str, tree: ResultsTree, page_dir: Path, level: str | None = "-") -> str:
@@ -163,17 +164,18 @@ def chapter_rst(category: str, names: Iterable[str], tree: ResultsTree, page_dir
 def summary_rst(tallies: Mapping[str, recomputed.Tally], tree: ResultsTree, pages: str) -> str:
     """Each chapter's count (a table linking the chapter pages, in the directory ``pages`` relative to
     the page that shows it; ``""``: the same directory) and the total."""
-    total = recomputed.Tally(sum(t.printed for t in tallies.values()), sum(t.reproduce for t in tallies.values()))
+    total = sum(tallies.values(), recomputed.Tally(0, 0))
     lines = []
     if tree.comparison is None:
         lines.append(f"*Not built yet:* ``results/{COMPARISON.as_posix()}`` (run ``make all``).\n")
     lines += [".. list-table::", "   :header-rows: 1", "",
-              "   * - chapter", "     - printed numbers", "     - reproduce", "     - differ"]
+              "   * - chapter", "     - printed numbers", "     - reproduce", "     - explained by a reading",
+              "     - differ"]
     for category, tally in tallies.items():
         lines += [f"   * - :doc:`{pages + '/' if pages else ''}{PAGES[category]}`", f"     - {tally.printed}", f"     - {tally.reproduce}",
-                  f"     - {tally.differ}"]
+                  f"     - {tally.explained}", f"     - {tally.differ}"]
     lines += ["   * - **all chapters**", f"     - **{total.printed}**", f"     - **{total.reproduce}**",
-              f"     - **{total.differ}**", ""]
+              f"     - **{total.explained}**", f"     - **{total.differ}**", ""]
     return "\n".join(lines) + "\n"
 
 
@@ -182,21 +184,25 @@ def index_rst(tallies: Mapping[str, recomputed.Tally], tree: ResultsTree, page_d
     lines = [_title("The thesis recomputed", "="),
              "Every table and figure of the thesis, recomputed from its equations, chapter by chapter; every "
              "number it prints beside ours. A number *reproduces* when ours, rounded to the printed digits, "
-             "equals the print (an exact expression: within our error bound; a claim: it holds); otherwise it "
-             "*differs*, with a reason and the evidence (see :doc:`../contract`).\n"]
+             "equals the print (an exact expression: within our error bound; a claim: it holds). Otherwise a "
+             "declared search over the thesis's own procedures (quadrature rules and steps, grids, printing rules, "
+             "constants, inputs in their rounding box, Monte Carlo) looks for a reading that explains it, accepted "
+             "for a group only above a placebo; what no reading explains *differs*, naming its family and closest "
+             "reading (see :doc:`../contract`).\n"]
     lines += [summary_rst(tallies, tree, ""), ".. toctree::", "   :maxdepth: 1", ""]
     lines += [f"   {page}" for page in PAGES.values()]
     lines += ["", _title("Every artifact", "-"),
               "Each artifact's own count (Table 1.1's numbers are compared under Table 3.1 and counted for both); "
               "the link goes to its figure, caption and verdict, the CSV to its data.", "",
               ".. list-table::", "   :header-rows: 1", "",
-              "   * - artifact", "     - chapter", "     - printed numbers", "     - reproduce", "     - differ",
-              "     - data"]
+              "   * - artifact", "     - chapter", "     - printed numbers", "     - reproduce",
+              "     - explained by a reading", "     - differ", "     - data"]
     for row in recomputed.landing(tree.artifacts, tree.comparison, tree.sources):
         csv = tree.path(row.csv)
         data = f":download:`CSV <{_relative(csv, page_dir)}>`" if csv.is_file() else "not built"
         lines += [f"   * - :ref:`{row.label} <{row.name}>`", f"     - :doc:`{PAGES[row.category]}`",
-                  f"     - {row.tally.printed}", f"     - {row.tally.reproduce}", f"     - {row.tally.differ}",
+                  f"     - {row.tally.printed}", f"     - {row.tally.reproduce}", f"     - {row.tally.explained}",
+                  f"     - {row.tally.differ}",
                   f"     - {data}"]
     return "\n".join(lines) + "\n"
 

@@ -491,3 +491,36 @@ def limit_law_reading(printed: str, computed: float, context: str) -> dict:
     return {"reason": (f"{context}; of the {len(LIMIT_LAWS)} limit laws a(theta) -> cos^k theta (k = 0..4), "
                        f"'{name}' gives the print, which is the limit of another model than this row's"),
             "reading": name, "value_under_reading": LIMIT_LAWS[name], "family_size": str(len(LIMIT_LAWS))}
+
+
+def verdict_counts(comparison: pd.DataFrame) -> pd.DataFrame:
+    """Rows per (group of printed numbers, verdict), every verdict of every group (zeros included),
+    groups in the order of the comparison: the summary of the comparison."""
+    groups = list(dict.fromkeys(comparison["artifact"]))
+    counts = comparison.groupby(["artifact", "verdict"]).size()
+    return pd.DataFrame([{"artifact": g, "verdict": v, "count": int(counts.get((g, v), 0))}
+                         for g in groups for v in VERDICTS])
+
+
+def plot_verdict_counts(counts: pd.DataFrame, path) -> None:
+    """One horizontal bar per group, stacked by verdict."""
+    from brdfs.pipeline import plotting
+    import matplotlib.pyplot as plt
+
+    wide = counts.pivot(index="artifact", columns="verdict", values="count").reindex(
+        list(dict.fromkeys(counts["artifact"])))[list(VERDICTS)]
+    fig, ax = plt.subplots(figsize=(8.0, 0.32 * len(wide) + 1.6))
+    left = np.zeros(len(wide))
+    colours = ("#4c9a2a", "#8cc665", "#f0b429", "#7aa6d6", "#c3b1e1", "#d64545")
+    for verdict, colour in zip(VERDICTS, colours):
+        values = wide[verdict].to_numpy()
+        ax.barh(np.arange(len(wide)), values, left=left, color=colour,
+                label=f"{verdict} ({int(values.sum())})")
+        left += values
+    ax.set_yticks(np.arange(len(wide)), wide.index)
+    ax.invert_yaxis()
+    ax.set_xlabel("printed numbers")
+    ax.set_title(f"Verdicts of the {int(left.sum())} printed numbers, per group")
+    ax.legend(fontsize=7, loc="lower right", framealpha=0.9)
+    fig.tight_layout()
+    plotting.savefig(fig, path)

@@ -51,31 +51,41 @@ div.brdfs-scroll { overflow-x: auto; max-width: 100%; }
 
 @dataclasses.dataclass(frozen=True)
 class Tally:
-    """How many printed numbers were compared, and how many of them reproduce and differ."""
+    """How many printed numbers were compared; how many reproduce as printed, how many a reading
+    explains (the thesis's procedure reconstructed, a misprinted input, Monte Carlo error, a reading
+    of a small group: ``published.READING_VERDICTS``), and how many differ."""
 
     printed: int
     reproduce: int
+    explained: int = 0
 
     @property
     def differ(self) -> int:
-        """The printed numbers that do not reproduce."""
-        return self.printed - self.reproduce
+        """The printed numbers that neither reproduce nor have a reading."""
+        return self.printed - self.reproduce - self.explained
 
     @classmethod
     def of(cls, rows: pd.DataFrame) -> Tally:
         """The tally of comparison ``rows`` (``verdict`` column)."""
-        return cls(len(rows), int((rows["verdict"] == REPRODUCES).sum()))
+        from brdfs.pipeline.published import READING_VERDICTS
+
+        return cls(len(rows), int((rows["verdict"] == REPRODUCES).sum()),
+                   int(rows["verdict"].isin(READING_VERDICTS).sum()))
+
+    def __add__(self, other: Tally) -> Tally:
+        return Tally(self.printed + other.printed, self.reproduce + other.reproduce, self.explained + other.explained)
 
     def sentence(self) -> str:
-        """``'12 printed numbers: 9 reproduce, 3 differ.'``
+        """``'12 printed numbers: 9 reproduce, 2 explained by a reading, 1 differ.'``
 
-        >>> Tally(12, 9).sentence(), Tally(0, 0).sentence()
-        ('12 printed numbers: 9 reproduce, 3 differ.', 'No printed number.')
+        >>> Tally(12, 9, 2).sentence(), Tally(3, 3).sentence(), Tally(0, 0).sentence()
+        ('12 printed numbers: 9 reproduce, 2 explained by a reading, 1 differ.', '3 printed numbers: 3 reproduce, 0 differ.', 'No printed number.')
         """
         if not self.printed:
             return "No printed number."
         noun = "number" if self.printed == 1 else "numbers"
-        return f"{self.printed} printed {noun}: {self.reproduce} reproduce, {self.differ} differ."
+        explained = f"{self.explained} explained by a reading, " if self.explained else ""
+        return f"{self.printed} printed {noun}: {self.reproduce} reproduce, {explained}{self.differ} differ."
 
 
 def rows_of(name: str, comparison: pd.DataFrame, sources: Mapping[str, Iterable[str]]) -> pd.DataFrame:
@@ -258,7 +268,8 @@ def landing_table_html(rows: Iterable[LandingRow], link=lambda row: None) -> str
 
     ``link(row)`` gives the ``href`` of an artifact (None: its name without a link).
     """
-    head = "".join(f"<th>{h}</th>" for h in ("category", "artifact", "printed numbers", "reproduce", "differ"))
+    head = "".join(f"<th>{h}</th>" for h in ("category", "artifact", "printed numbers", "reproduce",
+                                               "explained by a reading", "differ"))
     body = []
     for row in rows:
         href = link(row)
@@ -266,7 +277,7 @@ def landing_table_html(rows: Iterable[LandingRow], link=lambda row: None) -> str
         anchor = f'<a href="{html.escape(href)}">{label}</a>' if href else label
         differ = _cell(row.tally.differ, "num differs" if row.tally.differ else "num")
         body.append(f"<tr>{_cell(row.category)}<td>{anchor}</td>{_cell(row.tally.printed, 'num')}"
-                    f"{_cell(row.tally.reproduce, 'num')}{differ}</tr>")
+                    f"{_cell(row.tally.reproduce, 'num')}{_cell(row.tally.explained, 'num')}{differ}</tr>")
     return (f'<table class="brdfs landing">\n<thead><tr>{head}</tr></thead>\n<tbody>\n'
             + "\n".join(body) + "\n</tbody>\n</table>")
 
@@ -277,9 +288,10 @@ def landing_frame(rows: Iterable[LandingRow]) -> pd.DataFrame:
 
     return pd.DataFrame(
         [{"artifact": r.name, "thesis": thesis_number(r.name) or "", "category": r.category,
-          "printed": r.tally.printed, "reproduce": r.tally.reproduce, "differ": r.tally.differ,
+          "printed": r.tally.printed, "reproduce": r.tally.reproduce, "explained": r.tally.explained,
+          "differ": r.tally.differ,
           "csv": r.csv, "png": r.png} for r in rows],
-        columns=["artifact", "thesis", "category", "printed", "reproduce", "differ", "csv", "png"],
+        columns=["artifact", "thesis", "category", "printed", "reproduce", "explained", "differ", "csv", "png"],
     )
 
 
@@ -287,18 +299,19 @@ def chapters_frame(tallies: Mapping[str, Tally]) -> pd.DataFrame:
     """Each category's :class:`Tally` as a tidy DataFrame (``results/report/chapters.csv``)."""
     import pandas as pd
 
-    return pd.DataFrame([{"category": c, "printed": t.printed, "reproduce": t.reproduce, "differ": t.differ}
-                         for c, t in tallies.items()], columns=["category", "printed", "reproduce", "differ"])
+    return pd.DataFrame([{"category": c, "printed": t.printed, "reproduce": t.reproduce, "explained": t.explained,
+                          "differ": t.differ} for c, t in tallies.items()],
+                        columns=["category", "printed", "reproduce", "explained", "differ"])
 
 
 def chapter_table_html(tallies: Mapping[str, Tally]) -> str:
     """Each category's count of printed numbers that reproduce and differ, with the total."""
-    total = Tally(sum(t.printed for t in tallies.values()), sum(t.reproduce for t in tallies.values()))
-    body = [f"<tr>{_cell(c)}{_cell(t.printed, 'num')}{_cell(t.reproduce, 'num')}"
+    total = sum(tallies.values(), Tally(0, 0))
+    body = [f"<tr>{_cell(c)}{_cell(t.printed, 'num')}{_cell(t.reproduce, 'num')}{_cell(t.explained, 'num')}"
             f"{_cell(t.differ, 'num differs' if t.differ else 'num')}</tr>"
             for c, t in (*tallies.items(), ("All chapters", total))]
     return ('<table class="brdfs chapters">\n<thead><tr><th>chapter</th><th>printed numbers</th>'
-            "<th>reproduce</th><th>differ</th></tr></thead>\n<tbody>\n" + "\n".join(body) + "\n</tbody>\n</table>")
+            "<th>reproduce</th><th>explained by a reading</th><th>differ</th></tr></thead>\n<tbody>\n" + "\n".join(body) + "\n</tbody>\n</table>")
 
 
 def landing_page_html(rows: Iterable[LandingRow], tallies: Mapping[str, Tally]) -> str:

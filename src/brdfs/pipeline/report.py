@@ -144,16 +144,19 @@ def verdict(name: str, comparison: pd.DataFrame | None, sources: dict[str, Itera
     lines = []
     for artifact, group in rows.groupby("artifact", sort=False):
         differs = group[group["verdict"] != "reproduces"]
+        kinds = ", ".join(f"{n} {v}" for v, n in differs["verdict"].value_counts().items())
         lines.append(
             f"* ``{artifact}`` ({_clean(group['source'].iloc[0], 80)}): "
-            f"{len(group) - len(differs)} of {len(group)} printed numbers reproduce, {len(differs)} differ."
+            f"{len(group) - len(differs)} of {len(group)} printed numbers reproduce"
+            + (f"; {kinds}." if kinds else ".")
         )
         if len(differs):
             lines.append("")  # a nested RST list needs a blank line before it
         for _, row in differs.head(6).iterrows():
             lines.append(
                 f"  - {_clean(row['model'], 40)} {_clean(row['param_value'], 30)} {_clean(row['quantity'], 40)}: "
-                f"printed {_format(row['published'])}, computed {_format(row['computed'])}. {_clean(row['reason'])}"
+                f"printed {_format(row['published'])}, computed {_format(row['computed'])} ({row['verdict']}). "
+                f"{_clean(row['reason'])}"
             )
         if len(differs) > 6:
             lines.append(f"  - ... and {len(differs) - 6} more (see published_comparison.csv).")
@@ -166,8 +169,9 @@ def summary(comparison: pd.DataFrame | None) -> str:
     if comparison is None:
         return "results/checks/published_comparison.csv is not built yet."
     counts = comparison["verdict"].value_counts()
-    return (f"{len(comparison)} printed numbers compared: {counts.get('reproduces', 0)} reproduce, "
-            f"{len(comparison) - counts.get('reproduces', 0)} differ (each with its reason and evidence).")
+    rest = ", ".join(f"{n} {v}" for v, n in counts.items() if v != "reproduces")
+    return (f"{len(comparison)} printed numbers compared: {counts.get('reproduces', 0)} reproduce"
+            + (f", {rest}" if rest else "") + " (each with its reason and evidence).")
 
 
 def _link(text: str, target: str, targets: set[str]) -> str:
@@ -196,18 +200,20 @@ def landing(table: pd.DataFrame | None, chapters: pd.DataFrame | None, targets: 
         members = table[table["category"] == chapter["category"]]
         if members.empty:
             continue
-        count = (f"{chapter['printed']} printed numbers: {chapter['reproduce']} reproduce, {chapter['differ']} differ."
+        count = (f"{chapter['printed']} printed numbers: {chapter['reproduce']} reproduce, "
+                 f"{chapter.get('explained', 0)} explained by a reading, {chapter['differ']} differ."
                  if int(chapter["printed"]) else "The thesis prints no number for these artifacts.")
         lines += [f"**{_clean(chapter['category'], 100)}.** {count}", ""]
         compared = members[members["printed"].astype(int) > 0]
         if len(compared):
             lines += [".. list-table::", "   :header-rows: 1", "",
-                      "   * - artifact", "     - printed numbers", "     - reproduce", "     - differ",
-                      "     - printed beside ours"]
+                      "   * - artifact", "     - printed numbers", "     - reproduce", "     - explained by a reading",
+                      "     - differ", "     - printed beside ours"]
             for _, row in compared.iterrows():
                 page = f"{row['artifact']}.html"
                 lines += [f"   * - {_link(row['thesis'] or row['artifact'], Path(row['png']).name, targets)}",
-                          f"     - {row['printed']}", f"     - {row['reproduce']}", f"     - {row['differ']}",
+                          f"     - {row['printed']}", f"     - {row['reproduce']}", f"     - {row.get('explained', 0)}",
+                          f"     - {row['differ']}",
                           f"     - {_link('HTML table', page, targets) if page in targets else '(figure)'}"]
             lines.append("")
         others = members[members["printed"].astype(int) == 0]
