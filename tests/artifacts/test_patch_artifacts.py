@@ -9,7 +9,7 @@ from brdfs.pipeline import registry as artifacts
 from brdfs.pipeline.config import load_config
 
 TABLES = ["table_4_1_exponential_patch", "table_4_2_limit_comparison", "table_4_3_generalized_lambert",
-          "fig_4_5_basic_albedo"]
+          "fig_4_5_basic_albedo", "extra_readings_table_4_1", "extra_readings_table_4_3"]
 
 
 @pytest.fixture(scope="module")
@@ -17,6 +17,7 @@ def cfg():
     cfg = copy.deepcopy(load_config())
     cfg["patch"]["limit_n"] = [10.0, 1000.0]          # keep the Phong/Blinn confirmations cheap here
     cfg["patch"]["limit_s"] = [8.0, 512.0]
+    cfg["readings"]["table_4_3"]["steps"] = [0.0002, 0.0001, 0.00005]   # the chosen step and its neighbours
     return cfg
 
 
@@ -39,19 +40,23 @@ def test_table_4_1_closed_forms_agree_with_quadrature(tables):
 
 def test_table_4_1_verdicts(cfg, tables):
     fragment = _fragment(cfg, tables, "patch_exponential")
-    differs = set(fragment.index[fragment["verdict"] == "differs"])
-    truncated = {(s, "C_max") for s in ("8", "16", "64", "128", "512")}
+    explained = set(fragment.index[fragment["verdict"] == "reproduces under a reading"])
+    cut = {(s, "C_max") for s in ("8", "16", "64", "128", "512")}
     i12 = {(s, "I_12") for s in ("0.25", "0.5", "1", "2", "4", "8", "16")}
-    assert differs == truncated | i12
-    assert all(fragment.loc[k, "reason"].startswith("truncated, not rounded") for k in truncated)
-    assert all(fragment.loc[k, "reading"] and np.isfinite(fragment.loc[k, "value_under_reading"]) for k in i12)
+    assert explained == cut | i12 and not (fragment["verdict"] == "differs").any()
+    assert all(fragment.loc[k, "reading"] == "'%.4f' cut to 6 characters" for k in cut)
+    assert all(fragment.loc[k, "reading"] == "I_12 = 1 int_1^2 p(R) dR, rounded" for k in i12)
+    assert all(fragment.loc[k, "group_score"] == "12/12" for k in cut | i12)
 
 
 def test_table_4_3_verdicts(cfg, tables):
     fragment = _fragment(cfg, tables, "patch_generalized_lambert")
     assert (fragment.xs("f_max", level="quantity")["verdict"] == "reproduces").all()
     c_max = fragment.xs("C_max", level="quantity")["verdict"]
-    assert c_max.loc["0"] == "reproduces" and (c_max.drop("0") == "differs").all()
+    assert c_max.loc["0"] == "reproduces" and (c_max.drop("0") == "reproduces under a reading").all()
+    differing = fragment[fragment["verdict"] != "reproduces"]
+    assert (differing["reading"] == "left, h = 0.0001, to 2, clip node unclipped").all()
+    assert (differing["group_score"] == "21/21").all()
     assert (tables["table_4_3_generalized_lambert"]["theta_max_deg"].iloc[1:] == 90.0).all()
 
 

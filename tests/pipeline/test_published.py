@@ -158,6 +158,8 @@ def toy_rows(**changes):
             "computed": [0.93, 0.3512, 0.5],
             "computed_err": [1e-9, 1e-9, 0.0],
             "reason": [None, "truncated, not rounded", None],
+            "reading": [None, "'%.3f' cut to 5 characters", None],
+            "family_size": [None, "22", None],
             "claim_holds": [True, None, None],
         }
     )
@@ -224,7 +226,9 @@ def test_merge_orders_rows_as_published_and_skips_absent_artifacts(tmp_path):
     assert list(merged["artifact"]) == ["toy", "toy", "toy", "other"]
     assert list(merged["published"]) == list(PUBLISHED["published"])
     assert merged["computed"].tolist() == [0.3512, 0.5, 0.93, 1.52]
-    assert merged["value_under_reading"].isna().all() and (merged["reading"] == "").all()
+    assert merged["value_under_reading"].isna().all()
+    assert merged["reading"].tolist() == ["'%.3f' cut to 5 characters", "", "", ""]
+    assert merged["family_size"].tolist() == ["22", "", "", ""]
     assert len(merge_fragments(paths[1:], PUBLISHED)) == 3  # 'other' absent: fine
 
 

@@ -48,9 +48,9 @@ def test_the_caption_template_shows_the_committed_caption_and_the_verdict_read_w
     comparison([["ward_cmax", "Table 3.2, eq. 3.36", "ward_cosmin", "0.4", "C_max", "1.63", "1.6204", "differs",
                  "closed form"]]).to_csv(csv, index=False)
     after = template.render(snakemake=job)     # the comparison as it is when the report renders
-    assert "0 of 1 printed numbers reproduce, 1 differ" in after
+    assert "0 of 1 printed numbers reproduce; 1 differs." in after
     assert "``results/tables/table_3_2_ward_cmax.csv``" in after
-    assert "0 reproduce, 1 differ" in texts.summary()
+    assert "0 reproduce, 1 differs" in texts.summary()
 
 
 def comparison(rows):
@@ -66,14 +66,14 @@ def test_verdict_counts_the_printed_numbers_and_lists_each_difference_with_its_r
     ])
     sources = {"ward_cmax": ("table_3_2_ward_cmax",), "blinn_cn": ("table_3_1_blinn_constants",)}
     text = report.verdict("table_3_2_ward_cmax", table, sources)
-    assert "1 of 2 printed numbers reproduce, 1 differ" in text
+    assert "1 of 2 printed numbers reproduce; 1 differs." in text
     assert "printed 1.63, computed 1.6204. closed form" in text
     # Table 1.1 is compared under Table 3.1: found by its number in the source column.
     assert "1 of 1 printed numbers reproduce" in report.verdict("table_1_1_blinn_constants", table, sources)
     assert "prints no number" in report.verdict("fig_4_13_inverse_cdf", table, sources)
     html = publish_parts(text, writer="html")["body"]
     assert html.count("<li>") == 2 and "<ul" in html  # the difference is a nested bullet
-    assert report.summary(table) == ("3 printed numbers compared: 2 reproduce, 1 differ "
+    assert report.summary(table) == ("3 printed numbers compared: 2 reproduce, 1 differs "
                                      "(each with its reason and evidence).")
 
 
@@ -107,7 +107,7 @@ def test_the_front_pages_landing_table_counts_each_chapter_and_links_only_result
     links = "".join(f".. _{t}: javascript:show('{t}')\n" for t in targets)   # as Snakemake appends them
     html = publish_parts(text + "\n" + links, writer="html")["body"]
     assert "system-message" not in html                                      # every reference resolves
-    assert f"<strong>{report.CHAPTERS[3]}.</strong> 7 printed numbers: 2 reproduce, 5 differ." in html
+    assert f"<strong>{report.CHAPTERS[3]}.</strong> 7 printed numbers: 2 reproduce, 0 explained by a reading, 5 differ." in html
     assert "javascript:show('table_3_2_ward_cmax.png')\">Table 3.2</a>" in html
     assert "javascript:show('table_3_2_ward_cmax.html')\">HTML table</a>" in html
     assert "Without printed numbers: Figure 3.1." in html                    # named, not linked: not in the report

@@ -16,7 +16,7 @@ import numpy as np
 
 from brdfs.pipeline import published
 from brdfs.pipeline import readings
-from brdfs.pipeline.registry import table
+from brdfs.pipeline.registry import comparison, get_artifact, table
 from brdfs.artifacts.table_1_2_metal_reflectance import ARTIFACT, a0_percent
 
 
@@ -31,7 +31,7 @@ def box_range(n: str, k: str, half_width: float) -> tuple[float, float]:
 
     >>> low, high = box_range("2.06", "4.26", 0.5)
     >>> round(low, 3), round(high, 3)
-    (69.978, 70.119)
+    (69.963, 70.134)
     """
     def ends(printed: str) -> tuple[float, float]:
         unit = float(Decimal((0, (1,), Decimal(printed).as_tuple().exponent)))
@@ -91,6 +91,15 @@ def misprint_search(cfg: dict) -> readings.Search:
                            procedure="a misprinted input: two adjacent digits of n or k transposed")
 
 
+def misprinted_input(reading: str, metal: dict) -> str:
+    """The corrected input a misprint reading names, e.g. ``k = 4.85 (digits 2 and 3 of the printed 4.58
+    transposed)`` for ``'k: digits 2 and 3 transposed'`` and chromium."""
+    symbol, rest = reading.split(": digits ")
+    position = int(rest.split(" and ")[0]) - 1
+    printed = str(float(metal["ior_re" if symbol == "n" else "ior_im"]))
+    return f"{symbol} = {_swap(printed, position)} (digits {position + 1} and {position + 2} of the printed {printed} transposed)"
+
+
 def _swap(printed: str, position: int) -> str | None:
     """``printed`` with its digits ``position`` and ``position + 1`` (from 0) swapped; None if
     there is no such pair or the swap changes nothing."""
@@ -105,10 +114,11 @@ def _swap(printed: str, position: int) -> str | None:
 
 
 GROUP = "Table 1.2 a0"
+READINGS = "extra_metal_a0_readings"
 MISPRINTS = "Table 1.2 a0, input misprints"
 
 
-@table("extra_metal_a0_readings", config=("metal_reflectance", "readings", "seed"), chapter=1)
+@table(READINGS, config=("metal_reflectance", "readings", "seed"), chapter=1)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """The two searches of Table 1.2, one row per (group, reading, entry)."""
     return pd.concat([box_search(cfg).tidy(), misprint_search(cfg).tidy()], ignore_index=True)
@@ -122,3 +132,38 @@ def plot(df: pd.DataFrame, path) -> None:
         dict(group=MISPRINTS, x="position", lines=("input",), title="one input misprinted",
              xlabel="position of the transposed pair of digits"),
     ])
+
+
+@comparison(ARTIFACT, tables=("table_1_2_metal_reflectance", READINGS), config=("metal_reflectance",))
+def rows(cfg: dict, tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    """Comparison rows of Table 1.2: computed a0, completed by the searches of
+    :mod:`extra_metal_a0_readings` (inputs in their box for the group, misprinted inputs per entry)."""
+    computed = tables["table_1_2_metal_reflectance"]
+    prints = published.published_rows(ARTIFACT).set_index("param_value")["published"]
+    records = []
+    for row in computed.itertuples(index=False):
+        printed = prints.get(row.metal)  # None for a metal the thesis does not print: make_fragment refuses it
+        records.append({"model": "fresnel_normal_incidence", "param_value": row.metal, "quantity": "a0_percent",
+                        "computed": row.a0_percent, "computed_err": row.a0_percent_err,
+                        "as_printed": published.verdict(printed, row.a0_percent, row.a0_percent_err) if printed else ""})
+    records = pd.DataFrame.from_records(records)
+    where = get_artifact(READINGS).csv
+    records = readings.with_search(records.assign(kept=records["as_printed"]), tables[READINGS], where,
+                                   effect=_box_effect, group=GROUP)
+    records = readings.with_misprints(records.assign(as_printed=records.pop("kept")), tables[READINGS], MISPRINTS, where)
+    return records.drop(columns="as_printed").apply(_name_the_input, axis=1, args=(cfg,))
+
+
+def _name_the_input(record: pd.Series, cfg: dict) -> pd.Series:
+    """A misprint's reading with the corrected input spelled out (``k = 4.85 (...)``)."""
+    if record.get("reading_verdict") == readings.INPUT_MISPRINT:
+        metal = next(m for m in cfg["metal_reflectance"]["metals"] if m["name"] == record["param_value"])
+        text = misprinted_input(record["reading"], metal)
+        record["reading"] = text
+        record["reason"] = (f"misprinted input: {text} gives {record['value_under_reading']:.2f}, which prints as the "
+                            f"print; eq. 1.40 with the printed inputs gives {record['computed']:.2f}")
+    return record
+
+
+def _box_effect(value_under_reading: float, computed: float) -> str:
+    return f"inputs rounded to the printed digits move a0 by {value_under_reading - computed:+.3f} percentage points"

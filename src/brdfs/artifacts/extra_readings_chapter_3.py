@@ -211,5 +211,5 @@ def plot(df: pd.DataFrame, path) -> None:
         dict(group=GROUPS["mean_albedo"], x="steps", lines=("variable", "rule"), title="Table 3.3",
              xlabel="steps of the outer sum", log_x=True),
         dict(group=GROUPS["blinn_90deg"], x="delta_deg", lines=("constant",), title="Sec. 3.7.4",
-             xlabel="90 deg minus the angle (deg)", log_x=True),
+             xlabel="90 deg minus the angle (deg)"),
     ])

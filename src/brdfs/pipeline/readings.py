@@ -345,8 +345,10 @@ def plot_groups(df: pd.DataFrame, path, panels: list[dict]) -> None:
     from brdfs.pipeline import plotting
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 4.2), squeeze=False)
-    for ax, panel in zip(axes[0], panels):
+    columns = min(len(panels), 2)
+    rows = -(-len(panels) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(6.4 * columns, 4.2 * rows), squeeze=False)
+    for ax, panel in zip(axes.ravel(), panels):
         _score_panel(ax, df[df["group"] == panel["group"]], **{k: v for k, v in panel.items() if k != "group"})
     fig.tight_layout()
     plotting.savefig(fig, path)
