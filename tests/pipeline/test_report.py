@@ -67,7 +67,7 @@ def test_verdict_counts_the_printed_numbers_and_lists_each_difference_with_its_r
     sources = {"ward_cmax": ("table_3_2_ward_cmax",), "blinn_cn": ("table_3_1_blinn_constants",)}
     text = report.verdict("table_3_2_ward_cmax", table, sources)
     assert "1 of 2 printed numbers reproduce; 1 differs." in text
-    assert "printed 1.63, computed 1.6204. closed form" in text
+    assert "printed 1.63, computed 1.6204 (differs). closed form" in text
     # Table 1.1 is compared under Table 3.1: found by its number in the source column.
     assert "1 of 1 printed numbers reproduce" in report.verdict("table_1_1_blinn_constants", table, sources)
     assert "prints no number" in report.verdict("fig_4_13_inverse_cdf", table, sources)
