@@ -108,7 +108,10 @@ def reading_values(ds, m_clip: float, steps, rules=RULES) -> tuple[pd.DataFrame,
 
 
 def _lens_areas(R: np.ndarray, theta: float) -> np.ndarray:
-    """Area(C(L'_P, R) ∩ unit disk) at incidence θ (π min(1, R²) a_R(θ) of eq. 4.8); 0 at R = 0."""
+    """Area(C(L'_P, R) ∩ unit disk) at incidence θ (π min(1, R²) a_R(θ) of eq. 4.8); 0 at R = 0;
+    π min(1, R²) at θ = 0, where the disk is centred."""
+    if theta == 0.0:
+        return np.pi * np.minimum(1.0, R * R)
     d = np.sin(np.radians(theta))
     mu = 0.0 if theta == 90.0 else np.cos(np.radians(theta))
     area = np.zeros_like(R)
