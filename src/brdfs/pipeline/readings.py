@@ -194,7 +194,7 @@ class Search:
             others = [a for a in self.axes if a != axis]
             same = np.ones(len(self.readings), bool)
             for a in others:
-                same &= (self.readings[a].astype(str) == str(best[a])).to_numpy()
+                same &= _equal(self.readings[a], best[a])
             line = self.readings[same]
             position = list(line.index).index(self.best)
             for step in (-1, 1):
@@ -354,6 +354,13 @@ def plot_groups(df: pd.DataFrame, path, panels: list[dict]) -> None:
     plotting.savefig(fig, path)
 
 
+def _equal(column: pd.Series, value) -> np.ndarray:
+    """Where a parameter column holds ``value`` (missing equals missing)."""
+    if pd.isna(value):
+        return column.isna().to_numpy()
+    return (column.astype(object) == value).to_numpy() | (column.astype(str) == str(value)).to_numpy()
+
+
 def _label(value) -> str:
     """A parameter value for a legend: whole numbers without '.0'."""
     number = pd.to_numeric(pd.Series([value]), errors="coerce").iloc[0]
@@ -377,7 +384,7 @@ def _score_panel(ax, df: pd.DataFrame, x: str, lines: tuple[str, ...], title: st
     if pd.notna(pd.to_numeric(chosen[x], errors="coerce")):
         same = np.ones(len(on_axis), bool)
         for axis in lines:
-            same &= (on_axis[axis].astype(str) == str(chosen[axis])).to_numpy()
+            same &= _equal(on_axis[axis], chosen[axis])
         own = on_axis[same].sort_values(x)
         ax.plot(own[x].astype(float), own["score"], color="black", lw=2.2, label="chosen reading's line")
         ax.plot([float(chosen[x])], [chosen["score"]], marker="*", ms=14, color="black", ls="none")
