@@ -28,6 +28,9 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset``, ``variant`` and
   ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1). The
   display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
+* **Linear radiance** (``df.attrs["radiance"]``): each panel's mean over its passes in linear sRGB
+  (float32, the values the PNG is scaled and encoded from), written by :func:`write_renders` as
+  OpenEXR ``results/renders/<figure>/panel_<k>.exr`` (``k`` the CSV's ``panel``).
 
 All panels of a figure share one display scale (from the reference objects of its first panel,
 section 3.6) unless a figure asks otherwise, and the same seeds (common random numbers).
@@ -363,7 +366,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``plugin_evaluations`` (per object whose plugin counts), over all passes.
     """
     setups = panel_setups(figure_setup(settings(cfg), name), name, len(panels))
-    rows, images, id_buffers, scale = [], [], [], None
+    rows, images, id_buffers, radiance, scale = [], [], [], [], None
     for k, (panel, setup) in enumerate(zip(panels, setups)):
         width, height = panel_size(setup, panel.aspect)
         rendered = render_panel(panel, cfg, setup, width, height, count)
@@ -371,6 +374,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
             rendered = post(panel, rendered)
         channels = SPECTRAL if panel.channels == "spectral" else 3
         rgb = spectrum.linear_rgb(rendered.radiance)
+        radiance.append(rgb.astype(np.float32))
         if scale is None or not shared_scale:
             ref = [i for i, label in rendered.labels.items() if label in panel.reference]
             scale = spectrum.display_scale(rgb, np.isin(rendered.ids, ref))
@@ -392,7 +396,43 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     df = pd.DataFrame(rows)
     df.attrs["images"] = images
     df.attrs["ids"] = id_buffers
+    df.attrs[RADIANCE] = radiance
     return df
+
+
+#: ``df.attrs`` key of the panels' linear radiance: a list of (H, W, 3) float32 linear sRGB, panel by panel.
+RADIANCE = "radiance"
+
+
+def exr_name(panel: int) -> str:
+    """The OpenEXR file of panel ``panel`` (the CSV's ``panel``) in its figure's renders directory."""
+    return f"panel_{panel}.exr"
+
+
+def write_renders(df: pd.DataFrame, directory) -> list:
+    """Write each panel's linear radiance (``df.attrs["radiance"]``) as a 32-bit float RGB OpenEXR
+    file :func:`exr_name` in ``directory`` (created; other ``panel_*.exr`` files there removed), by
+    Mitsuba's own writer (``mi.Bitmap(...).write``), each atomically; the same image gives the same
+    bytes for one variant and machine.  Returns the paths."""
+    import os
+    from pathlib import Path
+
+    radiance = df.attrs.get(RADIANCE)
+    if not radiance:
+        raise ValueError(f"{directory}: no linear radiance passed from compute (df.attrs[{RADIANCE!r}])")
+    mi = _mitsuba(str(df["variant"].iloc[0]))
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for k, rgb in enumerate(radiance):
+        path = directory / exr_name(k)
+        tmp = path.with_name(f".{path.name}.tmp.exr")
+        mi.Bitmap(np.ascontiguousarray(rgb, dtype=np.float32), mi.Bitmap.PixelFormat.RGB).write(str(tmp))
+        os.replace(tmp, path)
+        paths.append(path)
+    for stale in set(directory.glob("panel_*.exr")) - set(paths):
+        stale.unlink()
+    return paths
 
 
 def object_crop(image: np.ndarray, ids: np.ndarray, labels: dict, label: str, margin: int = 6,
