@@ -140,7 +140,7 @@ def cos_theta_half(L: ArrayLike, V: ArrayLike) -> np.ndarray:
     where a microfacet model reads F (the facet's own angle of incidence; Cook & Torrance 1982,
     Walter et al. 2007, eq. 20), formed as L·(L + V)/|L + V| (0 where L + V = 0).
 
-    >>> float(cos_theta_half(np.array([0.6, 0.0, 0.8]), np.array([-0.6, 0.0, 0.8])))
+    >>> round(float(cos_theta_half(np.array([0.6, 0.0, 0.8]), np.array([-0.6, 0.0, 0.8]))), 12)
     0.8
     """
     L, V = np.asarray(L, float), np.asarray(V, float)
