@@ -25,7 +25,9 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   An ``rgb`` panel (eq. 3.31) is its plugins' r, g, b.
 * **Rows**: one per (panel, object): the mean luminance Y of the object's pixels and its standard
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
-  ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset``, ``variant`` and
+  ``fireflies``, ``object_pixels``, the object's own ``object_p95_relative_se``,
+  ``object_fireflies``, ``object_sparkles``, ``object_noise_pixels`` (:func:`~brdfs.render.mitsuba.metrics.object_noise`),
+  with ``spp``, ``passes``, ``preset``, ``variant`` and
   ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1). The
   display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
 * **Linear radiance** (``df.attrs["radiance"]``): each panel's mean over its passes in linear sRGB
@@ -342,9 +344,19 @@ def _count_columns(rendered: RenderedPanel, label: str, count: bool) -> dict:
             "plugin_evaluations": evaluations}
 
 
-def object_rows(rendered: RenderedPanel, channels: int) -> list[dict]:
-    """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes."""
-    y = rendered.luminance_passes(channels)
+def _object_noise_columns(noise) -> dict:
+    """An object's own noise figures (:func:`brdfs.render.mitsuba.metrics.object_noise`; None: no object pixels)."""
+    if noise is None:
+        return {"object_p95_relative_se": float("nan"), "object_fireflies": 0, "object_sparkles": 0,
+                "object_noise_pixels": 0}
+    return {"object_p95_relative_se": noise.p95_relative_se, "object_fireflies": noise.fireflies,
+            "object_sparkles": noise.sparkles, "object_noise_pixels": noise.object_pixels}
+
+
+def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict) -> list[dict]:
+    """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes
+    (``y``: the (P, H, W) luminance passes), and the object's own noise figures (``noise``:
+    :func:`~brdfs.render.mitsuba.metrics.panel_noise`'s per object)."""
     rows = []
     for k, label in sorted(rendered.labels.items()):
         sel = rendered.ids == k
@@ -352,7 +364,8 @@ def object_rows(rendered: RenderedPanel, channels: int) -> list[dict]:
             continue
         per_pass = y[:, sel].mean(axis=1)
         rows.append({"object": label, "pixels": int(sel.sum()), "luminance": float(per_pass.mean()),
-                     "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size))})
+                     "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size)),
+                     **_object_noise_columns(noise.get(k))})
     return rows
 
 
@@ -380,9 +393,10 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
             scale = spectrum.display_scale(rgb, np.isin(rendered.ids, ref))
         images.append((panel.title, spectrum.to_display(rgb, scale)))
         id_buffers.append((rendered.ids, rendered.labels))
-        noise = metrics.noise_figures(rendered.luminance_passes(channels), rendered.ids)
+        y = rendered.luminance_passes(channels)
+        noise, per_object = metrics.panel_noise(y, rendered.ids)
         specs = {label: spec for label, _, spec in panel.objects}
-        for row in object_rows(rendered, channels):
+        for row in object_rows(rendered, y, per_object):
             rows.append({"figure": name, "panel": k, "panel_title": panel.title, **row,
                          **_describe(specs.get(row["object"], {})),
                          "width": width, "height": height, "spp": rendered.spp, "passes": setup["passes"],
