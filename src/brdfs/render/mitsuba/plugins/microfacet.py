@@ -171,10 +171,10 @@ class _SmithBSDF(ModelBSDF):
         self.ior_im = read_float(props, "ior_im", 0.0)
         if self.ior_re is None and "ior_im" in props:
             raise ValueError(f"{props.plugin_name()}: ior_im = {self.ior_im!r} given without ior_re")
-        if self.ior_re is not None and not (self.ior_re > 0 and self.ior_im >= 0):
-            bad = "ior_re" if not self.ior_re > 0 else "ior_im"
-            raise ValueError(f"{props.plugin_name()}: {bad} = {getattr(self, bad)!r} must be "
-                             f"{'> 0' if bad == 'ior_re' else '>= 0'}")
+        if self.ior_re is not None and not self.ior_re > 0:
+            raise ValueError(f"{props.plugin_name()}: ior_re = {self.ior_re!r} must be > 0")
+        if not self.ior_im >= 0:
+            raise ValueError(f"{props.plugin_name()}: ior_im = {self.ior_im!r} must be >= 0")
         self._alpha = opaque(self.alpha)
         self._ior = None if self.ior_re is None else (opaque(self.ior_re), opaque(self.ior_im))
 
