@@ -99,7 +99,8 @@ benchmark: llvm $(STAMP)
 renders-final: llvm $(STAMP)
 	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full --config batches=true "renders={preset: final}" $(TARGETS))
 
-# The seven deliberate renderer faults (issue 23's six and mis_weights_apart), each in a temporary copy; a named test must fail.
+# The nine deliberate renderer faults (issue 23's six, mis_weights_apart, issue 42's fresnel_at_theta_l and
+# tangent_flipped), each in a temporary copy; a named test must fail.
 check-mutations: llvm $(STAMP)
 	bash workflow/scripts/check_mutations.sh
 

@@ -106,22 +106,49 @@ def test_the_preset_switch_rejects_unknown_values_in_one_line(tiny_cfg):
         rf.settings(cfg)
 
 
-def _written_bytes(cfg: dict, name: str, folder) -> tuple[bytes, bytes]:
+def _written_bytes(cfg: dict, name: str, folder) -> tuple[bytes, bytes, bytes]:
+    """The CSV, PNG and first panel's OpenEXR bytes of ``name`` written into ``folder``."""
     artifact = registry.get_artifact(name)
     folder.mkdir()
-    artifact.write(artifact.compute(cfg, {}), folder / "x.csv", folder / "x.png")
-    return (folder / "x.csv").read_bytes(), (folder / "x.png").read_bytes()
+    df = artifact.compute(cfg, {})
+    artifact.write(df, folder / "x.csv", folder / "x.png", folder / "renders")
+    exr = folder / "renders" / rf.exr_name(0)
+    return (folder / "x.csv").read_bytes(), (folder / "x.png").read_bytes(), exr.read_bytes()
 
 
-def test_a_render_figure_written_twice_from_one_config_has_identical_csv_and_png_bytes(tiny_cfg, tmp_path):
+def test_a_render_figure_written_twice_from_one_config_has_identical_csv_png_and_exr_bytes(tiny_cfg, tmp_path):
     """Byte determinism (issue 23): the passes' seeds come from the config's ``seed`` alone, so two
-    runs agree byte for byte, and another ``seed`` gives another noise (the seed is really used)."""
+    runs agree byte for byte, the OpenEXR linear radiance included (issue 42: Mitsuba's writer, the
+    same bytes for the same image on one variant and machine), and another ``seed`` gives another
+    noise (the seed is really used)."""
     cfg = copy.deepcopy(tiny_cfg)
     name = "fig_3_12_plastics"                 # an rgb figure: one pass per seed (the cheapest)
     first = _written_bytes(cfg, name, tmp_path / "a")
     assert _written_bytes(cfg, name, tmp_path / "b") == first
     cfg["seed"] = int(cfg["seed"]) + 1
-    assert _written_bytes(cfg, name, tmp_path / "c")[0] != first[0]
+    other = _written_bytes(cfg, name, tmp_path / "c")
+    assert other[0] != first[0] and other[2] != first[2]
+
+
+def test_each_panel_is_written_as_32_bit_float_openexr_of_its_linear_radiance(tiny_cfg, tmp_path, mitsuba):
+    """results/renders/<figure>/panel_<k>.exr: one file per panel (the CSV's ``panel``), RGB float32,
+    the panel's mean over its passes in linear sRGB exactly (the values the PNG is scaled from); a
+    panel file left from an earlier run with more panels is removed."""
+    mi = mitsuba
+    cfg = copy.deepcopy(tiny_cfg)
+    df = registry.get_artifact("fig_4_18_generalized_lambert").compute(cfg, {})
+    (tmp_path / rf.exr_name(99)).write_bytes(b"stale")
+    paths = rf.write_renders(df, tmp_path)
+    assert [p.name for p in sorted(tmp_path.iterdir())] == sorted(rf.exr_name(k) for k in df["panel"].unique())
+    for k, path in enumerate(paths):
+        bitmap = mi.Bitmap(str(path))
+        assert bitmap.component_format() == mi.Struct.Type.Float32
+        assert bitmap.pixel_format() == mi.Bitmap.PixelFormat.RGB
+        image = np.asarray(bitmap)
+        assert image.dtype == np.float32 and np.array_equal(image, df.attrs[rf.RADIANCE][k])
+        assert image.shape[:2] == tuple(df[df["panel"] == k][["height", "width"]].iloc[0])
+    assert registry.get_artifact("fig_4_18_generalized_lambert").renders == "results/renders/fig_4_18_generalized_lambert"
+    assert registry.get_artifact("table_3_2_ward_cmax").renders is None
 
 
 def _contract_render_columns() -> set:

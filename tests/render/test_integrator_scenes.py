@@ -39,10 +39,49 @@ def test_a_firefly_exceeds_ten_times_the_median_of_its_five_by_five_neighbourhoo
     assert metrics.fireflies(y, np.zeros((9, 9), bool)).sum() == 0    # only object pixels count
 
 
+def test_a_pass_three_times_its_pixels_median_pass_and_its_neighbourhood_is_a_sparkle():
+    """A 3.5x sparkle in one pass counts (the 10x rule of the panel's ``fireflies`` misses it); a 2.5x
+    one does not; nor does a steady highlight (every pass 4x its neighbours: so is its own median),
+    until one of its passes is 3.5x that median."""
+    passes = np.ones((8, 9, 9))
+    passes[3, 4, 4] = 3.5                          # sparkle: 3.5 x its own median (1) and its neighbours'
+    passes[5, 1, 7] = 2.5                          # too faint
+    passes[:, 7, 1] = 4.0                          # a steady highlight, 4 x its neighbours
+    mask = np.ones((9, 9), bool)
+    found = metrics.sparkles(passes, mask)
+    assert found[4, 4] == 1 and found.sum() == 1
+    assert metrics.fireflies(passes.mean(axis=0), mask).sum() == 0            # the panel's 10x rule
+    passes[:, 7, 1] = [14.0] + [4.0] * 7           # 3.5 x the highlight's own median: a sparkle
+    assert metrics.sparkles(passes, mask)[7, 1] == 1
+    assert metrics.sparkles(passes, np.zeros((9, 9), bool)).sum() == 0       # only object pixels count
+
+
+def test_each_object_gets_its_own_p95_and_fireflies_not_the_panels():
+    """A large quiet floor beside a small noisy sphere: the panel's p95 is the floor's, the sphere's
+    own p95 is its pixels' (as computed directly) and its sparkles are its own."""
+    rng = np.random.default_rng(3)
+    ids = np.ones((40, 40))
+    ids[5:15, 5:15] = 2.0                                        # the sphere: 100 px of 1600
+    passes = 1.0 + 0.01 * rng.standard_normal((8, 40, 40))
+    passes[:, 5:15, 5:15] = rng.gamma(0.5, 2.0, (8, 10, 10))    # heavy noise, mean 1
+    passes[0, 9, 9] = 50.0
+    noise = metrics.object_noise(passes, ids)
+    mask = metrics.object_pixels(ids, passes.mean(axis=0))
+    rse = metrics.relative_standard_error(passes)
+    sphere = mask & (ids == 2)
+    assert noise[2].object_pixels == sphere.sum() == 36         # 6 x 6: 2 px in from its edge
+    assert noise[2].p95_relative_se == np.percentile(rse[sphere], 95.0) > 0.2
+    assert noise[1].p95_relative_se < 0.01
+    assert metrics.noise_figures(passes, ids).p95_relative_se < 0.01          # the panel's: the floor's
+    assert noise[2].fireflies >= 1 and noise[1].fireflies == 0
+    assert noise[2].sparkles >= noise[2].fireflies
+
+
 def test_noise_figures_of_a_noiseless_panel_are_zero_noise_and_every_interior_pixel():
     ids = np.ones((10, 10))
     figures = metrics.noise_figures(np.full((8, 10, 10), 0.3), ids)
     assert figures.p95_relative_se == 0.0 and figures.fireflies == 0 and figures.object_pixels == 100
+    assert metrics.object_noise(np.full((8, 10, 10), 0.3), ids) == {1: metrics.ObjectNoise(0.0, 0, 0, 100)}
 
 
 def test_the_pyramid_is_five_vertices_with_outward_faces():

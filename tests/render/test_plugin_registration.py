@@ -118,6 +118,14 @@ def test_generic_plugin_renders_a_users_own_model_as_mitsuba_renders_its_own_lam
     ({"type": "brdfs_model", "model": "no_such_model"}, "brdfs_model: model(): name = 'no_such_model'"),
     ({"type": "brdfs_patch_exponential", "s": 10.0, "mis_density": "cheap"},
      "brdfs_patch_exponential: mis_density = 'cheap'; choose one of ('exact', 'lobe')"),
+    # two Fresnel factors on one lobe, or half an index: no meaning
+    ({"type": "brdfs_ggx", "alpha": 0.3, "ior_re": 1.5, "eta": 1.5}, "brdfs_ggx: eta given beside ior_re = 1.5"),
+    ({"type": "brdfs_model", "model": "ggx", "alpha": 0.3, "ior_re": 1.5, "eta": 1.5, "k": 0.0},
+     "brdfs_model: eta given beside ior_re = 1.5"),
+    ({"type": "brdfs_beckmann", "alpha": 0.3, "ior_im": 3.0}, "brdfs_beckmann: ior_im = 3.0 given without ior_re"),
+    ({"type": "brdfs_ggx", "alpha": 0.3, "ior_re": 0.0}, "brdfs_ggx: ior_re = 0.0 must be > 0"),
+    ({"type": "brdfs_ggx", "alpha": 0.3, "ior_re": 1.5, "ior_im": -1.0}, "brdfs_ggx: ior_im = -1.0 must be >= 0"),
+    ({"type": "brdfs_phong_cosmin", "n": 20, "k": 3.0}, "brdfs_phong_cosmin: k given without eta"),
 ])
 def test_bad_plugin_parameters_are_named_in_one_line(mitsuba, params, line):
     with pytest.raises(RuntimeError) as error:

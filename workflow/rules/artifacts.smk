@@ -30,7 +30,7 @@ rule artifact:
         config=lambda wc: registry.config_digest(config, ARTIFACTS[wc.name].config),
     wildcard_constraints:
         kind="tables|figures|checks",
-        name=wildcard_choice(SOLO),
+        name=wildcard_choice(set(SOLO) - RENDERING),
     threads: lambda wc: ARTIFACTS[wc.name].resources["threads"]
     resources:
         mem_mb=lambda wc: ARTIFACTS[wc.name].resources["mem_mb"],
@@ -43,6 +43,27 @@ rule artifact:
         "../scripts/artifact.py"
 
 
+# A rendered figure (Artifact.renders) also writes each panel's linear radiance as OpenEXR into
+# results/renders/{name}/ (one directory per figure: its panels are known only from the config).
+use rule artifact as render_artifact with:
+    output:
+        csv="results/figures/{name}.csv",
+        png=report(
+            "results/figures/{name}.png",
+            caption="../report/artifact.rst",
+            category=lambda wc: report_text.category(ARTIFACTS[wc.name].chapter),
+            subcategory=lambda wc: report_text.subcategory(wc.name),
+            labels=lambda wc: {"artifact": wc.name, "thesis": report_text.thesis_number(wc.name) or "extra"},
+        ),
+        renders=directory("results/renders/{name}"),
+    wildcard_constraints:
+        name=wildcard_choice(RENDERING),
+    log:
+        "results/logs/figures/{name}.log",
+    benchmark:
+        "results/benchmarks/rules/figures/{name}.tsv"
+
+
 for _batch, _members in BATCHES.items():
 
     rule:
@@ -52,7 +73,7 @@ for _batch, _members in BATCHES.items():
             tables=batch_inputs(_members),
             code=sorted({s for a in _members for s in a.sources}),
         output:
-            [path for a in _members for path in (a.csv, a.png)],
+            [directory(p) if p == a.renders else p for a in _members for p in a.outputs],
         params:
             artifacts=[a.name for a in _members],
             config=registry.config_digest(config, sorted({s for a in _members for s in a.config})),

@@ -36,9 +36,11 @@ VERDICT_COUNTS_PNG = "results/checks/published_verdicts.png"
 
 ARTIFACTS = registry.artifacts()
 COMPARISONS = registry.comparisons()
-ARTIFACT_OUTPUTS = [path for a in ARTIFACTS.values() for path in (a.csv, a.png)]
+ARTIFACT_OUTPUTS = [path for a in ARTIFACTS.values() for path in a.outputs]
 BATCHES = registry.batches(ARTIFACTS) if BATCHED else {}
 SOLO = sorted(set(ARTIFACTS) - {a.name for members in BATCHES.values() for a in members})
+# The rendered figures among them: their rule also declares the EXR directory (Artifact.renders).
+RENDERING = {name for name in SOLO if ARTIFACTS[name].renders}
 FRAGMENTS = [c.fragment_csv for c in COMPARISONS.values()]
 
 # What the report's caption templates (workflow/report/*.rst) show, read when the report is

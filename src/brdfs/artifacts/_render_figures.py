@@ -25,9 +25,14 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   An ``rgb`` panel (eq. 3.31) is its plugins' r, g, b.
 * **Rows**: one per (panel, object): the mean luminance Y of the object's pixels and its standard
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
-  ``fireflies``, ``object_pixels``, with ``spp``, ``passes``, ``preset``, ``variant`` and
+  ``fireflies``, ``object_pixels``, the object's own ``object_p95_relative_se``,
+  ``object_fireflies``, ``object_sparkles``, ``object_noise_pixels`` (:func:`~brdfs.render.mitsuba.metrics.object_noise`),
+  with ``spp``, ``passes``, ``preset``, ``variant`` and
   ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1). The
   display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
+* **Linear radiance** (``df.attrs["radiance"]``): each panel's mean over its passes in linear sRGB
+  (float32, the values the PNG is scaled and encoded from), written by :func:`write_renders` as
+  OpenEXR ``results/renders/<figure>/panel_<k>.exr`` (``k`` the CSV's ``panel``).
 
 All panels of a figure share one display scale (from the reference objects of its first panel,
 section 3.6) unless a figure asks otherwise, and the same seeds (common random numbers).
@@ -339,9 +344,19 @@ def _count_columns(rendered: RenderedPanel, label: str, count: bool) -> dict:
             "plugin_evaluations": evaluations}
 
 
-def object_rows(rendered: RenderedPanel, channels: int) -> list[dict]:
-    """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes."""
-    y = rendered.luminance_passes(channels)
+def _object_noise_columns(noise) -> dict:
+    """An object's own noise figures (:func:`brdfs.render.mitsuba.metrics.object_noise`; None: no object pixels)."""
+    if noise is None:
+        return {"object_p95_relative_se": float("nan"), "object_fireflies": 0, "object_sparkles": 0,
+                "object_noise_pixels": 0}
+    return {"object_p95_relative_se": noise.p95_relative_se, "object_fireflies": noise.fireflies,
+            "object_sparkles": noise.sparkles, "object_noise_pixels": noise.object_pixels}
+
+
+def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict) -> list[dict]:
+    """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes
+    (``y``: the (P, H, W) luminance passes), and the object's own noise figures (``noise``:
+    :func:`~brdfs.render.mitsuba.metrics.panel_noise`'s per object)."""
     rows = []
     for k, label in sorted(rendered.labels.items()):
         sel = rendered.ids == k
@@ -349,7 +364,8 @@ def object_rows(rendered: RenderedPanel, channels: int) -> list[dict]:
             continue
         per_pass = y[:, sel].mean(axis=1)
         rows.append({"object": label, "pixels": int(sel.sum()), "luminance": float(per_pass.mean()),
-                     "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size))})
+                     "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size)),
+                     **_object_noise_columns(noise.get(k))})
     return rows
 
 
@@ -363,7 +379,7 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``plugin_evaluations`` (per object whose plugin counts), over all passes.
     """
     setups = panel_setups(figure_setup(settings(cfg), name), name, len(panels))
-    rows, images, id_buffers, scale = [], [], [], None
+    rows, images, id_buffers, radiance, scale = [], [], [], [], None
     for k, (panel, setup) in enumerate(zip(panels, setups)):
         width, height = panel_size(setup, panel.aspect)
         rendered = render_panel(panel, cfg, setup, width, height, count)
@@ -371,14 +387,16 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
             rendered = post(panel, rendered)
         channels = SPECTRAL if panel.channels == "spectral" else 3
         rgb = spectrum.linear_rgb(rendered.radiance)
+        radiance.append(rgb.astype(np.float32))
         if scale is None or not shared_scale:
             ref = [i for i, label in rendered.labels.items() if label in panel.reference]
             scale = spectrum.display_scale(rgb, np.isin(rendered.ids, ref))
         images.append((panel.title, spectrum.to_display(rgb, scale)))
         id_buffers.append((rendered.ids, rendered.labels))
-        noise = metrics.noise_figures(rendered.luminance_passes(channels), rendered.ids)
+        y = rendered.luminance_passes(channels)
+        noise, per_object = metrics.panel_noise(y, rendered.ids)
         specs = {label: spec for label, _, spec in panel.objects}
-        for row in object_rows(rendered, channels):
+        for row in object_rows(rendered, y, per_object):
             rows.append({"figure": name, "panel": k, "panel_title": panel.title, **row,
                          **_describe(specs.get(row["object"], {})),
                          "width": width, "height": height, "spp": rendered.spp, "passes": setup["passes"],
@@ -392,7 +410,43 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     df = pd.DataFrame(rows)
     df.attrs["images"] = images
     df.attrs["ids"] = id_buffers
+    df.attrs[RADIANCE] = radiance
     return df
+
+
+#: ``df.attrs`` key of the panels' linear radiance: a list of (H, W, 3) float32 linear sRGB, panel by panel.
+RADIANCE = "radiance"
+
+
+def exr_name(panel: int) -> str:
+    """The OpenEXR file of panel ``panel`` (the CSV's ``panel``) in its figure's renders directory."""
+    return f"panel_{panel}.exr"
+
+
+def write_renders(df: pd.DataFrame, directory) -> list:
+    """Write each panel's linear radiance (``df.attrs["radiance"]``) as a 32-bit float RGB OpenEXR
+    file :func:`exr_name` in ``directory`` (created; other ``panel_*.exr`` files there removed), by
+    Mitsuba's own writer (``mi.Bitmap(...).write``), each atomically; the same image gives the same
+    bytes for one variant and machine.  Returns the paths."""
+    import os
+    from pathlib import Path
+
+    radiance = df.attrs.get(RADIANCE)
+    if not radiance:
+        raise ValueError(f"{directory}: no linear radiance passed from compute (df.attrs[{RADIANCE!r}])")
+    mi = _mitsuba(str(df["variant"].iloc[0]))
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for k, rgb in enumerate(radiance):
+        path = directory / exr_name(k)
+        tmp = path.with_name(f".{path.name}.tmp.exr")
+        mi.Bitmap(np.ascontiguousarray(rgb, dtype=np.float32), mi.Bitmap.PixelFormat.RGB).write(str(tmp))
+        os.replace(tmp, path)
+        paths.append(path)
+    for stale in set(directory.glob("panel_*.exr")) - set(paths):
+        stale.unlink()
+    return paths
 
 
 def object_crop(image: np.ndarray, ids: np.ndarray, labels: dict, label: str, margin: int = 6,

@@ -139,6 +139,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     images, ids = df.attrs["images"], df.attrs["ids"]
     out = pd.concat([df, profile], ignore_index=True)
     out.attrs["ids"] = ids
+    out.attrs[rf.RADIANCE] = df.attrs[rf.RADIANCE]
     out.attrs["images"] = images
     crops = profiled_crops(out)
     out.attrs["images"] = images + [("the silver pyramid, native resolution", crops),

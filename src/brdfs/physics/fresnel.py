@@ -121,7 +121,7 @@ def unpolarised_reflectance(cos_theta: ArrayLike, ior_re: ArrayLike, ior_im: Arr
     return (np.abs(r_perp) ** 2 + np.abs(r_par) ** 2) / 2  # eq. 1.43
 
 
-# --- the angle at which a model's Fresnel factor is read (eqs. 3.29, 4.53/4.54) ----------------
+# --- the angle at which a model's Fresnel factor is read (eqs. 3.29, 4.53/4.54; L·H) ----------------
 
 def cos_theta_min(L: ArrayLike, V: ArrayLike) -> np.ndarray:
     """cos Θ_min = max(N·L, N·V), in ``[0, 1]``: the angle of the new model's metals (eq. 3.29).
@@ -133,6 +133,22 @@ def cos_theta_min(L: ArrayLike, V: ArrayLike) -> np.ndarray:
     """
     L, V = np.asarray(L, float), np.asarray(V, float)
     return np.clip(np.maximum(L[..., 2], V[..., 2]), 0.0, 1.0)
+
+
+def cos_theta_half(L: ArrayLike, V: ArrayLike) -> np.ndarray:
+    """cos of the angle between L and the half vector H = (L + V)/|L + V|, L·H = V·H, in ``[0, 1]``:
+    where a microfacet model reads F (the facet's own angle of incidence; Cook & Torrance 1982,
+    Walter et al. 2007, eq. 20), formed as L·(L + V)/|L + V| (0 where L + V = 0).
+
+    >>> round(float(cos_theta_half(np.array([0.6, 0.0, 0.8]), np.array([-0.6, 0.0, 0.8]))), 12)
+    0.8
+    """
+    L, V = np.asarray(L, float), np.asarray(V, float)
+    h = L + V
+    norm = np.linalg.norm(h, axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cos = np.sum(L * h, axis=-1) / norm
+    return np.clip(np.where(norm > 0, cos, 0.0), 0.0, 1.0)
 
 
 def cos_theta_prime(L: ArrayLike, V: ArrayLike) -> np.ndarray:

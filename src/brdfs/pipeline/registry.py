@@ -82,6 +82,13 @@ _NAME_PATTERNS = {
 }
 _NUMBERED = re.compile(r"(?:fig|table)_(\d+)_\d+_")
 
+#: An artifact that reads this config section renders: beside its CSV and PNG it writes each panel's
+#: linear radiance as OpenEXR into ``results/renders/<name>/`` (:attr:`Artifact.renders`), by
+#: :data:`RENDERS_WRITER`'s ``write_renders(df, directory)``.
+RENDERS_SECTION = "renders"
+RENDERS_DIRECTORY = "results/renders"
+RENDERS_WRITER = "brdfs.artifacts._render_figures"
+
 #: Default of ``chapter=`` and ``batch=``: derived from the artifact's name.
 AUTO = "auto"
 
@@ -268,6 +275,16 @@ class Artifact:
         return f"{_DIRECTORIES[self.kind]}/{self.name}.png"
 
     @property
+    def renders(self) -> str | None:
+        """The directory of a rendering artifact's OpenEXR files (one per panel), else None."""
+        return f"{RENDERS_DIRECTORY}/{self.name}" if RENDERS_SECTION in self.config else None
+
+    @property
+    def outputs(self) -> tuple[str, ...]:
+        """Every output of its rule: the CSV, the PNG and, if it renders, :attr:`renders` (a directory)."""
+        return (self.csv, self.png) + ((self.renders,) if self.renders else ())
+
+    @property
     def sources(self) -> list[str]:
         """The source files the artifact can depend on (see :func:`_sources_of`)."""
         return _sources_of(_source_file(self.module, self.fn))
@@ -288,11 +305,13 @@ class Artifact:
         """Draw the artifact with its module's ``plot(df, path)``."""
         importlib.import_module(self.module).plot(df, path)
 
-    def write(self, df: pd.DataFrame, csv: str | Path, png: str | Path) -> None:
-        """Write the CSV and the PNG, each atomically."""
+    def write(self, df: pd.DataFrame, csv: str | Path, png: str | Path, renders: str | Path | None = None) -> None:
+        """Write the CSV and the PNG, each atomically, and the OpenEXR renders into ``renders`` if given."""
         io.write_csv(df, csv)
         with io.atomic_output(png) as tmp:
             self.plot(df, tmp)
+        if renders is not None:
+            importlib.import_module(RENDERS_WRITER).write_renders(df, renders)
 
 
 @dataclass(frozen=True)

@@ -4,8 +4,8 @@ A material is a sum of lobes; each lobe is a scalar BRDF of the package (``brdfs
 **params)``, evaluated as ``model(L, V)`` on local unit vectors, N = (0, 0, 1)) times a factor
 per colour channel: a constant (diffuse colours, a_s of eq. 3.31) or a Fresnel reflectance
 from a complex index per wavelength, read at the angle the model declares
-(:meth:`~brdfs.physics.models.base.BRDF.fresnel_cosine`: Θ_min of eq. 3.29 by default, θ' of
-eq. 4.53 for the patch models, eq. 4.54). Each lobe proposes directions with its model's own
+(:meth:`~brdfs.physics.models.base.BRDF.fresnel_cosine`: Θ_min of eq. 3.29 by default, L·H for the
+microfacet models, θ' of eq. 4.53 for the patch models, eq. 4.54). Each lobe proposes directions with its model's own
 sampler (:mod:`brdfs.render.sampling`). Channels are wavelengths (spectral scenes) or r, g, b
 (eq. 3.31). Values have shape (…, C).
 """

@@ -4,8 +4,8 @@ Material entries (one dict per object):
 
 * ``{metal: gold, model: phong_cosmin, n: 20}`` — eq. 3.29: the package's model × Fresnel of the
   metal's measured complex index at the eight wavelengths, at the angle the model declares
-  (``fresnel_cosine``: Θ_min for the Phong-type models, θ' of eq. 4.53 for the patch models,
-  eq. 4.54); ``pumped: 1`` divides the model by its albedo once (eq. 2.20,
+  (``fresnel_cosine``: Θ_min for the Phong-type models, L·H for the microfacet models, θ' of
+  eq. 4.53 for the patch models, eq. 4.54); ``pumped: 1`` divides the model by its albedo once (eq. 2.20,
   :class:`brdfs.physics.models.pumped.Pumped`, built with its table by the model factory
   :mod:`brdfs.numerics.tables`);
 * ``{rgb: [r, g, b], a_s: 0.04, n: 169}`` — the plastic of eq. 3.31 (r, g, b channels);

@@ -51,7 +51,7 @@ renderer and Figure 4.9 all draw from it:
   base-plane points), ``disk_boundaries()`` (where the density jumps), ``chi2_cases`` and
   ``chi2_example(params)`` (the parameters tested, narrowest first, else the ``examples``);
 * ``fresnel_cosine(L, V)``: the angle at which a metal of the model reads its Fresnel factor
-  (Θ_min of eq. 3.29 by default, θ' of eq. 4.53 for the patch models).
+  (Θ_min of eq. 3.29 by default, θ' of eq. 4.53 for the patch models, L·H for the microfacet models).
 
 Parameters: ``params`` (the values, as ``data/published_values.csv`` names them) and
 ``param_columns()`` (the names, from the dataclass fields; tables a model is built with are not

@@ -11,7 +11,7 @@ from scipy.special import gamma
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.physics.lobes import HALF, MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
-from brdfs.physics.fresnel import unpolarised_reflectance
+from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
 from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive, register
 from brdfs.physics import sampling
 
@@ -30,6 +30,9 @@ class _BeckmannFamily(BRDF):
     def __post_init__(self):
         check_positive("m", self.m)
         check_positive("C", self.C)
+
+    #: A metal of a microfacet model reads F at the facet's angle of incidence, L·H.
+    fresnel_cosine = staticmethod(cos_theta_half)
 
     @property
     def distribution(self) -> Beckmann:
@@ -270,8 +273,8 @@ class CookTorranceFresnel(CookTorrance):
     exact_albedo = BRDF.exact_albedo
 
     def _eval(self, L, V, nl, nv):
-        cos_lh = np.linalg.norm(L + V, axis=-1) / 2.0
-        return super()._eval(L, V, nl, nv) * unpolarised_reflectance(cos_lh, self.ior_re, self.ior_im)
+        return super()._eval(L, V, nl, nv) * unpolarised_reflectance(self.fresnel_cosine(L, V), self.ior_re,
+                                                                    self.ior_im)
 
 
 # --- closed forms at grazing incidence (Sec. 2.2.1) ------------------------------------------

@@ -40,7 +40,7 @@ from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import MicrofacetLobe
 from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.sampling import REJECTED
-from brdfs.physics.fresnel import unpolarised_reflectance
+from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence
 from brdfs.physics.models.base import BRDF, check_positive, exact, non_negative, positive, table_field, register
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
@@ -149,6 +149,8 @@ class _SmithMicrofacet(BRDF):
         if self.ior_re is not None:
             check_positive("ior_re", self.ior_re)
             check_positive("ior_im", self.ior_im, allow_zero=True)
+        elif self.ior_im != 0.0:
+            raise ValueError(f"ior_im = {self.ior_im!r} given without ior_re (the index's real part)")
         if self.compensation == "kulla_conty":
             if self.energy is None:
                 raise MissingTable(
@@ -179,6 +181,9 @@ class _SmithMicrofacet(BRDF):
         return tuple(k * self.alpha for k in (1 / 16, 1 / 4, 1.0, 4.0) if k * self.alpha < 1.0)
 
     # --- the BRDF ------------------------------------------------------------------------------
+    #: Where F is read, by ``ior_re`` and by a renderer's metal (``eta``/``k``) alike: L·H.
+    fresnel_cosine = staticmethod(cos_theta_half)
+
     def fresnel(self, cos_theta):
         """F(cos θ): 1 (``ior_re`` None) or the unpolarised conductor reflectance (eqs. 1.41–1.43)."""
         if self.ior_re is None:
@@ -213,9 +218,7 @@ class _SmithMicrofacet(BRDF):
         d = self.distribution.D(cos_d, tan2)
         if self.ior_re is None:
             return d * self.g2_over_4_nl_nv(nl, nv)
-        h = np.asarray(L, float) + np.asarray(V, float)
-        cos_lh = np.sum(np.asarray(L, float) * h, axis=-1) / np.linalg.norm(h, axis=-1)
-        return self.fresnel(cos_lh) * d * self.g2_over_4_nl_nv(nl, nv)
+        return self.fresnel(self.fresnel_cosine(L, V)) * d * self.g2_over_4_nl_nv(nl, nv)
 
     def multiple_scattering(self, nl, nv):
         """Kulla–Conty f_ms(μ_L, μ_V) (module docstring); zero without compensation."""

@@ -10,6 +10,14 @@ per-pixel luminance Y, ``ids`` the (H, W) object ID buffer (the AOV ``id`` of ``
 * **Relative standard error** of a pixel's mean: the standard deviation over the passes (ddof 1),
   divided by √P and by the mean.
 * **Fireflies**: object pixels whose Y exceeds 10 × the median Y of their 5 × 5 neighbourhood.
+
+Per object (issue 42; each object ID of the panel on its own object pixels, :func:`object_noise`):
+
+* ``p95_relative_se``: the 95th percentile of the relative standard error over the object's pixels;
+* **sparkles**: the passes of an object pixel whose Y exceeds 3 × the larger of the median of that
+  pixel's own P passes and the median of the mean Y of its 5 × 5 neighbourhood — an outlier both in
+  its own passes (not a steady highlight) and among its neighbours (not an edge);
+* **fireflies**: the object's pixels with at least one sparkle.
 """
 from __future__ import annotations
 
@@ -24,6 +32,8 @@ ID_RADIUS = 2
 DARK_FRACTION = 0.01
 #: A firefly's Y exceeds this multiple of its 5 × 5 median.
 FIREFLY_FACTOR = 10.0
+#: A sparkle's Y exceeds this multiple of both its pixel's median pass and its 5 × 5 neighbourhood's median.
+SPARKLE_FACTOR = 3.0
 #: Fewest independently seeded passes the relative standard error is taken over.
 MIN_PASSES = 8
 
@@ -73,18 +83,74 @@ def relative_standard_error(passes: np.ndarray) -> np.ndarray:
         return np.where(mean > 0, se / mean, np.inf)
 
 
-def fireflies(mean_luminance: np.ndarray, mask: np.ndarray) -> np.ndarray:
-    """Object pixels (``mask``) whose Y exceeds 10 × the median Y of their 5 × 5 neighbourhood."""
+def neighbourhood_median(mean_luminance: np.ndarray) -> np.ndarray:
+    """The median Y of each pixel's 5 × 5 neighbourhood (clipped at the border by repetition)."""
+    return ndimage.median_filter(np.asarray(mean_luminance, float), size=5, mode="nearest")
+
+
+def fireflies(mean_luminance: np.ndarray, mask: np.ndarray, neighbours: np.ndarray | None = None) -> np.ndarray:
+    """Object pixels (``mask``) whose Y exceeds 10 × the median Y of their 5 × 5 neighbourhood
+    (``neighbours``, :func:`neighbourhood_median`, computed if not given)."""
     y = np.asarray(mean_luminance, float)
-    median = ndimage.median_filter(y, size=5, mode="nearest")
-    return mask & (y > FIREFLY_FACTOR * median)
+    neighbours = neighbourhood_median(y) if neighbours is None else neighbours
+    return mask & (y > FIREFLY_FACTOR * neighbours)
+
+
+def median_pass(passes: np.ndarray) -> np.ndarray:
+    """Each pixel's median over its P passes (the mean of the two middle ones for even P)."""
+    count = passes.shape[0]
+    middle = np.partition(passes, [(count - 1) // 2, count // 2], axis=0)
+    return 0.5 * (middle[(count - 1) // 2] + middle[count // 2])
+
+
+def sparkles(passes: np.ndarray, mask: np.ndarray, neighbours: np.ndarray | None = None) -> np.ndarray:
+    """Per pixel, how many of its passes sparkle (module docstring); 0 outside ``mask``.
+    ``passes``: (P, H, W); ``neighbours``: :func:`neighbourhood_median` of their mean, if at hand."""
+    passes = np.asarray(passes, float)
+    neighbours = neighbourhood_median(passes.mean(axis=0)) if neighbours is None else neighbours
+    # the pixels with a pass above 3 x their neighbourhood: the only ones where the own median matters
+    candidates = mask & (passes.max(axis=0) > SPARKLE_FACTOR * neighbours)
+    some = passes[:, candidates]
+    count = np.zeros(mask.shape, int)
+    count[candidates] = (some > SPARKLE_FACTOR * np.maximum(median_pass(some), neighbours[candidates])).sum(axis=0)
+    return count
+
+
+@dataclass(frozen=True)
+class ObjectNoise:
+    """The noise figures of one object of a panel, on its own object pixels (module docstring)."""
+
+    p95_relative_se: float
+    fireflies: int
+    sparkles: int
+    object_pixels: int
+
+
+def panel_noise(passes: np.ndarray, ids: np.ndarray) -> tuple[NoiseFigures, dict[int, ObjectNoise]]:
+    """The panel's :class:`NoiseFigures` and {object ID: :class:`ObjectNoise`} (every ID with object
+    pixels) from its (P, H, W) luminance passes and its ID buffer, sharing the mask, the relative
+    standard errors and the neighbourhood medians."""
+    passes = np.asarray(passes, float)
+    mean = passes.mean(axis=0)
+    mask = object_pixels(ids, mean)
+    rse = relative_standard_error(passes)
+    neighbours = neighbourhood_median(mean)
+    p95 = float(np.percentile(rse[mask], 95.0)) if mask.any() else float("nan")
+    panel = NoiseFigures(p95, int(fireflies(mean, mask, neighbours).sum()), int(mask.sum()), int(passes.shape[0]))
+    count = sparkles(passes, mask, neighbours)
+    objects = {}
+    for k in np.unique(np.asarray(ids)[mask]):
+        own = mask & (ids == k)
+        objects[int(k)] = ObjectNoise(float(np.percentile(rse[own], 95.0)), int((count[own] > 0).sum()),
+                                      int(count[own].sum()), int(own.sum()))
+    return panel, objects
+
+
+def object_noise(passes: np.ndarray, ids: np.ndarray) -> dict[int, ObjectNoise]:
+    """{object ID: :class:`ObjectNoise`} for every object ID with object pixels in the panel."""
+    return panel_noise(passes, ids)[1]
 
 
 def noise_figures(passes: np.ndarray, ids: np.ndarray) -> NoiseFigures:
     """The three figures of one panel from its (P, H, W) luminance passes and its ID buffer."""
-    passes = np.asarray(passes, float)
-    mean = passes.mean(axis=0)
-    mask = object_pixels(ids, mean)
-    rse = relative_standard_error(passes)[mask]
-    p95 = float(np.percentile(rse, 95.0)) if rse.size else float("nan")
-    return NoiseFigures(p95, int(fireflies(mean, mask).sum()), int(mask.sum()), int(passes.shape[0]))
+    return panel_noise(passes, ids)[0]

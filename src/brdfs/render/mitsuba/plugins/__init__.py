@@ -19,8 +19,9 @@ Names a scene can load after :func:`register_plugins` (``mi.load_dict({"type": "
 
 Every plugin also takes ``specular`` (the lobe's weight; Lambert's is ``reflectance``),
 ``diffuse_reflectance`` (adds ρ_d/π, one-sample MIS over the two lobes), ``eta`` and ``k`` (a metal:
-the lobe times the conductor Fresnel at the model's angle) and ``strategy`` (the model's own sampler by
-default, or ``"cosine"``).
+the lobe times the conductor Fresnel at the model's angle: Θ_min for the Phong family, L·H for the
+microfacet models, θ' for the patch models; refused beside ``ior_re``) and ``strategy`` (the model's
+own sampler by default, or ``"cosine"``).
 """
 from __future__ import annotations
 

@@ -21,7 +21,17 @@ named test fails):
 * :data:`FRAME_ROTATED_90`: the model frame turned 90° about N (x → y);
 * :data:`UNIFORM_CLAIMS_COSINE`: the cosine sampler draws uniform directions while its pdf still
   claims cos θ / π;
-* :data:`PDF_SCALE`: every pdf the plugins report is multiplied by it (1.05: off by 5 %).
+* :data:`PDF_SCALE`: every pdf the plugins report is multiplied by it (1.05: off by 5 %);
+
+and lines marked ``# MUTATION:<name> <replacement>`` (the line becomes the replacement):
+``mis_weights_apart``, ``fresnel_at_theta_l`` (every metal reads F at cos θ_L, not at its
+model's angle) and ``tangent_flipped`` (the model frame's y = −(N × x): anisotropy mirrored).
+
+Fresnel.  A metal (``eta``/``k``, or a microfacet model's own ``ior_re``/``ior_im``) reads F at the
+angle its model declares (:meth:`ModelBSDF.fresnel_cosine`, the twin of the numpy model's
+``fresnel_cosine``): Θ_min (eq. 3.29) by default, L·H for the microfacet models
+(:func:`cos_half_angle`), θ' for the patch models (eq. 4.53).  Two Fresnel factors on one lobe
+(``eta`` beside ``ior_re``) have no meaning: the scene fails to load, naming the parameter.
 """
 from __future__ import annotations
 
@@ -43,14 +53,14 @@ def to_model(v):
     """A direction of Mitsuba's shading frame (``si.sh_frame``: x = dp/du) in the model's frame."""
     if FRAME_ROTATED_90:
         return mi.Vector3f(v.y, -v.x, v.z)
-    return mi.Vector3f(v)
+    return mi.Vector3f(v)  # MUTATION:tangent_flipped return mi.Vector3f(v.x, -v.y, v.z)
 
 
 def from_model(v):
     """A direction of the model's frame in Mitsuba's shading frame (inverse of :func:`to_model`)."""
     if FRAME_ROTATED_90:
         return mi.Vector3f(-v.y, v.x, v.z)
-    return mi.Vector3f(v)
+    return mi.Vector3f(v)  # MUTATION:tangent_flipped return mi.Vector3f(v.x, -v.y, v.z)
 
 
 def around_axis(axis, cos_a, sin_a, phi):
@@ -116,6 +126,14 @@ def fresnel_conductor(cos_theta, eta, k):
     pr, pi_ = er * c, ei * c
     par = ((pr - wr) ** 2 + (pi_ - wi) ** 2) / ((pr + wr) ** 2 + (pi_ + wi) ** 2)
     return 0.5 * (perp + par)
+
+
+def cos_half_angle(L, V):
+    """L·H = L·(L + V)/|L + V|, clipped to [0, 1] (0 where L + V = 0): where a microfacet model reads F
+    (:func:`brdfs.physics.fresnel.cos_theta_half`)."""
+    h = L + V
+    norm = dr.norm(h)
+    return dr.select(norm > 0, dr.clip(dr.dot(L, h) / dr.select(norm > 0, norm, 1.0), 0.0, 1.0), 0.0)
 
 
 def channel_mean(value):
@@ -198,6 +216,9 @@ class ModelBSDF(mi.BSDF):
         has_eta, has_k = ("eta" in props), ("k" in props)
         if has_k and not has_eta:
             raise ValueError(f"{props.plugin_name()}: k given without eta")
+        if has_eta and "ior_re" in props:
+            raise ValueError(f"{props.plugin_name()}: eta given beside ior_re = {props['ior_re']!r}: two Fresnel "
+                             f"factors on one lobe; give eta/k (per channel) or ior_re/ior_im, not both")
         self.eta = props.get_unbounded_texture("eta") if has_eta else None
         self.k = props.get_unbounded_texture("k", 0.0) if has_eta else None
         self.colour_groups = [(self.eta, self.k)] + _more_colour_groups(props, has_eta)
@@ -234,8 +255,14 @@ class ModelBSDF(mi.BSDF):
         raise NotImplementedError
 
     def fresnel_cosine(self, L, V):
-        """cos of the angle at which a metal reads F: Θ_min, max(N·L, N·V) (eq. 3.29)."""
+        """cos of the angle at which a metal reads F: Θ_min, max(N·L, N·V) (eq. 3.29), unless the
+        model declares another (the twin of its numpy model's ``fresnel_cosine``)."""
         return dr.clip(dr.maximum(L.z, V.z), 0.0, 1.0)
+
+    def fresnel(self, L, V, eta, k):
+        """F of the index ``eta`` + i ``k`` at :meth:`fresnel_cosine` (the one place a plugin reads F)."""
+        cos_f = self.fresnel_cosine(L, V)  # MUTATION:fresnel_at_theta_l cos_f = dr.clip(L.z, 0.0, 1.0)
+        return fresnel_conductor(cos_f, eta, k)
 
     # --- the material ----------------------------------------------------------------------------
     def _specular_factor(self, si, L, V, active, group=0):
@@ -243,7 +270,7 @@ class ModelBSDF(mi.BSDF):
         if self.eta is None:
             return w
         eta, k = self.colour_groups[group]
-        return w * fresnel_conductor(self.fresnel_cosine(L, V), eta.eval(si, active), k.eval(si, active))
+        return w * self.fresnel(L, V, eta.eval(si, active), k.eval(si, active))
 
     def _diffuse_probability(self, si, active):
         if self.diffuse is None:

@@ -21,7 +21,7 @@ import mitsuba as mi
 import drjit as dr
 import numpy as np
 
-from brdfs.render.mitsuba.plugins._common import ModelBSDF, fresnel_conductor, opaque, read_float
+from brdfs.render.mitsuba.plugins._common import ModelBSDF, cos_half_angle, opaque, read_float
 
 SQRT_PI = float(np.sqrt(np.pi))
 
@@ -58,6 +58,8 @@ class _BeckmannLobe(ModelBSDF):
     """Ward and Cook–Torrance: parameters ``m`` (roughness), ``C``; sampler ``"beckmann"``."""
 
     strategies = ("beckmann", "cosine")
+    #: A metal (``eta``/``k``) reads F at L·H, as the numpy model declares.
+    fresnel_cosine = staticmethod(cos_half_angle)
 
     def __init__(self, props):
         super().__init__(props)
@@ -147,9 +149,11 @@ G2_FORMS = ("height_correlated", "separable")
 class _SmithBSDF(ModelBSDF):
     """f = F(L·H) D(H) G2/(4 N·L N·V) (Walter et al. 2007, eq. 20); parameters ``alpha``, ``G2``
     (``height_correlated`` or ``separable``), ``ior_re``/``ior_im`` (the model's own Fresnel, F = 1 when
-    absent); Kulla–Conty's compensation renders through ``brdfs_model``."""
+    absent) or, per channel, ``eta``/``k`` (the same F(L·H), as Mitsuba's ``roughconductor``; not both);
+    Kulla–Conty's compensation renders through ``brdfs_model``."""
 
     strategies = ("visible_normals", "cosine")
+    fresnel_cosine = staticmethod(cos_half_angle)
 
     def __init__(self, props):
         super().__init__(props)
@@ -165,6 +169,12 @@ class _SmithBSDF(ModelBSDF):
                              f"render it through brdfs_model (model = {self.name!r})")
         self.ior_re = read_float(props, "ior_re", 0.0) if ("ior_re" in props) else None
         self.ior_im = read_float(props, "ior_im", 0.0)
+        if self.ior_re is None and "ior_im" in props:
+            raise ValueError(f"{props.plugin_name()}: ior_im = {self.ior_im!r} given without ior_re")
+        if self.ior_re is not None and not self.ior_re > 0:
+            raise ValueError(f"{props.plugin_name()}: ior_re = {self.ior_re!r} must be > 0")
+        if not self.ior_im >= 0:
+            raise ValueError(f"{props.plugin_name()}: ior_im = {self.ior_im!r} must be >= 0")
         self._alpha = opaque(self.alpha)
         self._ior = None if self.ior_re is None else (opaque(self.ior_re), opaque(self.ior_im))
 
@@ -182,15 +192,15 @@ class _SmithBSDF(ModelBSDF):
             return 1.0 / (4.0 * (nl * nv + nv * lam_l + nl * lam_v))
         return 1.0 / (4.0 * (nl + lam_l) * (nv + lam_v))
 
-    def fresnel(self, L, V, h_norm):
+    def own_fresnel(self, L, V):
+        """The model's own F(L·H) of ``ior_re``/``ior_im`` (1 without)."""
         if self.ior_re is None:
             return mi.Float(1.0)
-        cos_lh = dr.dot(L, L + V) / h_norm
-        return fresnel_conductor(cos_lh, *self._ior)
+        return self.fresnel(L, V, *self._ior)
 
     def lobe_eval(self, L, V, active):
-        tan2, cos2, h_norm = half_vector_parts(L, V)
-        return self.fresnel(L, V, h_norm) * self.D(tan2, cos2) * self.g2_over_4_nl_nv(L.z, V.z)
+        tan2, cos2, _ = half_vector_parts(L, V)
+        return self.own_fresnel(L, V) * self.D(tan2, cos2) * self.g2_over_4_nl_nv(L.z, V.z)
 
     def own_pdf(self, L, V, active):
         tan2, cos2, h_norm = half_vector_parts(L, V)
