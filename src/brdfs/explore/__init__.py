@@ -46,7 +46,10 @@ def serve(host: str = LOOPBACK, port: int = 8123, open_browser: bool = True, imp
     if not is_loopback(host):
         print(f"brdfs explore: warning: serving on {host}, not on localhost: anyone who can reach this "
               f"machine on port {port} can use the explorer and its CPU", file=sys.stderr, flush=True)
-    server = make_server(host, port, timeout=timeout or DEFAULT_TIMEOUT)
+    try:
+        server = make_server(host, port, timeout=timeout or DEFAULT_TIMEOUT)
+    except OSError as err:                          # a port in use, an address not of this machine
+        raise ValueError(f"--host {host} --port {port}: {err.strerror or err}") from None
     url = f"http://{host if ':' not in host else f'[{host}]'}:{server.server_address[1]}/"
     print(f"brdfs explore: serving on {url} (Ctrl-C stops)", flush=True)
     if open_browser:

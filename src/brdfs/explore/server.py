@@ -11,8 +11,9 @@ Routes (GET only):
 
 Every answer is JSON; a refused or failed request is ``{"error": "one line"}`` with status 400
 (bad input), 500 (the model failed), 503 (too many requests waiting) or 504 (longer than the
-per-request timeout).  The views run in a small pool of worker threads, so that the server keeps
-answering (the page, other views, a cheap model) while a slow model computes; the same albedo
+per-request timeout).  The views run in small pools of worker threads, one pool for the albedo, one
+for the sphere, one for the views that only evaluate the model (lobe, slice), so that the server
+keeps answering (the page, the lobe, another model) while a slow albedo computes; the same albedo
 asked twice at once is computed once (the sphere reads the curve the albedo view computes).
 """
 from __future__ import annotations
@@ -81,7 +82,10 @@ class Explorer:
         from brdfs.physics.models import MODELS
         self.models = MODELS
         self.timeout = timeout
-        self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="explore")
+        # a pool per kind of view: a slow albedo (and the sphere waiting for it) never holds back
+        # the lobe or the slice, which only evaluate the model
+        self._pools = {view: ThreadPoolExecutor(max_workers=workers, thread_name_prefix=f"explore-{view}")
+                       for view in ("albedo", "sphere", "evaluate")}
         self._waiting = 0
         self._waiting_lock = threading.Lock()
         self._built = _Memo(32)
@@ -142,7 +146,8 @@ class Explorer:
                                                                  "waiting); try again"}
             self._waiting += 1
         start = time.perf_counter()
-        future = self._pool.submit(view, query)
+        pool = self._pools.get(view.__name__, self._pools["evaluate"])
+        future = pool.submit(view, query)
         future.add_done_callback(self._done)
         try:
             data = future.result(timeout=self.timeout)
@@ -164,7 +169,8 @@ class Explorer:
             self._waiting -= 1
 
     def close(self):
-        self._pool.shutdown(wait=False, cancel_futures=True)
+        for pool in self._pools.values():
+            pool.shutdown(wait=False, cancel_futures=True)
 
 
 def _build(name, args):

@@ -201,10 +201,15 @@ def _sky_albedo(curve: dict, cos_v):
 
 
 def sphere(model, curve: dict, theta_l: float, size: int = 256) -> bytes:
+    """:func:`sphere_rgb` as a PNG."""
+    return png(sphere_rgb(model, curve, theta_l, size))
+
+
+def sphere_rgb(model, curve: dict, theta_l: float, size: int = 256) -> np.ndarray:
     """A sphere seen along −z, lit by a directional light at θ_L from the view direction (from the
     left) of irradiance :data:`LIGHT_IRRADIANCE`, by evaluation (E f cos θ_L), plus a uniform sky of
     radiance :data:`SKY_RADIANCE` through the albedo (S a(θ_V): the reflected radiance under a uniform
-    sky is a(θ_V) for a reciprocal BRDF).  Clipped to [0, 1], sRGB-encoded grey, as a PNG."""
+    sky is a(θ_V) for a reciprocal BRDF).  Clipped to [0, 1], sRGB-encoded grey: (size, size, 3) uint8."""
     c = (np.arange(size) + 0.5) / size * 2 - 1
     x, y = np.meshgrid(c, -c)
     inside = x * x + y * y < 1.0
@@ -227,22 +232,29 @@ def sphere(model, curve: dict, theta_l: float, size: int = 256) -> bytes:
     grey = _srgb(np.clip(image, 0.0, 1.0))
     rgb = np.repeat(grey[..., None], 3, -1)
     rgb[background] = (40, 44, 52)
-    return png(rgb)
+    return rgb
 
 
-def half_diff_slice(model, size: int = 128) -> bytes:
-    """f over θ_h (x, 0°..90°) and θ_d (y, 90° at the top .. 0°) at φ_d = 90°, log-scaled over the
-    image's positive values (four decades below its maximum), in a viridis-like map; black where V
-    or L is below the horizon.  L and V from (θ_h, φ_h = 0, θ_d, φ_d) as Rusinkiewicz (1998)."""
+def half_diff_directions(size: int):
+    """(θ_h, θ_d, L, V) on a size × size grid: θ_h along x (0°..90°), θ_d along y (90° at the top row
+    .. 0°), φ_h = 0 and φ_d = 90°: the difference vector (0, sin θ_d, cos θ_d) about H, rotated by θ_h
+    about y so that H = (sin θ_h, 0, cos θ_h), and V = 2 (L·H) H − L (Rusinkiewicz 1998)."""
     th = np.radians((np.arange(size) + 0.5) / size * 90.0)
     td = np.radians((np.arange(size)[::-1] + 0.5) / size * 90.0)
     theta_h, theta_d = np.meshgrid(th, td)
-    d = np.stack([np.sin(theta_d) * 0.0, np.sin(theta_d), np.cos(theta_d)], -1)   # φ_d = 90°
     ch, sh = np.cos(theta_h), np.sin(theta_h)
-    # rotate d by θ_h about y: the half vector goes to (sin θ_h, 0, cos θ_h)
-    L = np.stack([ch * d[..., 0] + sh * d[..., 2], d[..., 1], -sh * d[..., 0] + ch * d[..., 2]], -1)
+    dy, dz = np.sin(theta_d), np.cos(theta_d)
+    L = np.stack([sh * dz, dy, ch * dz], -1)
     H = np.stack([sh, np.zeros_like(sh), ch], -1)
     V = 2 * np.sum(L * H, -1, keepdims=True) * H - L
+    return theta_h, theta_d, L, V
+
+
+def half_diff_slice(model, size: int = 128) -> bytes:
+    """f over (θ_h, θ_d) at φ_d = 90° (:func:`half_diff_directions`), as BRDF Explorer's image slice:
+    log-scaled over four decades below the image's maximum, in a viridis-like map; black where L or V
+    is below the horizon or f vanishes."""
+    _, _, L, V = half_diff_directions(size)
     f = np.nan_to_num(np.asarray(model(L, V), float), nan=0.0, posinf=0.0)
     valid = (L[..., 2] > 0) & (V[..., 2] > 0) & (f > 0)
     rgb = np.zeros((size, size, 3), np.uint8)

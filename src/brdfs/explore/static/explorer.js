@@ -382,6 +382,7 @@ async function start() {
 
 window.addEventListener("hashchange", () => {
   const wanted = readHash();
+  if (wanted.theta !== null && Number(wanted.theta) !== state.theta) setTheta(wanted.theta);
   if (wanted.left) showSide("left", wanted.left.name, wanted.left.values);
   showSide("right", wanted.right && wanted.right.name, wanted.right ? wanted.right.values : {});
 });
