@@ -7,6 +7,7 @@
     brdfs albedo ggx --param alpha=0.3 --theta 60 --json
     brdfs chi2 phong_cosmin --param n=128 --theta 30,80
     brdfs compare                                 # printed numbers that reproduce / differ, by chapter
+    brdfs explore --no-browser --port 8123        # the BRDF explorer in the browser (brdfs.explore)
 
 ``--theta`` takes one angle, a comma-separated list, or ``start:stop:step`` with the stop included.
 Every error (an unknown model or method, a bad parameter, option or angle) prints the usage line

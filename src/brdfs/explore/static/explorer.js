@@ -124,8 +124,9 @@ class Panel {
         autoBox = el("input", { type: "checkbox", checked: this.values[p.name] === undefined });
         auto.append(autoBox, " auto");
         autoBox.addEventListener("change", () => {
-          if (autoBox.checked) delete this.values[p.name]; else this.values[p.name] = number.value;
-          slider.disabled = number.disabled = autoBox.checked;
+          if (autoBox.checked) delete this.values[p.name];
+          else this.values[p.name] = number.value = fromSlider(p, Number(slider.value));
+          showAuto();
           this.changed();
         });
       } else {
@@ -134,7 +135,11 @@ class Panel {
       const shown = start === null || start === undefined ? fromSlider(p, SLIDER_STEPS / 2) : start;
       number.value = shown;
       slider.value = toSlider(p, shown);
-      slider.disabled = number.disabled = Boolean(autoBox && autoBox.checked);
+      const showAuto = () => {     // "auto": the number box empty, the model's own value in force
+        slider.disabled = number.disabled = Boolean(autoBox && autoBox.checked);
+        if (number.disabled) { number.value = ""; number.placeholder = "auto"; }
+      };
+      showAuto();
       slider.addEventListener("input", () => {
         number.value = fromSlider(p, Number(slider.value));
         this.values[p.name] = number.value;
