@@ -26,6 +26,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 ALBEDO_LOBE_MS, SPHERE_MS = 200.0, 500.0
+USER_MODEL = "explore_lambert"
 
 
 def perturbed(cls, base: dict, k: int) -> dict:
@@ -74,8 +75,10 @@ def main() -> int:
     sys.path.insert(0, str(ROOT / "src"))
     from brdfs.explore._imports import import_models
     from brdfs.physics.models import MODELS
-    user = import_models(str(ROOT / "tests" / "explore" / "user_models.py"))
-    names = args.models.split(",") if args.models else [n for n in MODELS if n != "explore_failing"]
+    package = list(MODELS)
+    import_models(str(ROOT / "tests" / "explore" / "user_models.py"))
+    user = [USER_MODEL]                             # the file's others fail, wait or stall on purpose
+    names = args.models.split(",") if args.models else package + user
     print(f"one core; median of {args.rounds} parameter changes; targets: albedo+lobe {ALBEDO_LOBE_MS:.0f} ms, "
           f"sphere {SPHERE_MS:.0f} ms")
     print(f"{'model':<24} {'chapter':>7} {'albedo+lobe':>12} {'sphere':>8} {'slice':>7}  statuses")

@@ -75,6 +75,14 @@ def test_a_value_outside_its_range_gives_one_message_in_the_page_and_a_good_one_
     assert page.evaluate(MESSAGE) == ""
 
 
+def test_a_non_converged_albedo_says_so_in_the_page_and_draws_its_honest_band(page, explore_url):
+    load(page, f"{explore_url}/#left=explore_coarse&left.rho=0.5")
+    assert page.evaluate(MESSAGE) == ("explore_coarse: the albedo did not converge to rtol 1e-6 at 91 of 91 angles "
+                                      "(stalled, from 0°); the band shows their honest error bounds")
+    assert "91 stalled" in page.evaluate("document.querySelector('#panel-left .status').textContent")
+    assert "largest error bound 0.0005" in page.evaluate("document.querySelector('#panel-left .albedo-caption').textContent")
+
+
 def test_a_failing_model_gives_one_message_and_the_page_keeps_working(page, explore_url):
     load(page, f"{explore_url}/#left=explore_lambert&left.rho=0.5&right=explore_failing&right.k=1",
          sides=("left", "right"))

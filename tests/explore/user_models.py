@@ -57,3 +57,12 @@ class ExploreSlow(ExploreLambert):
         time.sleep(self.seconds)
         value = np.full(np.shape(theta_deg), self.rho)
         return Estimate(value, np.zeros_like(value))
+
+
+@register
+@dataclass(frozen=True)
+class ExploreCoarse(ExploreLambert):
+    """Lambert as if evaluated from a coarse table (relative error 1e-3): its albedo cannot meet rtol 1e-6."""
+
+    name = "explore_coarse"
+    evaluation_rtol = 1e-3
