@@ -94,9 +94,11 @@ def test_a_failing_model_gives_one_message_and_the_page_keeps_working(page, expl
 
 
 def test_the_url_reproduces_two_models_side_by_side_and_the_screenshot_is_not_blank(page, explore_url, tmp_path):
-    load(page, f"{explore_url}/#theta=45&left=blinn_cosmin&left.n=50&right=ggx&right.alpha=0.2&right.G2=separable",
-         sides=("left", "right"))
+    load(page, f"{explore_url}/#theta=45&lobe=3d&left=blinn_cosmin&left.n=50&right=ggx&right.alpha=0.2"
+               "&right.G2=separable", sides=("left", "right"))
     assert page.evaluate("document.querySelector('#theta').value") == "45"
+    assert page.evaluate("document.querySelector('#lobe-mode').value") == "3d"
+    assert len(last(page, "right", "lobe")["data"]["phi_v"]) == 49          # the 3-D lobe's grid
     assert page.evaluate("document.querySelector('#panel-left input[type=number][name=n]').value") == "50"
     assert page.evaluate("document.querySelector('#panel-right select[name=G2]').value") == "separable"
     page.wait_for("[...document.querySelectorAll('img.sphere')].every((i) => i.complete && i.naturalWidth === 256)")

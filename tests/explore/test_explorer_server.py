@@ -57,6 +57,7 @@ def test_views_answer_json_with_the_numbers_asked_for(server):
     ("/api/sphere?model=phong&size=4096", ["size=4096: must lie in [16, 512]"]),
     ("/api/lobe?model=phong&theta=95", ["theta=95", "[0, 90]"]),
     ("/api/lobe?model=phong&evil=1", ["'evil': not an option"]),
+    ("/api/lobe3d?model=phong&n=500", ["n=500: must lie in [3, 91]"]),
     ("/api/albedo", ["model: missing"]),
 ])
 def test_bad_requests_get_one_line_naming_the_bad_key_and_value(server, path, words):

@@ -131,3 +131,15 @@ def test_half_difference_slice_of_blinn_is_brightest_at_theta_h_zero():
     rgb = decode_png(views.half_diff_slice(brdfs.model("blinn", n=50), size=32))
     brightness = rgb.astype(int).sum(-1)
     assert np.all(np.argmax(brightness, axis=1)[4:-4] == 0)   # every θ_d row peaks in the θ_h = 0 column
+
+
+def test_3d_lobe_in_the_plane_of_incidence_is_the_polar_lobe():
+    model = brdfs.model("blinn", n=30)
+    grid = views.lobe_3d(model, 40.0, n_theta=10, n_phi=4)        # φ_V = 0 (mirror side) and 180° (light side)
+    polar = views.lobe(model, 40.0, n=181)                        # θ_V every degree, −90..90
+    at = {round(t): v for t, v in zip(polar["theta_v"], polar["fcos"])}
+    for i, t in enumerate(grid["theta_v"]):
+        if float(t).is_integer():
+            tiny = 1e-12 * max(polar["fcos"])            # cos(±90°) rounds to 0 or to 6e-17
+            assert grid["fcos"][i][0] == pytest.approx(at[round(t)], rel=1e-12, abs=tiny)
+            assert grid["fcos"][i][2] == pytest.approx(at[-round(t)], rel=1e-12, abs=tiny)

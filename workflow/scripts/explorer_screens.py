@@ -19,6 +19,8 @@ SHOTS = {
     "two_models": ("theta=45&left=phong_cosmin&left.n=50&right=ggx&right.alpha=0.2", ("left", "right"),
                    (1300, 820), None),
     "diverging": ("theta=75&left=ward&left.m=0.2&right=ward_cosmin&right.m=0.2", ("left", "right"), (1300, 820), None),
+    "lobe_3d": ("theta=40&lobe=3d&left=blinn_cosmin&left.n=30&right=patch_elliptical&right.u_angle_deg=30",
+                ("left", "right"), (1300, 780), None),
     "bad_value": ("theta=30&left=cook_torrance&left.m=0.1", ("left",), (700, 480), ("left", "m", "-0.5")),
 }
 READY = "['albedo', 'lobe', 'sphere'].every((v) => window.explorer.last.{side}[v])"

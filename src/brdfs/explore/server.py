@@ -5,7 +5,7 @@ Routes (GET only):
 * ``/`` and ``/static/NAME``: the page (``index.html``, ``explorer.js``, ``explorer.css``), read
   from the package's ``static`` directory by a fixed list of names taken when the server starts;
 * ``/api/models``: the catalogue (:func:`brdfs.explore.views.model_catalogue`);
-* ``/api/albedo``, ``/api/lobe``, ``/api/sphere``, ``/api/slice``: one view of one model, with
+* ``/api/albedo``, ``/api/lobe``, ``/api/lobe3d``, ``/api/sphere``, ``/api/slice``: one view of one model, with
   ``model=NAME``, ``p.KEY=VALUE`` per parameter, and ``theta``, ``n`` or ``size`` where the view
   takes them (capped: :data:`~brdfs.explore.views.MAX_ANGLES`, ``MAX_IMAGE``, ``MAX_LOBE_POINTS``).
 
@@ -95,7 +95,8 @@ class Explorer:
     def catalogue(self, query):
         _only(query, set())
         return {"models": views.model_catalogue(self.models),
-                "caps": {"angles": views.MAX_ANGLES, "image": views.MAX_IMAGE, "lobe": views.MAX_LOBE_POINTS},
+                "caps": {"angles": views.MAX_ANGLES, "image": views.MAX_IMAGE, "lobe": views.MAX_LOBE_POINTS,
+                         "lobe_grid": views.MAX_LOBE_GRID},
                 "rtol": views.ALBEDO_RTOL}
 
     def albedo(self, query):
@@ -108,6 +109,12 @@ class Explorer:
         n = _integer(query, "n", 361, 3, views.MAX_LOBE_POINTS)
         model, _ = self._model(query, {"theta", "n"})
         return views.lobe(model, theta, n)
+
+    def lobe3d(self, query):
+        theta = _angle(query)
+        n = _integer(query, "n", 24, 3, views.MAX_LOBE_GRID)
+        model, _ = self._model(query, {"theta", "n"})
+        return views.lobe_3d(model, theta, n, 2 * n)
 
     def sphere(self, query):
         theta = _angle(query)
@@ -225,6 +232,7 @@ def _static_files() -> dict[str, tuple[bytes, str]]:
 
 def make_handler(explorer: Explorer, static: dict):
     routes = {"/api/models": explorer.catalogue, "/api/albedo": explorer.albedo, "/api/lobe": explorer.lobe,
+              "/api/lobe3d": explorer.lobe3d,
               "/api/sphere": explorer.sphere, "/api/slice": explorer.slice}
 
     class Handler(BaseHTTPRequestHandler):

@@ -9,7 +9,8 @@ Every view is a function of a model and a few bounded numbers, returning plain J
   (:class:`BadRequest`) unless every name is a declared parameter and every value parses;
 * :func:`albedo_curve`: a(θ_L) at ``n`` angles from 0° to 90° by :func:`brdfs.albedo` (rtol 1e-6),
   with the error bound and status of every value;
-* :func:`lobe`: f and f cos θ_V in the plane of incidence at θ_L;
+* :func:`lobe`: f and f cos θ_V in the plane of incidence at θ_L; :func:`lobe_3d`: f cos θ_V over
+  the hemisphere;
 * :func:`sphere`: a sphere under one directional light plus a uniform sky, as a PNG;
 * :func:`half_diff_slice`: f over (θ_h, θ_d) at φ_d = 90° (Rusinkiewicz's coordinates, as Disney's
   BRDF Explorer draws its image slice), as a PNG.
@@ -29,6 +30,7 @@ import numpy as np
 MAX_ANGLES = 181
 MAX_IMAGE = 512
 MAX_LOBE_POINTS = 721
+MAX_LOBE_GRID = 91
 ALBEDO_RTOL = 1e-6
 
 #: The sphere's lighting: one directional light of irradiance E at normal incidence, plus a uniform
@@ -189,6 +191,18 @@ def lobe(model, theta_l: float, n: int = 361) -> dict:
     f = np.asarray(model(L, V), float)
     fcos = f * V[..., 2]
     return {"theta_v": theta_v.tolist(), "f": _finite_or_none(f), "fcos": _finite_or_none(fcos)}
+
+
+def lobe_3d(model, theta_l: float, n_theta: int = 24, n_phi: int = 48) -> dict:
+    """f cos θ_V over the hemisphere at θ_L: rows θ_V from 0° to 90°, columns φ_V from 0° (the
+    mirror side of the plane of incidence) to 360°, for the page's 3-D lobe."""
+    from brdfs.physics.geometry import direction, light_direction
+    theta_v = np.linspace(0.0, 90.0, n_theta)
+    phi_v = np.linspace(0.0, 360.0, n_phi + 1)
+    V = direction(theta_v[:, None], phi_v[None, :])
+    f = np.asarray(model(light_direction(-theta_l), V), float)
+    return {"theta_v": theta_v.tolist(), "phi_v": phi_v.tolist(),
+            "fcos": [_finite_or_none(row) for row in f * V[..., 2]]}
 
 
 def _sky_albedo(curve: dict, cos_v):

@@ -4,7 +4,7 @@
 
 const SIDES = ["left", "right"];
 const SLIDER_STEPS = 1000;
-const state = { catalogue: null, byName: {}, theta: 30, lobeMode: "fcos", panels: {} };
+const state = { catalogue: null, byName: {}, theta: 30, lobeMode: "fcos", yaw: -35, pitch: 25, panels: {} };
 // what the browser tests read: the last answer of every view, and whether anything is in flight
 window.explorer = { ready: false, last: { left: {}, right: {} }, busy: () => Object.values(state.panels).some((p) => p.busy()) };
 
@@ -91,10 +91,26 @@ class Panel {
       sphere: new Channel(`${side}:sphere`, fig("sphere"), (d) => { this.root.querySelector("img.sphere").src = "data:image/png;base64," + d.png; }),
       slice: new Channel(`${side}:slice`, fig("slice"), (d) => this.drawSlice(d)),
     };
+    const lobeCanvas = this.root.querySelector("figure.lobe canvas");
+    let drag = null;
+    lobeCanvas.addEventListener("pointerdown", (e) => { drag = [e.clientX, e.clientY]; lobeCanvas.setPointerCapture(e.pointerId); });
+    lobeCanvas.addEventListener("pointerup", () => { drag = null; });
+    lobeCanvas.addEventListener("pointermove", (e) => {
+      if (!drag || state.lobeMode !== "3d") return;
+      state.yaw += e.clientX - drag[0];
+      state.pitch = Math.max(-10, Math.min(89, state.pitch + (e.clientY - drag[1])));
+      drag = [e.clientX, e.clientY];
+      for (const panel of Object.values(state.panels)) panel.drawLobe();
+    });
     for (const [view, channel] of Object.entries(this.channels)) {
       const draw = channel.draw;
       channel.draw = (d, url) => { window.explorer.last[side][view] = { data: d, url }; draw(d); };
     }
+  }
+
+  requestLobe() {
+    const view = state.lobeMode === "3d" ? "lobe3d" : "lobe";
+    this.channels.lobe.request(`/api/${view}?${this.query({ theta: state.theta })}`);
   }
 
   busy() { return Object.values(this.channels).some((c) => c.inFlight || c.want); }
@@ -179,7 +195,7 @@ class Panel {
       if (this.model.isotropic) this.channels.slice.request(`/api/slice?${this.query({ size: 128 })}`);
       else this.drawSlice({ png: null, reason: `${this.model.name} is anisotropic: no (θ_h, θ_d) slice` });
     }
-    this.channels.lobe.request(`/api/lobe?${this.query({ theta })}`);
+    this.requestLobe();
     this.channels.sphere.request(`/api/sphere?${this.query({ theta, size: 256 })}`);
     this.drawAlbedo();
   }
@@ -191,7 +207,7 @@ class Panel {
       const seconds = Math.max(...busy.map(([, c]) => performance.now() - c.started)) / 1000;
       box.innerHTML = `<span class="busy">computing ${busy.map(([v]) => v).join(", ")}… ${seconds.toFixed(1)} s</span>`;
     } else if (this.albedo) {
-      box.textContent = `albedo: ${this.albedo.theta.length} angles in ${fmt(this.albedo.ms, 3)} ms, ` +
+      box.textContent = `albedo: ${this.albedo.theta.length} angles in ${Math.round(this.albedo.ms)} ms, ` +
         Object.entries(this.albedo.counts).map(([s, n]) => `${n} ${s}`).join(", ");
     }
   }
@@ -259,6 +275,9 @@ class Panel {
     g.clearRect(0, 0, W, H);
     const d = this.lobe;
     if (!d) return;
+    this.root.querySelector("figure.lobe figcaption").textContent =
+      d.phi_v ? "Lobe over the hemisphere (f cos θV)" : "Lobe in the plane of incidence";
+    if (d.phi_v) { this.drawLobe3d(g, W, H, d); return; }
     const ys = (state.lobeMode === "f" ? d.f : d.fcos).map((v) => (v === null ? 0 : v));
     const top = Math.max(...ys) || 1;
     g.strokeStyle = "#ddd"; g.lineWidth = 1;
@@ -278,10 +297,40 @@ class Panel {
     g.fillStyle = "#b07800"; g.fillText(`L at ${fmt(state.theta, 3)}°`, 6, 30);
   }
 
+  drawLobe3d(g, W, H, d) {
+    // f cos θ_V over the hemisphere, turned by yaw (about the normal) and pitch, drawn orthographically
+    const top = Math.max(...d.fcos.flat().map((v) => v || 0)) || 1;
+    const R = Math.min(W, H) * 0.42, cx = W / 2, cy = H * 0.62;
+    const cy_ = Math.cos(rad(state.yaw)), sy = Math.sin(rad(state.yaw));
+    const cp = Math.cos(rad(state.pitch)), sp = Math.sin(rad(state.pitch));
+    const project = ([x, y, z]) => {
+      const x1 = cy_ * x - sy * y, y1 = sy * x + cy_ * y;
+      return [cx + R * x1, cy - R * (cp * z + sp * y1)];
+    };
+    const point = (i, j, r) => {
+      const t = rad(d.theta_v[i]), p = rad(d.phi_v[j]);
+      return [r * Math.sin(t) * Math.cos(p), r * Math.sin(t) * Math.sin(p), r * Math.cos(t)];
+    };
+    g.strokeStyle = "#ccc"; g.lineWidth = 1;
+    line(g, Array.from({ length: 73 }, (_, k) => project([Math.cos(rad(5 * k)), Math.sin(rad(5 * k)), 0])));
+    line(g, [project([0, 0, 0]), project([0, 0, 1])]);
+    g.strokeStyle = "#e0a000"; g.lineWidth = 2;
+    line(g, [project([0, 0, 0]), project([-Math.sin(rad(state.theta)), 0, Math.cos(rad(state.theta))])]);
+    g.strokeStyle = "rgba(30, 110, 220, 0.75)"; g.lineWidth = 1;
+    const r = (i, j) => (d.fcos[i][j] || 0) / top;
+    for (let i = 0; i < d.theta_v.length; i++) line(g, d.phi_v.map((_, j) => project(point(i, j, r(i, j)))));
+    for (let j = 0; j < d.phi_v.length - 1; j++) line(g, d.theta_v.map((_, i) => project(point(i, j, r(i, j)))));
+    g.fillStyle = "#333"; g.font = "12px system-ui"; g.textAlign = "left";
+    g.fillText(`max f cos θ_V = ${fmt(top, 3)} (unit radius); drag to turn`, 6, 14);
+    g.fillStyle = "#b07800"; g.fillText(`L at ${fmt(state.theta, 3)}°`, 6, 30);
+  }
+
   drawSlice(d) {
     const img = this.root.querySelector("img.slice");
     const cap = this.root.querySelector(".slice-caption");
-    if (d.png) { img.src = "data:image/png;base64," + d.png; img.hidden = false; }
+    this.sliceCaption = this.sliceCaption || cap.innerHTML;
+    this.root.querySelector(".slice-box").hidden = !d.png;
+    if (d.png) { img.src = "data:image/png;base64," + d.png; cap.innerHTML = this.sliceCaption; }
     else { img.removeAttribute("src"); cap.textContent = d.reason; }
   }
 }
@@ -309,6 +358,7 @@ function axes(g, W, H, m, xt, yt, px, py, xlabel, ylabel) {
 // --- the URL: #theta=30&left=ggx&left.alpha=0.3&right=phong&right.n=20 -------------------------------
 function writeHash() {
   const q = new URLSearchParams({ theta: state.theta });
+  if (state.lobeMode !== "fcos") q.set("lobe", state.lobeMode);
   for (const side of SIDES) {
     const panel = state.panels[side];
     if (!panel) continue;
@@ -320,7 +370,8 @@ function writeHash() {
 
 function readHash() {
   const q = new URLSearchParams(location.hash.slice(1));
-  const out = { theta: q.get("theta"), left: null, right: null };
+  const lobe = ["fcos", "f", "3d"].includes(q.get("lobe")) ? q.get("lobe") : null;
+  const out = { theta: q.get("theta"), lobe, left: null, right: null };
   for (const side of SIDES) {
     if (!q.get(side)) continue;
     const values = {};
@@ -374,11 +425,16 @@ async function start() {
   document.getElementById("theta-slider").addEventListener("input", (e) => setTheta(e.target.value));
   document.getElementById("theta").addEventListener("change", (e) => setTheta(e.target.value));
   document.getElementById("lobe-mode").addEventListener("change", (e) => {
+    const was3d = state.lobeMode === "3d";
     state.lobeMode = e.target.value;
-    for (const panel of Object.values(state.panels)) panel.drawLobe();
+    writeHash();
+    for (const panel of Object.values(state.panels)) {
+      if (was3d !== (state.lobeMode === "3d")) panel.requestLobe(); else panel.drawLobe();
+    }
   });
   const wanted = readHash();
   if (wanted.theta !== null) setTheta(wanted.theta);
+  if (wanted.lobe) { state.lobeMode = wanted.lobe; document.getElementById("lobe-mode").value = wanted.lobe; }
   showSide("left", wanted.left ? wanted.left.name : state.catalogue.models[0].name, wanted.left ? wanted.left.values : {});
   if (wanted.right) showSide("right", wanted.right.name, wanted.right.values);
   writeHash();
