@@ -134,16 +134,14 @@ def model_arguments(models, name: str, values: dict[str, str]) -> dict:
     if cls is None:
         raise BadRequest(f"model={name!r}: not a registered model")
     choices = getattr(cls, "param_choices", {})
-    typical = {k: v for k, v in cls.examples.get("typical", {}).items()}
-    args = dict(typical)
+    args = dict(cls.examples.get("typical", {}))
     for key, text in values.items():
         if key in cls.param_ranges:
             value = parse_number(key, text)
             interval = cls.param_ranges[key]
             if not interval.contains(value):
-                lo = "(" if interval.lo_open else "["
-                hi = ")" if interval.hi_open or math.isinf(interval.hi) else "]"
-                raise BadRequest(f"{name}: {key}={value:g} is outside its range {lo}{interval.lo:g}, {interval.hi:g}{hi}")
+                from brdfs.cli import _interval_text          # the range as `brdfs models` prints it
+                raise BadRequest(f"{name}: {key}={value:g} is outside its range {_interval_text(interval)}")
             args[key] = value
         elif key in choices:
             match = [v for v in choices[key] if str(v) == text]
