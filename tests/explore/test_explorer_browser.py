@@ -22,7 +22,7 @@ MESSAGE = "(() => { const m = document.getElementById('message'); return m.hidde
 
 
 @pytest.fixture(scope="module")
-def page():
+def page(explore_process):                          # the server starts first, and imports while Chromium starts
     if not any(shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")):
         pytest.fail("the explorer's browser tests need Debian's chromium: run `make chromium` "
                     "(as root: apt-get install chromium)", pytrace=False)
@@ -111,7 +111,7 @@ def test_the_url_reproduces_two_models_side_by_side_and_the_screenshot_is_not_bl
 def test_a_slow_model_shows_it_is_computing_while_the_lobe_follows_theta(page, explore_url):
     page.goto("about:blank")
     page.wait_for("location.href === 'about:blank'")
-    page.goto(f"{explore_url}/#theta=30&left=explore_slow&left.seconds=1.5")
+    page.goto(f"{explore_url}/#theta=30&left=explore_slow&left.seconds=1")
     page.wait_for("window.explorer && window.explorer.last.left.lobe")
     status = page.wait_for("(() => { const s = document.querySelector('#panel-left .status').textContent;"
                            " return s.includes('computing') && s; })()")
