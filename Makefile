@@ -79,8 +79,8 @@ check-wheel: $(STAMP)
 all: llvm $(STAMP)
 	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full $(TARGETS))
 
-# Lint first (a few seconds), then the tests.
-test: llvm $(STAMP) lint
+# Lint first (a few seconds), then the tests (the explorer's run in headless Chromium: `make chromium`).
+test: llvm chromium $(STAMP) lint
 	$(BIN)/python -m pytest -n 2
 
 benchmark: llvm $(STAMP)
@@ -93,6 +93,7 @@ benchmark: llvm $(STAMP)
 	$(BIN)/python benchmarks/bench_albedo_curves.py
 	$(BIN)/python benchmarks/bench_work_precision.py
 	$(BIN)/python benchmarks/bench_sampling.py
+	$(BIN)/python benchmarks/bench_explorer.py
 
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.
@@ -135,9 +136,10 @@ baseline: $(STAMP)
 report: all
 	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --cores 1 --report results/report.html)
 
-# Debian's Chromium, for report-check only (needs root; does nothing when already installed).
+# Debian's Chromium for the explorer's browser tests (`make test`), report-check and docs-check
+# (idempotent; as root it apt-get installs it, elsewhere it prints the one command to run).
 chromium:
-	@command -v chromium >/dev/null 2>&1 || (apt-get update && apt-get install -y chromium)
+	@workflow/scripts/ensure_chromium.sh
 
 report-check: report chromium
 	$(BIN)/python workflow/scripts/report_check.py results/report.html results/report_check

@@ -7,6 +7,7 @@
     brdfs albedo ggx --param alpha=0.3 --theta 60 --json
     brdfs chi2 phong_cosmin --param n=128 --theta 30,80
     brdfs compare                                 # printed numbers that reproduce / differ, by chapter
+    brdfs explore --no-browser --port 8123        # the BRDF explorer in the browser (brdfs.explore)
 
 ``--theta`` takes one angle, a comma-separated list, or ``start:stop:step`` with the stop included.
 Every error (an unknown model or method, a bad parameter, option or angle) prints the usage line
@@ -266,7 +267,24 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--differing", action="store_true", help="list every number that differs, with its reason")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(run=_compare)
+
+    # issue 44: the explorer (brdfs.explore); its --import goes through brdfs.explore._imports
+    p = sub.add_parser("explore", help="an interactive BRDF explorer in the browser (localhost)",
+                       description="Serve the BRDF explorer (brdfs.explore): parameters, lobe, certified "
+                                   "albedo, lit sphere and (theta_h, theta_d) slice of any registered model.")
+    p.add_argument("--port", type=int, default=8123, help="port (default %(default)s; 0: any free port)")
+    p.add_argument("--host", default="127.0.0.1",
+                   help="address to bind (default %(default)s; any other is your choice, and warned about)")
+    p.add_argument("--no-browser", action="store_true", help="do not open a browser")
+    p.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE_OR_FILE",
+                   help="a module or .py file registering your own models, repeatable")
+    p.set_defaults(run=_explore)
     return parser
+
+
+def _explore(args) -> int:
+    from brdfs.explore import serve
+    return serve(args.host, args.port, open_browser=not args.no_browser, imports=args.imports)
 
 
 def _default_method() -> str:
@@ -297,7 +315,7 @@ def main(argv=None) -> int:
         return args.run(args)
     except (argparse.ArgumentTypeError, ValueError, TypeError) as err:
         message = str(err).splitlines()[0] if str(err) else type(err).__name__
-        sub = {"albedo": "albedo", "chi2": "chi2", "models": "models", "compare": "compare"}[args.command]
+        sub = args.command
         parser._subparsers._group_actions[0].choices[sub].error(message)
     return EXIT_USAGE
 

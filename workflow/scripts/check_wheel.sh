@@ -27,10 +27,21 @@ for name in names:
     m = brdfs.model(name, **MODELS[name].examples["typical"])
     est = brdfs.albedo(m, [0.0, 45.0, 80.0], rtol=1e-8)
     assert np.all(np.isfinite(est.value)) and np.all(est.error >= 0), (name, est)
+# the explorer (brdfs explore) serves its page from the wheel, with the core alone
+import json, threading, urllib.request
+from brdfs.explore.server import make_server
+srv = make_server("127.0.0.1", 0)
+threading.Thread(target=srv.serve_forever, daemon=True).start()
+base = f"http://127.0.0.1:{srv.server_address[1]}"
+for path in ("/", "/static/explorer.js", "/static/explorer.css"):
+    assert urllib.request.urlopen(base + path).status == 200, path
+curve = json.loads(urllib.request.urlopen(base + "/api/albedo?model=ggx&p.alpha=0.3").read())
+assert curve["counts"] == {"converged": 91}, curve["counts"]
+srv.shutdown()
 extras = sorted(k for k in ("pandas", "matplotlib", "yaml", "colour", "snakemake", "jsonschema", "mitsuba") if k in sys.modules)
 assert not extras, f"the core imported extras: {extras}"
 print(f"check-wheel: {len(names)} models' albedos on Python {sys.version.split()[0]}, numpy {np.__version__}, "
-      f"scipy {scipy.__version__}; no extra imported")
+      f"scipy {scipy.__version__}; the explorer's page served; no extra imported")
 PY
 run() {  # run PYTHON PIP_ARGS...: a fresh venv with the wheel (and the given requirements)
   py=$1; shift
