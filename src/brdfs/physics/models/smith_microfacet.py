@@ -42,7 +42,7 @@ from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.sampling import REJECTED
 from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence
-from brdfs.physics.models.base import BRDF, check_positive, exact, non_negative, positive, table_field, register
+from brdfs.physics.models.base import BRDF, check_positive, exact, log_range, non_negative, positive, table_field, register
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
 
 G2_FORMS = ("separable", "height_correlated")
@@ -120,6 +120,12 @@ class _SmithMicrofacet(BRDF):
     param_choices = {"G2": G2_FORMS, "compensation": COMPENSATIONS}
     #: α = 0.3 ≈ the Blinn-matched roughness of n = 20; α = 0.01, the narrowest the engine is held to
     examples = {"typical": {"alpha": 0.3}, "narrowest": {"alpha": 0.01}}
+    #: the generic tests draw α from 0.01 … 3, F = 1 (None) or n_re in 0.1 … 10, k from 0 and 1e-3 … 10
+    test_ranges = {"alpha": log_range(1e-2, 3.0), "ior_re": log_range(0.1, 10.0, none=True),
+                   "ior_im": log_range(1e-3, 10.0, zero=True)}
+    #: energy property: n_re ≥ 1 (k ≥ 0); below 1 with k = 0 the Fresnel factor has the kink of total
+    #: internal reflection inside the lobe, which costs the engine ~7e6 evaluations (3 s) per draw
+    energy_test_ranges = {"ior_re": log_range(1.0, 10.0, none=True)}
     #: Single scattering loses the energy of the paths that hit the surface again (E ≤ 1); with
     #: Kulla–Conty's term the albedo is F_ms-weighted 1 (1 for F = 1) within the table's error.
     conserves_energy = True
