@@ -93,6 +93,7 @@ benchmark: llvm $(STAMP)
 	$(BIN)/python benchmarks/bench_albedo_curves.py
 	$(BIN)/python benchmarks/bench_work_precision.py
 	$(BIN)/python benchmarks/bench_sampling.py
+	$(BIN)/python benchmarks/bench_checked_calls.py
 
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.

@@ -7,6 +7,7 @@
     brdfs albedo ggx --param alpha=0.3 --theta 60 --json
     brdfs chi2 phong_cosmin --param n=128 --theta 30,80
     brdfs compare                                 # printed numbers that reproduce / differ, by chapter
+    brdfs lut ggx --param alpha=0.01:1:32 --mu 32 -o ggx.npy   # E(mu, alpha), E_avg(alpha) for renderers
     brdfs --import my_model.py albedo my_model --param n=20 --theta 0,60   # a model of your own
 
 ``--import MODULE_OR_FILE`` (repeatable, before the sub-command) imports a module or a ``.py`` file
@@ -250,6 +251,34 @@ def _compare(args) -> int:
     return 0
 
 
+# --- brdfs lut ---------------------------------------------------------------------------------
+
+def _lut(args) -> int:
+    import time
+
+    from brdfs import lut
+
+    sweeps = [pair for pair in _flat(args.param) if ":" in pair.partition("=")[2]]
+    if len(sweeps) != 1:
+        raise argparse.ArgumentTypeError(f"--param: give exactly one swept parameter NAME=START:STOP:N, got "
+                                         f"{len(sweeps)}" + (f" ({' '.join(sweeps)})" if sweeps else ""))
+    param, values = lut.parse_sweep(sweeps[0])
+    fixed = _key_values([pair for pair in _flat(args.param) if pair not in sweeps], "--param")
+    start = time.perf_counter()
+    table = lut.albedo_lut(args.model, param, values, n_mu=args.mu, rtol=args.rtol, fixed=fixed)
+    path = lut.write(table, args.output, args.format)
+    seconds = time.perf_counter() - start
+    print(f"wrote {path}: E({param}, mu) {table.E.shape[0]} x {table.E.shape[1]} and E_avg({param}) of {args.model}"
+          f" in {seconds:.1f} s; largest error: E {table.E_error.max():.2e}, E_avg {table.E_avg_error.max():.2e}"
+          f" (rtol {args.rtol:g})")
+    if not table.converged:
+        print(f"brdfs: warning: {np.sum(table.E_status != 'converged')} cells and "
+              f"{np.sum(table.E_avg_status != 'converged')} averages did not converge to rtol {args.rtol:g}; "
+              f"their errors are in the file", file=sys.stderr)
+        return 1
+    return 0
+
+
 # --- the parser --------------------------------------------------------------------------------
 
 def _common_model_args(p):
@@ -300,6 +329,21 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--significance", type=_open_unit, default=0.01,
                    help="significance level, in (0, 1) (default %(default)s)")
     p.set_defaults(run=_chi2)
+
+    p = sub.add_parser("lut", help="albedo tables for renderers: E(mu, param) and E_avg(param) with errors",
+                       description="Directional albedo E(mu, param) at mu = (j + 1/2)/N and its average "
+                                   "E_avg = 2 int E mu dmu over a parameter, each cell with its error bound, "
+                                   "and the model, parameters, tolerance and version as metadata "
+                                   "(brdfs.lut).  The other parameters keep their defaults (GGX: F = 1).")
+    p.add_argument("model", help="a model name (`brdfs models` lists them)")
+    p.add_argument("--param", "-p", action="append", nargs="+", metavar="KEY=VALUE", default=[], required=True,
+                   help="the swept parameter NAME=START:STOP:N (e.g. alpha=0.01:1:32), and any fixed ones KEY=VALUE")
+    p.add_argument("--mu", type=_positive_int, default=32, help="cells in mu = cos theta (default %(default)s)")
+    p.add_argument("--format", "-f", choices=("npy", "csv", "exr"), default=None,
+                   help="npy (a NumPy archive), csv or exr (needs Mitsuba); default: from the file's suffix")
+    p.add_argument("--output", "-o", required=True, metavar="FILE", help="the file to write")
+    p.add_argument("--rtol", type=float, default=1e-10, help="relative tolerance of every value (default %(default)g)")
+    p.set_defaults(run=_lut)
 
     p = sub.add_parser("compare", help="how many printed numbers reproduce, by chapter (from a build)")
     p.add_argument("--results", default="results", help="the build's results directory (default: %(default)s)")
@@ -360,7 +404,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     _load_models(parser, args.imports)
     try:
-        if hasattr(args, "param"):
+        if hasattr(args, "param") and args.command != "lut":
             args.param = _key_values(args.param, "--param")
         if hasattr(args, "option"):
             # 1e5 samples is an integer option's value: an integral number is passed as an int

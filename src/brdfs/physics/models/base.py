@@ -122,6 +122,52 @@ def exact(value) -> Estimate:
     return Estimate(value, 4 * np.finfo(float).eps * abs(value))
 
 
+#: How far from 1 the length of a direction passed to a model's public call may be.
+UNIT_TOLERANCE = 1e-6
+
+
+def check_directions(where: str, **directions) -> None:
+    """Refuse, with one ``ValueError`` line naming ``where`` and the argument, a direction array that
+    is not (…, 3), not finite, not of unit length within :data:`UNIT_TOLERANCE`, or that does not
+    broadcast against the others.  One pass over |d|² when all is well (NaN and inf fail it too);
+    the diagnosis only when not."""
+    for arg, d in directions.items():
+        if d.ndim == 0 or d.shape[-1] != 3:
+            raise ValueError(f"{where}: {arg} must have shape (..., 3) (unit vectors), got shape {d.shape}")
+        x, y, z = d[..., 0], d[..., 1], d[..., 2]
+        off = np.abs(x * x + y * y + z * z - 1.0)
+        if not off.max(initial=0.0) <= 2.0 * UNIT_TOLERANCE:        # NaN compares False: diagnosed below
+            _refuse_direction(where, arg, d)
+    try:
+        np.broadcast_shapes(*(d.shape[:-1] for d in directions.values()))
+    except ValueError:
+        shapes = ", ".join(f"{arg} {d.shape}" for arg, d in directions.items())
+        raise ValueError(f"{where}: directions of shapes {shapes} do not broadcast") from None
+
+
+def _refuse_direction(where, arg, d):
+    """The one line for the first direction of ``d`` that is not finite or not of unit length."""
+    finite = np.isfinite(d).all(axis=-1)
+    length = np.sqrt(np.sum(np.where(np.isfinite(d), d, 0.0) ** 2, axis=-1))
+    bad = ~finite | ~(np.abs(length - 1.0) <= UNIT_TOLERANCE)
+    if not bad.any():                     # within the tolerance of |d| though not of |d|²
+        return
+    index = tuple(int(i) for i in np.argwhere(bad)[0]) if d.ndim > 1 else ()
+    at = f" at index {index}" if index else ""
+    if not finite[index]:
+        raise ValueError(f"{where}: {arg} must be finite, got {d[index].tolist()}{at}")
+    raise ValueError(f"{where}: {arg} must be a unit vector (|{arg}| = 1 within {UNIT_TOLERANCE:g}), got "
+                     f"|{arg}| = {float(length[index]):.9g}{at}")
+
+
+def check_uniform_numbers(where: str, u) -> None:
+    """Refuse sampler numbers outside [0, 1) (or not finite) with one line: one above 1 would
+    silently give rejected samples."""
+    bad = ~((u >= 0.0) & (u < 1.0))
+    if bad.any():
+        raise ValueError(f"{where}: random numbers u must lie in [0, 1), got {float(u[bad].flat[0])!r}")
+
+
 #: The strategy every model accepts besides its own: directions uniform in solid angle, pdf 1/(2π).
 UNIFORM = "uniform"
 
@@ -236,6 +282,17 @@ class BRDF:
     evaluation_rtol: ClassVar[float] = 0.0
 
     def __call__(self, L, V):
+        """f(L, V) on unit vectors L, V (…, 3) (broadcast against each other), N = (0, 0, 1); 0 below
+        the horizon.  Refuses, with one line, directions of another shape, not finite, or not of unit
+        length within :data:`UNIT_TOLERANCE` (an unnormalised V would silently scale f)."""
+        L = np.asarray(L, float)
+        V = np.asarray(V, float)
+        check_directions(self.name, L=L, V=V)
+        return self.unchecked(L, V)
+
+    def unchecked(self, L, V):
+        """f(L, V) without the check of the directions: for the integrators, the samplers and the
+        renderers, which build unit vectors themselves (``benchmarks/bench_checked_calls.py``)."""
         L = np.asarray(L, float)
         V = np.asarray(V, float)
         nl, nv = L[..., 2], V[..., 2]
@@ -416,7 +473,7 @@ class BRDF:
         L = np.broadcast_to(np.asarray(L, float), V.shape)
         pdf = self.pdf(L, V, strategy)
         with np.errstate(divide="ignore", invalid="ignore"):
-            weight = np.where(pdf > 0, self(L, V) * V[..., 2] / pdf, 0.0)
+            weight = np.where(pdf > 0, self.unchecked(L, V) * V[..., 2] / pdf, 0.0)
         return V, weight, pdf
 
     def sample_direction(self, L, u, strategy=None):
@@ -424,9 +481,10 @@ class BRDF:
         draws (the renderer, :mod:`brdfs.render.materials`), which weighs by the mixture's pdf."""
         strategy = self._strategy(strategy)
         u = np.asarray(u, float)
-        if u.shape[-1] < self.sample_dimension(strategy):
+        if u.ndim == 0 or u.shape[-1] < self.sample_dimension(strategy):
             raise ValueError(f"{self.name}: strategy {strategy!r} needs u of shape (..., "
                              f"{self.sample_dimension(strategy)}), got {u.shape}")
+        check_uniform_numbers(f"{self.name}.sample", u)
         L = np.broadcast_to(np.asarray(L, float), u.shape[:-1] + (3,))
         if strategy == "cosine":
             r, phi = np.sqrt(u[..., 0]), 2.0 * np.pi * u[..., 1]

@@ -84,7 +84,7 @@ class _MixtureSampling(_OnTheBasePlane):
         return _russian_roulette_mixture(L, u, self.radius_of_cdf(u[..., 2]))
 
     def _pdf(self, L, V, strategy):
-        return self(L, V) * V[..., 2] / self.total_weight
+        return self.unchecked(L, V) * V[..., 2] / self.total_weight
 
 
 @dataclass(frozen=True)

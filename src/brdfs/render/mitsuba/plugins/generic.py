@@ -80,7 +80,7 @@ class ModelPluginBSDF(ModelBSDF):
 
     def lobe_eval(self, L, V, active):
         L, V = _broadcast(to_numpy(L), to_numpy(V))
-        return mi.Float(self.brdf(L, V))
+        return mi.Float(self.brdf.unchecked(L, V))
 
     def own_pdf(self, L, V, active):
         L, V = _broadcast(to_numpy(L), to_numpy(V))
