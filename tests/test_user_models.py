@@ -47,19 +47,18 @@ def forget_my_model():
 
 def test_the_guides_commands_run_from_a_directory_outside_the_package(tmp_path, forget_my_model, capsys,
                                                                      monkeypatch):
-    """``brdfs --import my_model.py albedo my_model --param n=20 --theta 0,60 --json`` as a new process
-    (the albedo is the front door's, and 1 at n = 0's limit is not assumed: a(0) of the normalised
-    Blinn–Phong is 1.0607 at n = 20), then the guide's chi2 and models calls."""
+    """``brdfs --import my_model.py albedo my_model --param n=20 --theta 0,60 --json`` in the temporary
+    directory (the albedo is the front door's: a(0) of the normalised Blinn–Phong is 1.0607 at
+    n = 20), then the guide's chi2 and models calls."""
     (tmp_path / "my_model.py").write_text(RECIPE.read_text())
     commands = _guide_commands()
     assert [c[2] for c in commands] == ["albedo", "chi2", "models"], commands
-    done = subprocess.run([sys.executable, "-m", "brdfs", *commands[0]], cwd=tmp_path, env=_env(),
-                          capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
-    rows = json.loads(done.stdout)
-    assert [r["theta_deg"] for r in rows] == [0.0, 60.0] and {r["status"] for r in rows} == {"converged"}
     monkeypatch.chdir(tmp_path)
-    assert import_models("my_model.py") == [NAME]
+    assert NAME not in MODELS
+    assert main(commands[0]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["theta_deg"] for r in rows] == [0.0, 60.0] and {r["status"] for r in rows} == {"converged"}
+    assert Path(sys.modules[NAME].__file__).parent == tmp_path and ROOT not in tmp_path.parents
     direct = brdfs.albedo(brdfs.model(NAME, n=20), [0.0, 60.0])
     assert [r["value"] for r in rows] == pytest.approx(list(direct.value), rel=1e-12)
     assert abs(rows[0]["value"] - 1.0607) < 1e-4
