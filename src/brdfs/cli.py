@@ -358,34 +358,23 @@ def _default_method() -> str:
     return inspect.signature(albedo).parameters["method"].default
 
 
-def _positive_int(text: str) -> int:
-    try:
-        value = int(float(text))
-        if value > 0 and value == float(text):
-            return value
-    except ValueError:
-        pass
-    raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+def _argument_type(convert, valid, expected: str):
+    """An argparse ``type``: ``convert(text)`` where ``valid`` holds, else one line naming ``expected``
+    (argparse puts the option's name before it)."""
+    def parse(text: str):
+        try:
+            value = convert(text)
+            if valid(value, text):
+                return value
+        except (ValueError, OverflowError):
+            pass
+        raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}")
+    return parse
 
 
-def _seed(text: str) -> int:
-    try:
-        value = int(text)
-        if value >= 0:
-            return value
-    except ValueError:
-        pass
-    raise argparse.ArgumentTypeError(f"expected a non-negative integer, got {text!r}")
-
-
-def _open_unit(text: str) -> float:
-    try:
-        value = float(text)
-        if 0.0 < value < 1.0:
-            return value
-    except ValueError:
-        pass
-    raise argparse.ArgumentTypeError(f"expected a number in (0, 1), got {text!r}")
+_positive_int = _argument_type(lambda t: int(float(t)), lambda v, t: v > 0 and v == float(t), "a positive integer")
+_seed = _argument_type(int, lambda v, t: v >= 0, "a non-negative integer")
+_open_unit = _argument_type(float, lambda v, t: 0.0 < v < 1.0, "a number in (0, 1)")
 
 
 def _load_models(parser, imports) -> None:
