@@ -26,6 +26,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "numpydoc",
     "thesis_pages",
+    "model_pages",
 ]
 
 root_doc = "index"

@@ -118,6 +118,19 @@ def fresnel_conductor(cos_theta, eta, k):
     return 0.5 * (perp + par)
 
 
+#: The scene keys every plugin reads besides its model's parameters: name -> (type, default, meaning),
+#: for the plugin reference of the documentation (``docs/_ext/model_pages.py``).  A plugin's own
+#: extra keys are its class's :attr:`ModelBSDF.extra_parameters`.
+COMMON_PARAMETERS = {
+    "specular": ("texture", "1", "the lobe's weight w_s (Lambert: ``reflectance``)"),
+    "diffuse_reflectance": ("texture", "none", "adds a Lambertian lobe ρ_d/π (eq. 3.31); one-sample MIS over the two"),
+    "eta": ("texture", "none", "real part n of a metal's index: the lobe times the conductor Fresnel factor "
+                               "at the model's angle (Θ_min of eq. 3.29)"),
+    "k": ("texture", "0", "imaginary part k of the metal's index (with ``eta``)"),
+    "strategy": ("string", "the model's own", "the lobe's sampler: the model's own strategy or ``cosine``"),
+}
+
+
 def channel_mean(value):
     """The mean over the channels of a Spectrum (a Float): the share a lobe gets in one-sample MIS."""
     return dr.mean(value, axis=0) if dr.depth_v(value) > 1 else value
@@ -187,6 +200,9 @@ class ModelBSDF(mi.BSDF):
     weight_name = "specular"
     #: Mitsuba's flag of the lobe.
     lobe_flag = mi.BSDFFlags.GlossyReflection
+    #: The plugin's scene keys beyond its model's parameters and :data:`COMMON_PARAMETERS`:
+    #: name -> (type, default, meaning), for the documentation's plugin reference.
+    extra_parameters: dict = {}
 
     def __init__(self, props):
         mi.BSDF.__init__(self, props)
