@@ -1,13 +1,14 @@
 """A user's own model, written from the guide's recipe in a file outside the package: the command line
 imports it (``brdfs --import``), an installed package registers it (entry-point group
-``brdfs.models``), and the package's generic model tests pass on it."""
+``brdfs.models``), and the package's generic model tests pass on it (run in this process on
+their own test functions, collected afresh from their files)."""
 from __future__ import annotations
 
+import importlib.util
+import inspect
 import json
-import os
 import re
 import shlex
-import subprocess
 import sys
 from pathlib import Path
 
@@ -29,12 +30,6 @@ def _guide_commands():
     """The ``$ brdfs --import ...`` lines of the guide, as argument lists."""
     return [shlex.split(line.split("$", 1)[1])[1:] for line in GUIDE.read_text().splitlines()
             if re.match(r"\s*\$ brdfs --import", line)]
-
-
-def _env(*paths):
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "src"), *map(str, paths)])
-    return env
 
 
 @pytest.fixture
@@ -93,20 +88,57 @@ def test_an_installed_package_registers_its_models_through_the_entry_point_group
     assert float(brdfs.albedo(brdfs.model(NAME, n=0.0), 0.0).value) == pytest.approx(1.0, rel=1e-10)
 
 
-def test_the_generic_model_tests_pass_on_a_model_added_from_a_file_in_a_temporary_directory(tmp_path):
-    """The recipe does not break the suite: the properties, declarations, protocol and chi-square
-    tests, collected with the model loaded as a pytest plugin (``-p my_model``), all pass on it."""
+#: The generic model tests: every test function of these files parametrized by a model ``name``.
+GENERIC = ("tests/physics/test_model_properties.py", "tests/physics/test_model_declarations.py",
+           "tests/physics/test_models_protocol.py", "tests/numerics/test_chi2_sampling.py")
+
+
+def _fresh_module(path: Path):
+    """The test module at ``path`` imported afresh, so that its parametrization (``list(MODELS)``) is
+    taken with the models registered now."""
+    name = f"_generic_{path.stem}_for_a_user_model"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    finally:
+        del sys.modules[name]
+    return module
+
+
+def _generic_cases(module, model_name):
+    """(test name, function, arguments) of every case of ``module`` that pytest would run for
+    ``model_name``: the functions parametrized by ``name``, crossed with their other parametrizations."""
+    for attr, func in vars(module).items():
+        marks = [m for m in getattr(func, "pytestmark", []) if m.name == "parametrize"]
+        if not attr.startswith("test_") or not marks:
+            continue
+        combos = [{}]
+        for mark in marks:
+            names = [a.strip() for a in mark.args[0].split(",")] if isinstance(mark.args[0], str) else list(mark.args[0])
+            values = [v if len(names) > 1 else (v,) for v in mark.args[1]]
+            combos = [{**c, **dict(zip(names, v))} for c in combos for v in values]
+        for combo in combos:
+            if combo.get("name") == model_name:
+                yield attr, func, combo
+
+
+def test_the_generic_model_tests_pass_on_a_model_added_from_a_file_in_a_temporary_directory(
+        tmp_path, forget_my_model, monkeypatch):
+    """The recipe does not break the suite: the model written from the guide, imported from a file in a
+    temporary directory, passes every case of the generic tests (properties, declarations, protocol,
+    chi-square) that pytest runs for each registered model, collected from their files afresh."""
     (tmp_path / "my_model.py").write_text(RECIPE.read_text())
-    files = ["tests/physics/test_model_properties.py", "tests/physics/test_model_declarations.py",
-             "tests/physics/test_models_protocol.py", "tests/numerics/test_chi2_sampling.py"]
-    done = subprocess.run([sys.executable, "-m", "pytest", "-p", "my_model", "-k", NAME, "-p", "no:cacheprovider",
-                           "-q", "-rA", "--no-header", *files], cwd=ROOT, env=_env(tmp_path),
-                          capture_output=True, text=True, timeout=600)
-    passed = re.findall(r"^PASSED (\S+)", done.stdout, re.MULTILINE)
-    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-2000:]
-    assert not re.search(r"^(FAILED|ERROR|SKIPPED)", done.stdout, re.MULTILINE), done.stdout[-3000:]
-    tested = {p.split("::")[1].split("[")[0] for p in passed}
-    assert len(passed) >= 15 and {
+    monkeypatch.chdir(tmp_path)
+    assert import_models("my_model.py") == [NAME]
+    ran = []
+    for path in GENERIC:
+        for test, func, arguments in _generic_cases(_fresh_module(ROOT / path), NAME):
+            assert set(inspect.signature(func).parameters) <= set(arguments), (test, "needs a fixture")
+            func(**arguments)
+            ran.append(test)
+    assert len(ran) >= 15 and {
         "test_every_model_is_finite_and_non_negative_over_its_ranges",
         "test_every_model_that_claims_reciprocity_is_reciprocal",
         "test_every_sampler_agrees_with_its_pdf",
@@ -114,4 +146,4 @@ def test_the_generic_model_tests_pass_on_a_model_added_from_a_file_in_a_temporar
         "test_the_model_rejects_a_value_just_outside_each_declared_range_and_accepts_the_closed_bounds",
         "test_every_numeric_parameter_has_a_bounded_test_range_inside_its_declared_range",
         "test_every_models_closed_forms_agree_with_its_integrated_albedo",
-    } <= tested, sorted(tested)
+    } <= set(ran), sorted(ran)

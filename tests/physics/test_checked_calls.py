@@ -63,7 +63,7 @@ def test_the_integrators_and_samplers_do_not_pay_for_the_check(monkeypatch):
     f = brdfs.model("phong", n=20)
     brdfs.albedo(f, [0.0, 60.0])
     brdfs.albedo(f, [30.0], method="disk")
-    brdfs.albedo(f, [30.0], method="monte_carlo", n_samples=1000)
+    brdfs.albedo(f, [30.0], method="monte_carlo", n_samples=1000, warn=False)
     f.sample(L45, np.random.default_rng(0).random((100, 2)))
     assert calls == []
     f(L45, N)
