@@ -51,7 +51,7 @@ def cos_relative_azimuth(L, V):
 @register
 @dataclass(frozen=True)
 class OrenNayar(BRDF):
-    """Qualitative Oren–Nayar, f = (ρ/π)(A + B max(0, cos(φ_L − φ_V)) sin α tan β) (module docstring)."""
+    """Qualitative Oren–Nayar, f = (ρ/π)(A + B max(0, cos(φ_L − φ_V)) sin α tan β) (Oren & Nayar 1994, eq. 30)."""
 
     rho: float = 1.0
     sigma: float = 0.0

@@ -346,7 +346,8 @@ class _SmithMicrofacet(BRDF):
 @register
 @dataclass(frozen=True)
 class GGXMicrofacet(_SmithMicrofacet):
-    """GGX (Trowbridge–Reitz) microfacet conductor with Smith's G2 (:class:`brdfs.physics.distributions.GGX`)."""
+    """GGX (Trowbridge–Reitz) microfacet conductor, f = F D G2 / (4 N·L N·V) (Walter et al. 2007, eq. 20)
+    with GGX's D (their eq. 33) and Smith's G2 (Heitz 2014) (:class:`brdfs.physics.distributions.GGX`)."""
 
     name = "ggx"
     distribution_type = GGX
@@ -364,7 +365,8 @@ class GGXMicrofacet(_SmithMicrofacet):
 @register
 @dataclass(frozen=True)
 class BeckmannMicrofacet(_SmithMicrofacet):
-    """Beckmann microfacet conductor with Smith's G2 (:class:`brdfs.physics.distributions.Beckmann`)."""
+    """Beckmann microfacet conductor, f = F D G2 / (4 N·L N·V) (Walter et al. 2007, eq. 20) with
+    Beckmann's D (their eq. 25) and Smith's G2 (Heitz 2014) (:class:`brdfs.physics.distributions.Beckmann`)."""
 
     name = "beckmann"
     distribution_type = Beckmann
