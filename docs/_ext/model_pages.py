@@ -110,6 +110,8 @@ def lobe_figure(brdf, path: Path) -> None:
         ax.semilogy(theta_v, np.where(f > 0, f, np.nan), label=f"θ_L = {theta_l:g}°")
         peak = np.nanmax(f) if np.any(f > 0) else 1.0
         polar.plot(np.radians(theta_v), f / peak, label=f"{theta_l:g}°")
+    top = ax.get_ylim()[1]
+    ax.set_ylim(max(ax.get_ylim()[0], top * 1e-8), top)       # eight decades below the peak
     ax.set_xlabel("θ_V in the plane of incidence [deg] (mirror side > 0)")
     ax.set_ylabel("f(L, V) [1/sr]")
     ax.legend(fontsize=7, loc="best")
