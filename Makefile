@@ -94,6 +94,7 @@ benchmark: llvm $(STAMP)
 	$(BIN)/python benchmarks/bench_work_precision.py
 	$(BIN)/python benchmarks/bench_sampling.py
 	$(BIN)/python benchmarks/bench_explorer.py
+	$(BIN)/python benchmarks/bench_checked_calls.py
 
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.
@@ -167,4 +168,4 @@ checks: check-reproducible check-crash check-cluster check-slurm-plan check-whee
 
 # Under the build lock (not while a build runs), and keeping the lock file itself.
 clean:
-	@$(call locked,set -x; rm -rf results .cluster-jobs docs/_build docs/recomputed docs/api; find .snakemake -mindepth 1 -maxdepth 1 ! -name $(notdir $(BUILD_LOCK)) -exec rm -rf {} +)
+	@$(call locked,set -x; rm -rf results .cluster-jobs docs/_build docs/recomputed docs/api docs/models; find .snakemake -mindepth 1 -maxdepth 1 ! -name $(notdir $(BUILD_LOCK)) -exec rm -rf {} +)

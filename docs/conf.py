@@ -15,7 +15,10 @@ sys.path.insert(0, str(DOCS / "_ext"))
 project = "brdfs"
 author = "the brdfs authors"
 copyright = "2026, the brdfs authors"
-release = version = "0.1"
+import brdfs  # noqa: E402  (the version is written once, brdfs.__version__)
+
+release = brdfs.__version__
+version = ".".join(release.split(".")[:2])
 
 extensions = [
     "sphinx.ext.autodoc",
@@ -23,6 +26,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "numpydoc",
     "thesis_pages",
+    "model_pages",
 ]
 
 root_doc = "index"
@@ -46,6 +50,8 @@ html_theme_options = {"page_width": "96%", "body_max_width": "none", "sidebar_wi
                       "fixed_sidebar": True, "show_powered_by": False}
 html_title = "brdfs: Neumann (2001) recomputed"
 html_static_path = ["_static"]
+# wide tables scroll inside the page instead of being cut (the reason and evidence columns)
+html_css_files = ["wide_tables.css"]
 html_use_index = True
 html_show_sourcelink = False
 mathjax_path = "no-mathjax.js"        # no network here: math stays as its TeX source (no CDN script)

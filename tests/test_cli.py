@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import brdfs
-from brdfs.cli import main, parse_theta
+from brdfs.cli import _key_values, main, parse_theta
 from brdfs.physics.models import MODELS
 
 
@@ -102,6 +102,17 @@ BAD_CALLS = [
     (["chi2", "phong", "-p", "n=20", "-t", "30", "-n", "0"], "'0'"),
     (["compare", "--results", "/nonexistent/results"], "/nonexistent/results"),
     (["render"], "render"),
+    (["albedo", "phong", "-p", "n=20", "-p", "n=30", "-t", "30"], "n=20 and n=30"),
+    (["albedo", "p_model", "-p", "n=20", "p=0.5", "n=4", "-t", "30"], "n=20 and n=4"),
+    (["albedo", "phong", "-p", "n=20", "-t", "30", "--json", "--csv"], "--json"),
+    (["albedo", "phong", "-p", "n=20", "-t", "30", "--method", "monte_carlo", "-o", "n_samples=10", "-o",
+      "n_samples=20"], "n_samples=10 and n_samples=20"),
+    (["chi2", "phong", "-p", "n=20", "-t", "30", "--significance", "2"], "--significance"),
+    (["chi2", "phong", "-p", "n=20", "-t", "30", "--significance", "0"], "'0'"),
+    (["chi2", "phong", "-p", "n=20", "-t", "30", "--seed", "-1"], "--seed"),
+    (["chi2", "phong", "-p", "n=20", "-t", "30", "--seed", "1.5"], "'1.5'"),
+    (["--import", "/no/such/model.py", "models"], "/no/such/model.py"),
+    (["--import", "no_such_module_43", "models"], "no_such_module_43"),
 ]
 
 
@@ -130,3 +141,33 @@ def test_help_names_every_subcommand_and_option(capsys):
     status, out, _ = run(["albedo", "--help"], capsys)
     assert status == 0 and all(o in out for o in ("--param", "--theta", "--method", "--rtol", "--atol",
                                                   "--option", "--csv", "--json"))
+
+
+def test_param_takes_several_pairs_after_one_option_as_the_models_listing_shows_them(capsys):
+    status, out, _ = run(["albedo", "p_model", "--param", "n=20", "p=0.5", "--theta", "30", "--json"], capsys)
+    direct = brdfs.albedo(brdfs.model("p_model", n=20, p=0.5), 30.0)
+    assert status == 0 and json.loads(out)[0]["value"] == float(direct.value)
+    status, out, _ = run(["models"], capsys)
+    assert "e.g. --param n=20 p=0.5;" in out and "n=20.0" not in out
+    rows = {r["model"]: r for r in json.loads(run(["models", "--json"], capsys)[1])}
+    for name, row in rows.items():            # each listed example, read as --param reads it, builds the model
+        if row["command_line"] and row["example_param"]:
+            params = _key_values([row["example_param"].split()], "--param")
+            assert brdfs.model(name, **params).params.items() >= MODELS[name].examples["typical"].items(), name
+
+
+def test_a_model_the_command_line_cannot_build_is_listed_as_such_without_an_object_address(capsys):
+    unbuildable = [n for n, c in MODELS.items() if any(callable(v) for e in c.examples.values() for v in e.values())]
+    assert unbuildable                          # the patch mixture's weight is a Python function
+    status, out, _ = run(["models"], capsys)
+    assert status == 0 and " at 0x" not in out and "<function" not in out
+    for name in unbuildable:
+        line = out.split(name, 1)[1].splitlines()[1]
+        assert "not buildable from the command line" in line, line
+    rows = {r["model"]: r for r in json.loads(run(["models", "--json"], capsys)[1])}
+    assert all(rows[n]["command_line"] is False and rows[n]["typical"] is None for n in unbuildable)
+
+
+def test_version_is_the_packages_one(capsys):
+    status, out, _ = run(["--version"], capsys)
+    assert status == 0 and out.strip() == f"brdfs {brdfs.__version__}"

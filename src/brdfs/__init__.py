@@ -1,6 +1,7 @@
 """brdfs — recomputing Neumann (2001), *Constructions of Bidirectional Reflection Distribution Functions*.
 
-Public API: :func:`albedo`, :func:`albedo_table`, :func:`model`, :data:`MODELS`, :class:`Estimate`.
+Public API: :func:`albedo`, :func:`albedo_table`, :func:`model`, :data:`MODELS`, :class:`Estimate`;
+:data:`__version__`.
 
 The names are imported on first use (a module ``__getattr__``), so that ``import brdfs.physics``
 loads the physics layer alone, not the numerics behind :func:`albedo`.
@@ -8,6 +9,12 @@ loads the physics layer alone, not the numerics behind :func:`albedo`.
 from __future__ import annotations
 
 import importlib
+
+#: The package's version: the one place it is written (pyproject.toml reads it, ``brdfs --version``
+#: prints it; ``CITATION.cff`` and ``CHANGELOG.md`` carry it with the release date, a test holds them).
+__version__ = "0.2.0"
+#: The release date of :data:`__version__` (ISO 8601).
+__release_date__ = "2026-12-06"
 
 #: Public name -> the module that defines it.
 _HOMES = {

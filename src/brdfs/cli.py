@@ -8,6 +8,13 @@
     brdfs chi2 phong_cosmin --param n=128 --theta 30,80
     brdfs compare                                 # printed numbers that reproduce / differ, by chapter
     brdfs explore --no-browser --port 8123        # the BRDF explorer in the browser (brdfs.explore)
+    brdfs lut ggx --param alpha=0.01:1:32 --mu 32 -o ggx.npy   # E(mu, alpha), E_avg(alpha) for renderers
+    brdfs --import my_model.py albedo my_model --param n=20 --theta 0,60   # a model of your own
+
+``--import MODULE_OR_FILE`` (repeatable, before the sub-command) imports a module or a ``.py`` file
+that registers models (:func:`brdfs.user_models.import_models`); the models of installed packages
+(entry-point group ``brdfs.models``) are loaded first.  ``--param`` takes ``KEY=VALUE`` pairs, several
+after one ``--param`` or the option repeated; a key given twice is refused.
 
 ``--theta`` takes one angle, a comma-separated list, or ``start:stop:step`` with the stop included.
 Every error (an unknown model or method, a bad parameter, option or angle) prints the usage line
@@ -51,14 +58,26 @@ def _parse_value(text: str):
 
 
 def _key_values(pairs, what: str) -> dict:
-    """``["n=20", "G=smith"]`` -> ``{"n": 20.0, "G": "smith"}``; ``what`` names the option in errors."""
-    out = {}
-    for pair in pairs or ():
+    """``["n=20", "G=smith"]`` -> ``{"n": 20, "G": "smith"}``; ``what`` names the option in errors.
+
+    ``pairs`` may hold lists (``--param n=20 p=0.5 --param C=1``: one list per option); a key given
+    twice is refused.
+    """
+    texts = {}
+    for pair in _flat(pairs):
         key, sep, value = pair.partition("=")
         if not sep or not key.strip():
             raise argparse.ArgumentTypeError(f"{what} {pair!r}: expected KEY=VALUE")
-        out[key.strip()] = _parse_value(value)
-    return out
+        key = key.strip()
+        if key in texts:
+            raise argparse.ArgumentTypeError(f"{what} {key}: given twice ({key}={texts[key]} and {key}={value.strip()})")
+        texts[key] = value.strip()
+    return {key: _parse_value(text) for key, text in texts.items()}
+
+
+def _flat(pairs):
+    for item in pairs or ():
+        yield from ([item] if isinstance(item, str) else item)
 
 
 def parse_theta(spec: str) -> np.ndarray:
@@ -84,34 +103,49 @@ def parse_theta(spec: str) -> np.ndarray:
 
 # --- brdfs models ------------------------------------------------------------------------------
 
-def _interval_text(interval) -> str:
-    lo = "(" if interval.lo_open else "["
-    hi = ")" if interval.hi_open or math.isinf(interval.hi) else "]"
-    return f"{lo}{interval.lo:g}, {interval.hi:g}{hi}"
+def _value_text(value) -> str:
+    """A parameter value as ``--param`` takes it: ``20`` (not ``20.0``), ``0.5``, ``smith``."""
+    if isinstance(value, float):
+        return f"{value:.15g}"
+    return str(value)
+
+
+def _not_buildable(cls) -> list[str]:
+    """The parameters of ``cls``'s examples that the command line cannot give (Python functions)."""
+    return sorted({k for example in cls.examples.values() for k, v in example.items() if callable(v)})
 
 
 def _model_rows():
     from brdfs.physics.models import MODELS
     rows = []
     for name, cls in MODELS.items():
-        ranges = {k: _interval_text(v) for k, v in cls.param_ranges.items()}
+        ranges = {k: v.text() for k, v in cls.param_ranges.items()}
         choices = {k: list(v) for k, v in getattr(cls, "param_choices", {}).items()}
+        unbuildable = _not_buildable(cls)
+        typical = cls.examples.get("typical", {})
         rows.append({"model": name, "chapter": str(cls.chapter), "parameters": {**ranges, **choices},
-                     "typical": cls.examples.get("typical", {}), "strategies": list(cls.strategies)})
+                     "typical": None if unbuildable else typical,
+                     "example_param": None if unbuildable else " ".join(f"{k}={_value_text(v)}"
+                                                                        for k, v in typical.items()),
+                     "command_line": not unbuildable, "needs_python": unbuildable,
+                     "strategies": list(cls.strategies)})
     return rows
 
 
 def _models(args) -> int:
     rows = _model_rows()
     if args.json:
-        print(json.dumps(rows, indent=1, default=str))
+        print(json.dumps(rows, indent=1))
         return 0
     for row in rows:
         params = ", ".join(f"{k} in {v}" if isinstance(v, str) else f"{k} in {{{', '.join(map(str, v))}}}"
                            for k, v in row["parameters"].items())
-        example = " ".join(f"{k}={v}" for k, v in row["typical"].items())
+        if row["command_line"]:
+            usage = f"e.g. --param {row['example_param']}" if row["example_param"] else "no parameters needed"
+        else:
+            usage = f"not buildable from the command line ({', '.join(row['needs_python'])}: a Python function)"
         print(f"{row['model']:<24} {params or '(no parameters)'}")
-        print(f"{'':<24} e.g. --param {example or '(none)'}; samplers: {', '.join(row['strategies'])}")
+        print(f"{'':<24} {usage}; samplers: {', '.join(row['strategies'])}")
     return 0
 
 
@@ -218,20 +252,54 @@ def _compare(args) -> int:
     return 0
 
 
+# --- brdfs lut ---------------------------------------------------------------------------------
+
+def _lut(args) -> int:
+    import time
+
+    from brdfs import lut
+
+    sweeps = [pair for pair in _flat(args.param) if ":" in pair.partition("=")[2]]
+    if len(sweeps) != 1:
+        raise argparse.ArgumentTypeError(f"--param: give exactly one swept parameter NAME=START:STOP:N, got "
+                                         f"{len(sweeps)}" + (f" ({' '.join(sweeps)})" if sweeps else ""))
+    param, values = lut.parse_sweep(sweeps[0])
+    fixed = _key_values([pair for pair in _flat(args.param) if pair not in sweeps], "--param")
+    start = time.perf_counter()
+    table = lut.albedo_lut(args.model, param, values, n_mu=args.mu, rtol=args.rtol, fixed=fixed)
+    path = lut.write(table, args.output, args.format)
+    seconds = time.perf_counter() - start
+    print(f"wrote {path}: E({param}, mu) {table.E.shape[0]} x {table.E.shape[1]} and E_avg({param}) of {args.model}"
+          f" in {seconds:.1f} s; largest error: E {table.E_error.max():.2e}, E_avg {table.E_avg_error.max():.2e}"
+          f" (rtol {args.rtol:g})")
+    if not table.converged:
+        print(f"brdfs: warning: {np.sum(table.E_status != 'converged')} cells and "
+              f"{np.sum(table.E_avg_status != 'converged')} averages did not converge to rtol {args.rtol:g}; "
+              f"their errors are in the file", file=sys.stderr)
+        return 1
+    return 0
+
+
 # --- the parser --------------------------------------------------------------------------------
 
 def _common_model_args(p):
     p.add_argument("model", help="a model name (`brdfs models` lists them)")
-    p.add_argument("--param", "-p", action="append", metavar="KEY=VALUE", default=[],
-                   help="a model parameter, repeatable (e.g. --param n=20 --param G=smith)")
+    p.add_argument("--param", "-p", action="append", nargs="+", metavar="KEY=VALUE", default=[],
+                   help="model parameters, one or more (e.g. --param n=20 p=0.5)")
     p.add_argument("--theta", "-t", type=parse_theta, required=True, metavar="SPEC",
                    help="incidence angles in degrees: 60, a list 0,30,60, or start:stop:step (stop included)")
-    p.add_argument("--json", action="store_true", help="print a JSON list, one object per angle")
+    output = p.add_mutually_exclusive_group()
+    output.add_argument("--json", action="store_true", help="print a JSON list, one object per angle")
+    return output
 
 
 def build_parser() -> argparse.ArgumentParser:
     from brdfs.numerics.albedo import ALBEDO_METHODS
+    from brdfs import __version__
     parser = _Parser(prog="brdfs", description="Albedos, samplers and the thesis comparison of the brdfs package.")
+    parser.add_argument("--version", action="version", version=f"brdfs {__version__}")
+    parser.add_argument("--import", dest="imports", action="append", default=[], metavar="MODULE_OR_FILE",
+                        help="import a module or a .py file that registers models first (repeatable)")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
     p = sub.add_parser("models", help="list the models: names, parameters and their ranges, samplers")
@@ -241,15 +309,15 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("albedo", help="directional albedo a(theta) with its error estimate",
                        description="Directional albedo a(theta) = integral of f cos theta_V (eq. 1.18) by "
                                    "brdfs.albedo, one call per angle: value, error, evaluations, status.")
-    _common_model_args(p)
+    output = _common_model_args(p)
     methods = sorted(ALBEDO_METHODS)
     p.add_argument("--method", "-m", default=_default_method(), choices=methods, metavar="METHOD",
                    help=f"one of {', '.join(methods)} (default: %(default)s)")
     p.add_argument("--rtol", type=float, default=None, help="relative tolerance (default 1e-10)")
     p.add_argument("--atol", type=float, default=None, help="absolute tolerance (default 1e-14)")
-    p.add_argument("--option", "-o", action="append", metavar="KEY=VALUE", default=[],
-                   help="a method option, repeatable (e.g. --method monte_carlo --option n_samples=1e5)")
-    p.add_argument("--csv", action="store_true", help="print CSV")
+    p.add_argument("--option", "-o", action="append", nargs="+", metavar="KEY=VALUE", default=[],
+                   help="method options, one or more (e.g. --method monte_carlo --option n_samples=1e5)")
+    output.add_argument("--csv", action="store_true", help="print CSV")
     p.set_defaults(run=_albedo)
 
     p = sub.add_parser("chi2", help="chi-square test of a model's sampler against its pdf",
@@ -258,9 +326,25 @@ def build_parser() -> argparse.ArgumentParser:
     _common_model_args(p)
     p.add_argument("--strategy", "-s", default=None, help="the sampler (default: the model's own first strategy)")
     p.add_argument("--samples", "-n", type=_positive_int, default=100_000, help="samples per angle (default %(default)s)")
-    p.add_argument("--seed", type=int, default=0, help="random seed (default %(default)s)")
-    p.add_argument("--significance", type=float, default=0.01, help="significance level (default %(default)s)")
+    p.add_argument("--seed", type=_seed, default=0, help="random seed, a non-negative integer (default %(default)s)")
+    p.add_argument("--significance", type=_open_unit, default=0.01,
+                   help="significance level, in (0, 1) (default %(default)s)")
     p.set_defaults(run=_chi2)
+
+    p = sub.add_parser("lut", help="albedo tables for renderers: E(mu, param) and E_avg(param) with errors",
+                       description="Directional albedo E(mu, param) at mu = (j + 1/2)/N and its average "
+                                   "E_avg = 2 int E mu dmu over a parameter, each cell with its error bound, "
+                                   "and the model, parameters, tolerance and version as metadata "
+                                   "(brdfs.lut).  The other parameters keep their defaults (GGX: F = 1).")
+    p.add_argument("model", help="a model name (`brdfs models` lists them)")
+    p.add_argument("--param", "-p", action="append", nargs="+", metavar="KEY=VALUE", default=[], required=True,
+                   help="the swept parameter NAME=START:STOP:N (e.g. alpha=0.01:1:32), and any fixed ones KEY=VALUE")
+    p.add_argument("--mu", type=_positive_int, default=32, help="cells in mu = cos theta (default %(default)s)")
+    p.add_argument("--format", "-f", choices=("npy", "csv", "exr"), default=None,
+                   help="npy (a NumPy archive), csv or exr (needs Mitsuba); default: from the file's suffix")
+    p.add_argument("--output", "-o", required=True, metavar="FILE", help="the file to write")
+    p.add_argument("--rtol", type=float, default=1e-10, help="relative tolerance of every value (default %(default)g)")
+    p.set_defaults(run=_lut)
 
     p = sub.add_parser("compare", help="how many printed numbers reproduce, by chapter (from a build)")
     p.add_argument("--results", default="results", help="the build's results directory (default: %(default)s)")
@@ -268,7 +352,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(run=_compare)
 
-    # issue 44: the explorer (brdfs.explore); its --import goes through brdfs.explore._imports
+    # the explorer (brdfs.explore); its own --import, like the global one, goes through brdfs.user_models
     p = sub.add_parser("explore", help="an interactive BRDF explorer in the browser (localhost)",
                        description="Serve the BRDF explorer (brdfs.explore): parameters, lobe, certified "
                                    "albedo, lit sphere and (theta_h, theta_d) slice of any registered model.")
@@ -284,7 +368,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _explore(args) -> int:
     from brdfs.explore import serve
-    return serve(args.host, args.port, open_browser=not args.no_browser, imports=args.imports)
+    # main() has imported args.imports already (the global and the sub-command's --import share them)
+    return serve(args.host, args.port, open_browser=not args.no_browser)
 
 
 def _default_method() -> str:
@@ -292,21 +377,42 @@ def _default_method() -> str:
     return inspect.signature(albedo).parameters["method"].default
 
 
-def _positive_int(text: str) -> int:
+def _argument_type(convert, valid, expected: str):
+    """An argparse ``type``: ``convert(text)`` where ``valid`` holds, else one line naming ``expected``
+    (argparse puts the option's name before it)."""
+    def parse(text: str):
+        try:
+            value = convert(text)
+            if valid(value, text):
+                return value
+        except (ValueError, OverflowError):
+            pass
+        raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}")
+    return parse
+
+
+_positive_int = _argument_type(lambda t: int(float(t)), lambda v, t: v > 0 and v == float(t), "a positive integer")
+_seed = _argument_type(int, lambda v, t: v >= 0, "a non-negative integer")
+_open_unit = _argument_type(float, lambda v, t: 0.0 < v < 1.0, "a number in (0, 1)")
+
+
+def _load_models(parser, imports) -> None:
+    """The models of installed packages (entry points ``brdfs.models``), then each ``--import``."""
+    from brdfs.user_models import import_models, load_entry_points
     try:
-        value = int(float(text))
-        if value > 0 and value == float(text):
-            return value
-    except ValueError:
-        pass
-    raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+        load_entry_points()
+        for spec in imports:
+            import_models(spec)
+    except ValueError as err:
+        parser.error(str(err))
 
 
 def main(argv=None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    _load_models(parser, args.imports)
     try:
-        if hasattr(args, "param"):
+        if hasattr(args, "param") and args.command != "lut":
             args.param = _key_values(args.param, "--param")
         if hasattr(args, "option"):
             # 1e5 samples is an integer option's value: an integral number is passed as an int
@@ -315,8 +421,7 @@ def main(argv=None) -> int:
         return args.run(args)
     except (argparse.ArgumentTypeError, ValueError, TypeError) as err:
         message = str(err).splitlines()[0] if str(err) else type(err).__name__
-        sub = args.command
-        parser._subparsers._group_actions[0].choices[sub].error(message)
+        parser._subparsers._group_actions[0].choices[args.command].error(message)
     return EXIT_USAGE
 
 

@@ -110,4 +110,5 @@ def test_an_import_that_fails_is_one_line_and_exit_status_2(capsys):
         main(["explore", "--no-browser", "--import", "no_such_module_44"])
     assert exit_.value.code == 2
     assert capsys.readouterr().err.strip().splitlines()[-1] == (
-        "brdfs explore: error: --import 'no_such_module_44': ModuleNotFoundError: No module named 'no_such_module_44'")
+        "brdfs: error: --import 'no_such_module_44': no module named 'no_such_module_44' "
+        "(give a module on sys.path or the path of a .py file)")

@@ -166,3 +166,65 @@ def test_evaluation_counters_nest_reenter_survive_a_raise_and_leave_nothing_behi
             raise RuntimeError
     assert (outer[0], inner[0], failed[0]) == (6, 2, 1)
     assert base._COUNTERS == []
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_numeric_parameter_has_a_bounded_test_range_inside_its_declared_range(name):
+    """The generic tests draw every parameter from the class's own declarations: each declared range
+    has a test range (bounded, lo ≤ hi), and its ends (and 0 where it adds it) lie in the declared range."""
+    cls = MODELS[name]
+    for key, interval in cls.param_ranges.items():
+        for energy in (False, True):
+            draw = cls.test_range(key, energy=energy)
+            assert draw is not None, f"{name}: {key} has the unbounded range {interval.text()} and no test range"
+            assert np.isfinite(draw.lo) and np.isfinite(draw.hi) and draw.lo <= draw.hi, (name, key, draw)
+            for end in (draw.lo, draw.hi) + ((0.0,) if draw.zero else ()):
+                assert interval.contains(end), (name, key, end, interval)
+    for key in set(cls.test_ranges) | set(cls.energy_test_ranges):
+        assert key in cls.param_ranges, f"{name}: test range for {key}, which declares no range"
+
+
+def test_a_bounded_declared_range_is_its_own_test_range_and_an_unbounded_one_needs_one():
+    from dataclasses import dataclass
+
+    from brdfs.physics.models.base import DrawRange, positive
+
+    @dataclass(frozen=True)
+    class Declared(BRDF):
+        rho: float = 0.5
+        k: float = 1.0
+        name = "declared_in_a_test"
+        param_ranges = {"rho": Interval(0.0, 1.0), "k": positive()}
+
+    assert Declared.test_range("rho") == DrawRange(0.0, 1.0)
+    assert Declared.test_range("k") is None
+
+
+def test_the_base_class_refuses_a_parameter_outside_its_declared_range_or_choices():
+    """The recipe's model declares its ranges and writes no check: the constructor refuses for it,
+    naming the model, the parameter and the value; a subclass's own ``__post_init__`` runs first."""
+    from dataclasses import dataclass
+
+    @dataclass(frozen=True)
+    class Plain(BRDF):
+        n: float = 1.0
+        kind: str = "a"
+        name = "plain_in_a_test"
+        param_ranges = {"n": Interval(0.0, 10.0, lo_open=True)}
+        param_choices = {"kind": ("a", "b")}
+
+    @dataclass(frozen=True)
+    class WithOwnInit(Plain):
+        name = "own_init_in_a_test"
+
+        def __post_init__(self):
+            object.__setattr__(self, "n", float(self.n))
+
+    for cls in (Plain, WithOwnInit):
+        assert cls(n=10.0).n == 10.0
+        for bad in (0.0, 10.5, float("nan")):
+            with pytest.raises(ValueError, match=rf"{cls.name}: n must lie in \(0, 10\], got"):
+                cls(n=bad)
+        with pytest.raises(ValueError, match="kind must be one of"):
+            cls(kind="c")
+    assert WithOwnInit(n=3).n == 3.0 and isinstance(WithOwnInit(n=3).n, float)

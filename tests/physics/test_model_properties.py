@@ -11,10 +11,10 @@ parameter ranges (``param_ranges``, ``param_choices``) and over random direction
   weight and pdf 0, and ∫ pdf dω (a quadrature that never calls the sampler) equals the accepted
   fraction of a scrambled Sobol set of 2^15 uniform points within 1e-3.
 
-Parameters are drawn log-uniformly inside the declared range (uniformly for a range that contains
-negative values or is short and linear, see :data:`CAPS`), capped where the range is infinite; the
-caps are the values in :data:`CAPS`, the thesis's narrowest lobes included (n = 1e4, m = 0.005,
-α = 0.01, s = 512, R = 0.2 and below).
+Parameters are drawn from the test range each model class declares (``test_ranges``, bounded and
+inside the declared range, the thesis's narrowest lobes included: n = 1e4, m = 0.005, α = 0.01,
+s = 512, R = 0.2 and below; :meth:`~brdfs.physics.models.base.BRDF.test_range`), log-uniformly or
+uniformly as it says; nothing here is keyed by a model's or a parameter's name.
 
 The quadrature of ∫ pdf dω follows the lobe, so that the narrowest lobes are resolved:
 
@@ -44,6 +44,7 @@ from scipy.stats import qmc
 import brdfs
 from brdfs.physics.models import MODELS
 from brdfs.physics.models.base import UNIFORM
+from brdfs.physics.tables import MissingTable
 
 NAMES = list(MODELS)
 
@@ -73,84 +74,58 @@ def _linear(lo, hi):
     return st.floats(lo, hi)
 
 
-#: How each parameter is drawn: (kind, lo, hi) inside its declared Interval, capped where the
-#: range is infinite; ``zero`` adds the closed lower bound 0 itself.  Keyed by (model, name), then
-#: by name.  Caps of the infinite ranges: n ≤ 1e4, m ∈ [1e-3, 10] (Ward/Cook–Torrance), α ∈ [1e-2, 3],
-#: s ≤ 1e3, C ∈ [1e-3, 1e3], He–Torrance σ0 ∈ [0.01, 1] µm, τ ∈ [0.5, 10] µm, λ ∈ [0.38, 0.78] µm,
-#: n_re ∈ [0.1, 10], k ∈ [0, 10], p_Diffuse ≤ 10, |u_angle| ≤ 180°.
-CAPS = {
-    "n": ("log", 1e-2, 1e4, True),
-    "C": ("log", 1e-3, 1e3, False),
-    "m": ("log", 1e-3, 10.0, False),
-    "p": ("linear", 0.0, 1.0, False),
-    "alpha": ("log", 1e-2, 3.0, False),
-    "ior_re": ("log", 0.1, 10.0, False),
-    "ior_im": ("log", 1e-3, 10.0, True),
-    "sigma0_um": ("log", 1e-2, 1.0, False),
-    "tau_um": ("log", 0.5, 10.0, False),
-    "lambda_um": ("linear", 0.38, 0.78, False),
-    "R": ("log", 1e-2, 2.0, False),
-    "s": ("log", 1e-2, 1e3, True),
-    "b": ("log", 2e-2, 2.0, False),
-    "ratio": ("log", 5e-2, 1.0, False),
-    "u_angle_deg": ("linear", -180.0, 180.0, False),
-    "d": ("linear", 0.0, 1.0, False),
-    "m_clip": ("log", 5e-2, 1.99, False),
-    "p_diffuse": ("log", 1e-3, 10.0, True),
-    "rho": ("linear", 0.0, 1.0, False),
-    "sigma": ("linear", 0.0, math.pi / 2, True),
-}
-#: Parameters not drawn: the numerical tolerance of the mixture's own integral (not a physical
-#: parameter: its default), and the constant C where a property holds "with its default constant".
-NOT_DRAWN = {"rtol"}
-#: Sub-ranges for the energy property: α down to the narrowest example 0.01 (below 0.02 the
-#: Beckmann–Smith albedo exceeded 1 + error by 2.4e-13 until D took tan²δ from the half vector, not
-#: from cos δ: :func:`test_beckmann_narrowest_conserves_energy`).  And n_re ≥ 1 (with k ≥ 0): below 1 with k = 0 the Fresnel factor has the kink of total internal
-#: reflection inside the lobe, which costs the engine ~7e6 evaluations (3 s) per draw.
-ENERGY_CAPS = {("beckmann", "alpha"): ("log", 0.01, 3.0, False),
-               ("ggx", "ior_re"): ("log", 1.0, 10.0, False), ("beckmann", "ior_re"): ("log", 1.0, 10.0, False)}
-
-
-def _draw_value(cls, key, caps):
-    kind, lo, hi, zero = caps.get((cls.name, key)) or CAPS[key]
-    interval = cls.param_ranges[key]
-    lo = max(lo, interval.lo) if np.isfinite(interval.lo) else lo
-    hi = min(hi, interval.hi) if np.isfinite(interval.hi) else hi
-    if interval.hi_open and hi >= interval.hi:
+def _draw_value(cls, key, energy):
+    """A strategy of values of parameter ``key`` of ``cls``: its test range (:meth:`BRDF.test_range`),
+    clipped to the open bounds of its declared range; 0 itself and None where the test range adds them."""
+    draw = cls.test_range(key, energy=energy)
+    interval = cls.param_ranges.get(key)
+    lo, hi = draw.lo, draw.hi
+    if interval is not None and interval.hi_open and hi >= interval.hi:
         hi = np.nextafter(interval.hi, -np.inf)
-    if interval.lo_open and lo <= interval.lo:
+    if interval is not None and interval.lo_open and lo <= interval.lo:
         lo = np.nextafter(interval.lo, np.inf)
-    base = _log_uniform(lo, hi) if kind == "log" else _linear(lo, hi)
-    if zero and interval.contains(0.0):
+    base = _log_uniform(lo, hi) if draw.log else _linear(lo, hi)
+    if draw.zero and (interval is None or interval.contains(0.0)):
         base = st.one_of(st.just(0.0), base)
-    if key == "ior_re":          # F = 1 (None) or a dielectric/metal's n
+    if draw.none:                  # the feature switched off (F = 1 without an index)
         base = st.one_of(st.none(), base)
-    return base.filter(lambda x: x is None or interval.contains(x))
+    return base.filter(lambda x: x is None or interval is None or interval.contains(x))
 
 
-def params_of(cls, *, with_constant=False, caps=None, fixed=None):
-    """A strategy of parameter dicts of ``cls`` inside its declared ranges and choices."""
-    caps = caps or {}
+def _builds(cls, params):
+    """Whether ``cls`` accepts ``params`` (parameters drawn apart that go together, such as an index's
+    real and imaginary parts or neither); a model that needs a table is built by :func:`build`."""
+    try:
+        cls(**params)
+    except MissingTable:
+        return True
+    except ValueError:
+        return False
+    return True
+
+
+def params_of(cls, *, with_constant=False, energy=False, fixed=None):
+    """A strategy of parameter dicts of ``cls`` inside its declared ranges and choices, drawn from its
+    test ranges (the energy property's own where it declares them); its constant factor
+    (``scale_parameter``) at its default unless ``with_constant``."""
     fixed = fixed or {}
-    fields = cls.param_columns()
     parts = {}
-    for key in fields:
+    for key in cls.param_columns():
         if key in fixed:
             parts[key] = st.just(fixed[key])
         elif key in cls.param_choices:
             parts[key] = st.sampled_from(cls.param_choices[key])
-        elif key in cls.param_ranges and key not in NOT_DRAWN and (key != "C" or with_constant):
-            parts[key] = _draw_value(cls, key, caps)
+        elif key == cls.scale_parameter and not with_constant:
+            continue
+        elif cls.test_range(key, energy=energy) is not None:
+            parts[key] = _draw_value(cls, key, energy)
         elif any(callable(ex.get(key)) for ex in cls.examples.values()):       # the mixture's weight
             parts[key] = st.sampled_from([ex[key] for ex in cls.examples.values()])
-    defaults = {f.name: f.default for f in dataclasses.fields(cls)}
-
-    def _pair_ior(params):             # F = 1: no ior_im without ior_re (the field's default)
-        if params.get("ior_re", 0.0) is None and "ior_im" in params and "ior_im" not in fixed:
-            params = {**params, "ior_im": defaults["ior_im"]}
-        return params
-
-    return st.fixed_dictionaries(parts).map(_pair_ior)
+    strategy = st.fixed_dictionaries(parts)
+    if any(cls.test_range(key, energy=energy) is not None and cls.test_range(key, energy=energy).none
+           for key in parts if key not in fixed):
+        strategy = strategy.filter(lambda params: _builds(cls, params))
+    return strategy
 
 
 def _plain(cls, params):
@@ -246,7 +221,7 @@ def _assert_conserves(f, theta, params):
 @given(data=st.data(), theta=ANGLES)
 def test_every_model_that_claims_energy_conservation_has_albedo_at_most_one(name, data, theta):
     cls = MODELS[name]
-    params = data.draw(params_of(cls, caps=ENERGY_CAPS).map(lambda p: _plain(cls, p)), label="params")
+    params = data.draw(params_of(cls, energy=True).map(lambda p: _plain(cls, p)), label="params")
     _assert_conserves(build(name, params), theta, params)
 
 

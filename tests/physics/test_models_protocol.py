@@ -212,13 +212,9 @@ def test_default_cosine_sampling_draws_the_cosine_law_and_its_weights_average_to
     assert abs(weight.mean() - exact) <= 5 * weight.std(ddof=1) / np.sqrt(weight.size)
 
 
-EXAMPLE_PARAMS = {"n": 10.0, "m": 0.2, "alpha": 0.3, "s": 2.0, "d": 0.5, "R": 1.0, "sigma0_um": 0.1, "tau_um": 1.7,
-                  "b": 0.5, "ratio": 0.5, "weight": lambda R: np.exp(-R)}
-
-
 def _example(name):
-    cls = MODELS[name]
-    return cls(**{k: EXAMPLE_PARAMS[k] for k in cls.param_columns() if k in EXAMPLE_PARAMS})
+    """The model at its typical example: the parameters the class declares, no table kept here."""
+    return MODELS[name].example("typical")
 
 
 @pytest.mark.parametrize("name", sorted(MODELS))

@@ -38,7 +38,7 @@ def is_loopback(host: str) -> bool:
 def serve(host: str = LOOPBACK, port: int = 8123, open_browser: bool = True, imports=(),
           timeout: float | None = None) -> int:
     """Import the user's models (``imports``), serve the explorer until Ctrl-C; 0 on a clean stop."""
-    from brdfs.explore._imports import import_models
+    from brdfs.user_models import import_models
     from brdfs.explore.server import DEFAULT_TIMEOUT, make_server
     for spec in imports:
         names = import_models(spec)

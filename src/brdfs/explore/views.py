@@ -140,8 +140,7 @@ def model_arguments(models, name: str, values: dict[str, str]) -> dict:
             value = parse_number(key, text)
             interval = cls.param_ranges[key]
             if not interval.contains(value):
-                from brdfs.cli import _interval_text          # the range as `brdfs models` prints it
-                raise BadRequest(f"{name}: {key}={value:g} is outside its range {_interval_text(interval)}")
+                raise BadRequest(f"{name}: {key}={value:g} is outside its range {interval.text()}")
             args[key] = value
         elif key in choices:
             match = [v for v in choices[key] if str(v) == text]

@@ -303,7 +303,7 @@ def _grid_sum(model, theta, n):
     U, P = np.meshgrid(u, phi, indexing="ij")
     s = np.sqrt((1 - U) * (1 + U))
     V = np.stack([s * np.cos(P), s * np.sin(P), U], -1)
-    f = model(light_direction(theta), V)
+    f = model.unchecked(light_direction(theta), V)
     return float(2 * np.einsum("i,j,ij->", wu, wphi, f * U))
 
 
@@ -327,7 +327,7 @@ def _midpoint_grid(model, theta, rtol, atol, n_theta: Annotated[int, AtLeast(1)]
     for start in range(0, n_theta, rows_per_block):
         tv = theta_v[start:start + rows_per_block, None]
         V = np.stack(np.broadcast_arrays(np.sin(tv) * np.cos(phi), np.sin(tv) * np.sin(phi), np.cos(tv)), -1)
-        rows = model(L, V) * np.cos(tv) * np.sin(tv) * d_theta * d_phi
+        rows = model.unchecked(L, V) * np.cos(tv) * np.sin(tv) * d_theta * d_phi
         # rows summed one by one, in order, as the row-by-row loop summed them
         for row_sum, row_abs in zip(rows.sum(axis=-1), np.abs(rows).sum(axis=-1)):
             total += row_sum
@@ -343,7 +343,7 @@ def _dblquad(model, theta, rtol, atol, epsrel: Annotated[float | None, Above(0.0
     def integrand(phi, theta_v):
         st = np.sin(theta_v)
         V = np.array([st * np.cos(phi), st * np.sin(phi), np.cos(theta_v)])
-        return float(model(L, V)) * np.cos(theta_v) * st
+        return float(model.unchecked(L, V)) * np.cos(theta_v) * st
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", IntegrationWarning)
@@ -432,8 +432,8 @@ ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
 
 def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=False, warn=True,
            **options) -> Estimate:
-    """a(θ) = ∫ f(L, V) cos θ_V dω_V  (eq. 1.18) by ``method`` (:data:`ALBEDO_METHODS`), vectorised
-    over ``theta_deg``.
+    """Directional albedo a(θ) = ∫ f(L, V) cos θ_V dω_V (equation 1.18 of the thesis) by ``method``
+    (:data:`ALBEDO_METHODS`), vectorised over ``theta_deg``.
 
     Parameters
     ----------

@@ -154,7 +154,7 @@ def pumped_albedo(model, x, rtol=1e-10, atol=1e-14):
             L = np.stack(np.broadcast_arrays(sl[e, None], 0.0, ml[e, None]), -1)
             V = np.stack([-sv[e, None] * np.cos(phi), sv[e, None] * np.sin(phi),
                           np.broadcast_to(mv[e, None], phi.shape)], -1)
-            return root(L, V)
+            return root.unchecked(L, V)
 
         return integrate(f_root, inner_bp, rtol=rtol / 10, atol=atol / 10)
 

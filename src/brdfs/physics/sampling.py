@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from brdfs.physics import patch_geometry as patch
+from brdfs.physics.geometry import r_dot_v
 
 #: The direction a rejected sample is reported as.
 REJECTED = np.array([0.0, 0.0, -1.0])
@@ -82,6 +83,45 @@ def half_vector_jacobian(L, V):
     with np.errstate(divide="ignore", invalid="ignore"):
         vh = np.sum(V * h, axis=-1) / norm
         return h[..., 2] / norm, np.where(vh > 0, 1.0 / (4.0 * vh), 0.0)
+
+
+def reflect_half_vectors(L, H):
+    """V = 2 (L·H) H − L for half vectors H drawn about N; V = −N (rejected) where L·H ≤ 0 or V lies
+    below the horizon."""
+    V, lh = reflect_about(L, H)
+    return np.where(((lh > 0) & (V[..., 2] > 0))[..., None], V, REJECTED)
+
+
+def half_vector_sample(L, u, n):
+    """The half-vector sampler of a lobe (N·H)^n: H with density (n + 1)/(2π) (N·H)^n about N
+    (:func:`power_cosine`), V = 2 (L·H) H − L (:func:`reflect_half_vectors`); ``u`` (…, 2).
+    Its density is :func:`half_vector_pdf`; its mass is P(V above the horizon) < 1."""
+    L, u = broadcast_directions(L, u)
+    cos_d, sin_d = power_cosine(u[..., 0], n)
+    phi = 2.0 * np.pi * u[..., 1]
+    H = np.stack([sin_d * np.cos(phi), sin_d * np.sin(phi), cos_d], -1)
+    return reflect_half_vectors(L, H)
+
+
+def half_vector_pdf(L, V, n):
+    """Density per solid angle of V of :func:`half_vector_sample`: (n + 1)/(2π) (N·H)^n / (4 V·H)."""
+    nh, jacobian = half_vector_jacobian(L, V)
+    return power_cosine_pdf(nh, n) * jacobian
+
+
+def mirror_lobe_sample(L, u, n):
+    """The mirror-frame sampler of a lobe (R·V)^n: V with density (n + 1)/(2π) (R·V)^n about the
+    mirror direction R (eq. 3.20, Lafortune & Willems 1994); V below the horizon is rejected
+    (V = −N).  ``u`` (…, 2); its density is :func:`mirror_lobe_pdf`."""
+    L, u = broadcast_directions(L, u)
+    cos_a, sin_a = power_cosine(u[..., 0], n)
+    V = around_axis(mirror_direction(L), cos_a, sin_a, 2.0 * np.pi * u[..., 1])
+    return np.where((V[..., 2] > 0)[..., None], V, REJECTED)
+
+
+def mirror_lobe_pdf(L, V, n):
+    """Density per solid angle of V of :func:`mirror_lobe_sample`: (n + 1)/(2π) (R·V)^n (eq. 3.19)."""
+    return power_cosine_pdf(r_dot_v(L, V), n)
 
 
 def disk_to_direction(x, y):

@@ -50,7 +50,7 @@ class Lobe:
     share: float | None = None
 
     def __call__(self, L, V):
-        f = np.asarray(self.brdf(L, V), float)[..., None] * self.scale
+        f = np.asarray(self.brdf.unchecked(L, V), float)[..., None] * self.scale
         if self.ior is None:
             return f
         cos_t = self.brdf.fresnel_cosine(L, V)[..., None]

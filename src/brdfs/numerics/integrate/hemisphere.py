@@ -624,7 +624,7 @@ def _azimuthal(model, t, mu, st):
         dphi[..., -1:, :] = np.where(cut, 2 * (hi_l - lo_l) * (1 - u), dphi[..., -1:, :])
     V, extra = _directions(lobe.frame, cb, sb, mu, st, phi)
     L = np.stack(np.broadcast_arrays(st, 0.0 * st, mu), -1)[..., None, None, :]
-    f = model(L, V)
+    f = model.unchecked(L, V)
     g = f * V[..., 2] * extra * dphi
     g = np.where(f == 0, 0.0, g)          # NaN (an undefined BRDF) propagates; zero stays zero
     inside = t < 1.0                       # t = 1 is the lobe's far end, where its weight vanishes
@@ -640,7 +640,7 @@ def _azimuthal(model, t, mu, st):
         Vg = V[grazing].copy()
         Vg[..., 0] += 2 * np.spacing(Vg[..., 0])
         Lg = np.broadcast_to(L, V.shape)[grazing]
-        df = 0.25 * np.abs(model(Lg, Vg) - f[grazing])
+        df = 0.25 * np.abs(model.unchecked(Lg, Vg) - f[grazing])
         dg = np.where(np.isfinite(df), df * np.abs(V[grazing][..., 2] * np.broadcast_to(extra * dphi, f.shape)[grazing]), 0.0)
         noise[grazing] = np.where(inside[grazing], 2 * np.sum(dg @ _WK, axis=-1) * jac[grazing], 0.0)
     return high, low, noise

@@ -82,7 +82,7 @@ def _azimuthal(model, theta_v, mu, st, rtol, atol):
         s_v, c_v, s_i, c_i = (x[elem, None] for x in (sv, cv, st, mu))
         V = np.stack(np.broadcast_arrays(s_v * np.cos(phi), s_v * np.sin(phi), c_v), -1)
         L = np.stack(np.broadcast_arrays(s_i, 0.0 * s_i, c_i), -1)
-        return model(L, V)
+        return model.unchecked(L, V)
 
     inner = integrate(integrand, cuts, rtol=rtol, atol=atol, chunk=4096)
     weight = 2 * sv * cv

@@ -60,8 +60,13 @@ parameters).
 What the model says about itself (class attributes, defaults here), read by sweeps, tests, the
 config schema and the artifacts instead of lists keyed by model name:
 
-* ``param_ranges`` (name -> :class:`Interval`, the ranges ``__post_init__`` accepts) and
-  ``param_choices`` (the values of categorical parameters);
+* ``param_ranges`` (name -> :class:`Interval`, the ranges the constructor accepts: the base class
+  refuses a value outside them, :meth:`BRDF.check_declared_parameters`) and ``param_choices`` (the
+  values of categorical parameters);
+* ``test_ranges`` (name -> :class:`DrawRange`, bounded and inside ``param_ranges``): where the
+  generic tests draw each numeric parameter (an infinite range needs one), and ``energy_test_ranges``
+  (narrower ones for the energy-conservation property, where a wide draw costs too much);
+  ``scale_parameter``: the name of f's constant factor (``C``), which claims hold at its default;
 * ``examples`` (``"typical"`` and ``"narrowest"`` parameters) and :meth:`BRDF.example`;
 * ``reciprocal`` and ``conserves_energy``: the model's claims (a model that declares False says why);
 * ``chapter``: the thesis chapter that defines it (None beyond the thesis);
@@ -75,6 +80,7 @@ config schema and the artifacts instead of lists keyed by model name:
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
 
@@ -116,6 +122,52 @@ def exact(value) -> Estimate:
     return Estimate(value, 4 * np.finfo(float).eps * abs(value))
 
 
+#: How far from 1 the length of a direction passed to a model's public call may be.
+UNIT_TOLERANCE = 1e-6
+
+
+def check_directions(where: str, **directions) -> None:
+    """Refuse, with one ``ValueError`` line naming ``where`` and the argument, a direction array that
+    is not (…, 3), not finite, not of unit length within :data:`UNIT_TOLERANCE`, or that does not
+    broadcast against the others.  One pass over |d|² when all is well (NaN and inf fail it too);
+    the diagnosis only when not."""
+    for arg, d in directions.items():
+        if d.ndim == 0 or d.shape[-1] != 3:
+            raise ValueError(f"{where}: {arg} must have shape (..., 3) (unit vectors), got shape {d.shape}")
+        x, y, z = d[..., 0], d[..., 1], d[..., 2]
+        off = np.abs(x * x + y * y + z * z - 1.0)
+        if not off.max(initial=0.0) <= 2.0 * UNIT_TOLERANCE:        # NaN compares False: diagnosed below
+            _refuse_direction(where, arg, d)
+    try:
+        np.broadcast_shapes(*(d.shape[:-1] for d in directions.values()))
+    except ValueError:
+        shapes = ", ".join(f"{arg} {d.shape}" for arg, d in directions.items())
+        raise ValueError(f"{where}: directions of shapes {shapes} do not broadcast") from None
+
+
+def _refuse_direction(where, arg, d):
+    """The one line for the first direction of ``d`` that is not finite or not of unit length."""
+    finite = np.isfinite(d).all(axis=-1)
+    length = np.sqrt(np.sum(np.where(np.isfinite(d), d, 0.0) ** 2, axis=-1))
+    bad = ~finite | ~(np.abs(length - 1.0) <= UNIT_TOLERANCE)
+    if not bad.any():                     # within the tolerance of |d| though not of |d|²
+        return
+    index = tuple(int(i) for i in np.argwhere(bad)[0]) if d.ndim > 1 else ()
+    at = f" at index {index}" if index else ""
+    if not finite[index]:
+        raise ValueError(f"{where}: {arg} must be finite, got {d[index].tolist()}{at}")
+    raise ValueError(f"{where}: {arg} must be a unit vector (|{arg}| = 1 within {UNIT_TOLERANCE:g}), got "
+                     f"|{arg}| = {float(length[index]):.9g}{at}")
+
+
+def check_uniform_numbers(where: str, u) -> None:
+    """Refuse sampler numbers outside [0, 1) (or not finite) with one line: one above 1 would
+    silently give rejected samples."""
+    bad = ~((u >= 0.0) & (u < 1.0))
+    if bad.any():
+        raise ValueError(f"{where}: random numbers u must lie in [0, 1), got {float(u[bad].flat[0])!r}")
+
+
 #: The strategy every model accepts besides its own: directions uniform in solid angle, pdf 1/(2π).
 UNIFORM = "uniform"
 
@@ -153,7 +205,49 @@ class counting_evaluations:
 
 @dataclass(frozen=True)
 class BRDF:
-    """Base class: subclasses implement ``_eval(L, V, nl, nv)`` and ``lobe``."""
+    """Base class: subclasses implement ``_eval(L, V, nl, nv)`` and ``lobe``.
+
+    Every subclass's constructor ends with :meth:`check_declared_parameters` (its own
+    ``__post_init__`` first, if it has one): a parameter outside its declared range or choices is
+    refused with one line naming it, whether or not the subclass checks it itself."""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        own = cls.__dict__.get("__post_init__")
+        if own is None or getattr(own, "_checks_declared", False):
+            return
+
+        def __post_init__(self):
+            own(self)
+            if type(self).__post_init__ is __post_init__:     # the outermost wrapper checks once
+                self.check_declared_parameters()
+
+        __post_init__._checks_declared = True
+        __post_init__.__doc__ = own.__doc__
+        __post_init__.__wrapped__ = own
+        cls.__post_init__ = __post_init__
+
+    def __post_init__(self):
+        self.check_declared_parameters()
+
+    def check_declared_parameters(self):
+        """Refuse a parameter outside its :attr:`param_ranges` (None: the field's own default, a
+        feature switched off or a constant computed) or its :attr:`param_choices`."""
+        cls = type(self)
+        for key, interval in cls.param_ranges.items():
+            value = getattr(self, key, None)
+            if value is None or isinstance(value, bool):
+                continue
+            try:
+                inside = interval.contains(value)
+            except (TypeError, ValueError):
+                raise ValueError(f"{cls.name}: {key} must be a real number, got {value!r}") from None
+            if not inside:
+                raise ValueError(f"{cls.name}: {key} must lie in {interval.text()}, got {value!r}")
+        for key, choices in cls.param_choices.items():
+            value = getattr(self, key, None)
+            if value not in choices:
+                raise ValueError(f"{cls.name}: {key} must be one of {tuple(choices)}, got {value!r}")
 
     reciprocal: ClassVar[bool] = True
     name: ClassVar[str] = "brdf"
@@ -188,6 +282,17 @@ class BRDF:
     evaluation_rtol: ClassVar[float] = 0.0
 
     def __call__(self, L, V):
+        """f(L, V) on unit vectors L, V (…, 3) (broadcast against each other), N = (0, 0, 1); 0 below
+        the horizon.  Refuses, with one line, directions of another shape, not finite, or not of unit
+        length within :data:`UNIT_TOLERANCE` (an unnormalised V would silently scale f)."""
+        L = np.asarray(L, float)
+        V = np.asarray(V, float)
+        check_directions(self.name, L=L, V=V)
+        return self.unchecked(L, V)
+
+    def unchecked(self, L, V):
+        """f(L, V) without the check of the directions: for the integrators, the samplers and the
+        renderers, which build unit vectors themselves (``benchmarks/bench_checked_calls.py``)."""
         L = np.asarray(L, float)
         V = np.asarray(V, float)
         nl, nv = L[..., 2], V[..., 2]
@@ -368,7 +473,7 @@ class BRDF:
         L = np.broadcast_to(np.asarray(L, float), V.shape)
         pdf = self.pdf(L, V, strategy)
         with np.errstate(divide="ignore", invalid="ignore"):
-            weight = np.where(pdf > 0, self(L, V) * V[..., 2] / pdf, 0.0)
+            weight = np.where(pdf > 0, self.unchecked(L, V) * V[..., 2] / pdf, 0.0)
         return V, weight, pdf
 
     def sample_direction(self, L, u, strategy=None):
@@ -376,9 +481,10 @@ class BRDF:
         draws (the renderer, :mod:`brdfs.render.materials`), which weighs by the mixture's pdf."""
         strategy = self._strategy(strategy)
         u = np.asarray(u, float)
-        if u.shape[-1] < self.sample_dimension(strategy):
+        if u.ndim == 0 or u.shape[-1] < self.sample_dimension(strategy):
             raise ValueError(f"{self.name}: strategy {strategy!r} needs u of shape (..., "
                              f"{self.sample_dimension(strategy)}), got {u.shape}")
+        check_uniform_numbers(f"{self.name}.sample", u)
         L = np.broadcast_to(np.asarray(L, float), u.shape[:-1] + (3,))
         if strategy == "cosine":
             r, phi = np.sqrt(u[..., 0]), 2.0 * np.pi * u[..., 1]
@@ -417,6 +523,17 @@ class BRDF:
     param_ranges: ClassVar[dict[str, "Interval"]] = {}
     #: The choices of the model's categorical parameters (e.g. Cook–Torrance's G), name -> values.
     param_choices: ClassVar[dict[str, tuple]] = {}
+    #: Where the generic tests (properties, protocol, chi-square) draw each numeric parameter: name ->
+    #: :class:`DrawRange`, bounded and inside :attr:`param_ranges` (the thesis's narrowest lobes
+    #: included).  A bounded declared range needs none (it is drawn linearly); an unbounded one does.
+    #: A parameter with neither is held at its default.
+    test_ranges: ClassVar[dict[str, "DrawRange"]] = {}
+    #: Narrower test ranges for the energy-conservation property alone (name -> :class:`DrawRange`),
+    #: where the full range costs too much per draw; the reason goes in a comment.
+    energy_test_ranges: ClassVar[dict[str, "DrawRange"]] = {}
+    #: The name of f's constant factor, which the claims (``conserves_energy``) hold at its default:
+    #: the property tests draw it only where a claim does not depend on it.
+    scale_parameter: ClassVar[str | None] = "C"
     #: Example parameters for sweeps and tests: ``"typical"`` (the default of :meth:`example`) and
     #: ``"narrowest"`` (the sharpest lobe the thesis or the package treats), each inside
     #: :attr:`param_ranges`.
@@ -444,6 +561,20 @@ class BRDF:
     #: The thesis's constant of this model is computed, C = 1/max a (Table 3.1 for the Blinn models),
     #: rather than the default of the ``C`` field.
     constant_is_computed: ClassVar[bool] = False
+
+    @classmethod
+    def test_range(cls, key: str, energy: bool = False) -> "DrawRange | None":
+        """Where the generic tests draw parameter ``key``: :attr:`energy_test_ranges` (``energy``),
+        else :attr:`test_ranges`, else a bounded :attr:`param_ranges` entry drawn linearly; None when
+        the parameter is not drawn (no range, or an unbounded one without a test range)."""
+        if energy and key in cls.energy_test_ranges:
+            return cls.energy_test_ranges[key]
+        if key in cls.test_ranges:
+            return cls.test_ranges[key]
+        interval = cls.param_ranges.get(key)
+        if interval is not None and np.isfinite(interval.lo) and np.isfinite(interval.hi):
+            return DrawRange(interval.lo, interval.hi)
+        return None
 
     @classmethod
     def example(cls, kind: str = "typical") -> "BRDF":
@@ -486,6 +617,45 @@ class Interval(NamedTuple):
         above = x > self.lo if self.lo_open else x >= self.lo
         below = x < self.hi if self.hi_open else x <= self.hi
         return bool(np.isfinite(x) and above and below)
+
+    def text(self) -> str:
+        """``[0, 1]``, ``(0, inf)``: the interval as a message or a table shows it."""
+        lo = "(" if self.lo_open or math.isinf(self.lo) else "["
+        hi = ")" if self.hi_open or math.isinf(self.hi) else "]"
+        return f"{lo}{self.lo:g}, {self.hi:g}{hi}"
+
+
+class DrawRange(NamedTuple):
+    """Where the generic tests draw a parameter: lo ≤ x ≤ hi (clipped to the declared range's open
+    bounds), log-uniformly (``log``) or uniformly; ``zero`` adds the value 0 itself to a log range,
+    ``none`` adds None (a feature switched off, e.g. F = 1 without an index of refraction).  lo = hi
+    holds the parameter at that value.
+
+    >>> DrawRange(1e-2, 1e4, log=True, zero=True).contains(0.0)
+    True
+    """
+
+    lo: float
+    hi: float
+    log: bool = False
+    zero: bool = False
+    none: bool = False
+
+    def contains(self, x) -> bool:
+        if x is None:
+            return self.none
+        x = float(x)
+        return bool((self.zero and x == 0.0) or self.lo <= x <= self.hi)
+
+
+def log_range(lo: float, hi: float, *, zero: bool = False, none: bool = False) -> DrawRange:
+    """A test range drawn log-uniformly (a scale, a roughness, an exponent)."""
+    return DrawRange(float(lo), float(hi), log=True, zero=zero, none=none)
+
+
+def linear_range(lo: float, hi: float) -> DrawRange:
+    """A test range drawn uniformly (an angle, a fraction)."""
+    return DrawRange(float(lo), float(hi))
 
 
 def positive(hi: float = np.inf) -> Interval:

@@ -46,7 +46,7 @@ from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import ScatteringLobe
-from brdfs.physics.models.base import BRDF, check_positive, non_negative, positive, register
+from brdfs.physics.models.base import BRDF, check_positive, linear_range, log_range, non_negative, positive, register
 from brdfs.physics import sampling
 
 TERMS = ("dd", "specular", "total")
@@ -234,6 +234,11 @@ class HeTorrance(BRDF):
     param_ranges = {"sigma0_um": positive(), "tau_um": positive(), "lambda_um": positive(),
                     "ior_re": positive(), "ior_im": non_negative()}
     param_choices = {"term": TERMS}
+    #: the generic tests draw σ0 from 0.01 … 1 µm, τ from 0.5 … 10 µm, λ over the visible 0.38 … 0.78 µm,
+    #: F = 1 (None) or n_re in 0.1 … 10 with k from 0 and 1e-3 … 10
+    test_ranges = {"sigma0_um": log_range(1e-2, 1.0), "tau_um": log_range(0.5, 10.0),
+                   "lambda_um": linear_range(0.38, 0.78), "ior_re": log_range(0.1, 10.0, none=True),
+                   "ior_im": log_range(1e-3, 10.0, zero=True, none=True)}
     #: the thesis's surface (σ0 = 0.1 µm, τ = 1.7 µm); narrowest: τ = 4 µm (lobe width λ/(πτ))
     examples = {"typical": {"sigma0_um": 0.1, "tau_um": 1.7}, "narrowest": {"sigma0_um": 0.1, "tau_um": 4.0}}
     # conserves_energy = False: a physical-optics approximation, not constructed to keep a(θ) ≤ 1; with

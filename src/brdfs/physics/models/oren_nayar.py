@@ -30,7 +30,7 @@ import numpy as np
 
 from brdfs.core.estimate import Estimate
 from brdfs.physics.lobes import HALF, PowerCosine
-from brdfs.physics.models.base import BRDF, Interval, register
+from brdfs.physics.models.base import BRDF, DrawRange, Interval, register
 
 
 def oren_nayar_coefficients(sigma):
@@ -51,7 +51,7 @@ def cos_relative_azimuth(L, V):
 @register
 @dataclass(frozen=True)
 class OrenNayar(BRDF):
-    """Qualitative Oren–Nayar, f = (ρ/π)(A + B max(0, cos(φ_L − φ_V)) sin α tan β) (module docstring)."""
+    """Qualitative Oren–Nayar, f = (ρ/π)(A + B max(0, cos(φ_L − φ_V)) sin α tan β) (Oren & Nayar 1994, eq. 30)."""
 
     rho: float = 1.0
     sigma: float = 0.0
@@ -59,6 +59,8 @@ class OrenNayar(BRDF):
     # --- what the model says about itself
     chapter = None               # beyond the thesis (Oren & Nayar 1994)
     param_ranges = {"rho": Interval(0.0, 1.0), "sigma": Interval(0.0, np.pi / 2)}
+    #: σ = 0 (Lambert) drawn on its own as well
+    test_ranges = {"sigma": DrawRange(0.0, np.pi / 2, zero=True)}
     examples = {"typical": {"rho": 1.0, "sigma": 0.3}, "narrowest": {"rho": 1.0, "sigma": np.pi / 2}}
     # conserves_energy = False: with ρ = 1 the albedo exceeds 1 toward grazing incidence for
     # moderate roughness (σ = 0.3: a(89°) = 1.00409, a(90°) = 1.00536, engine and disk agreeing to

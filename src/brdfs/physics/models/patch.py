@@ -18,7 +18,7 @@ from brdfs.physics import patch_geometry as patch
 from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
 from brdfs.physics import fresnel, sampling
-from brdfs.physics.models.base import BRDF, Interval, check_positive, non_negative, positive, register
+from brdfs.physics.models.base import BRDF, Interval, check_positive, linear_range, log_range, non_negative, positive, register
 
 
 def projected_distance(L, V):
@@ -84,7 +84,7 @@ class _MixtureSampling(_OnTheBasePlane):
         return _russian_roulette_mixture(L, u, self.radius_of_cdf(u[..., 2]))
 
     def _pdf(self, L, V, strategy):
-        return self(L, V) * V[..., 2] / self.total_weight
+        return self.unchecked(L, V) * V[..., 2] / self.total_weight
 
 
 @dataclass(frozen=True)
@@ -97,6 +97,7 @@ class PatchBasic(_OnTheBasePlane, BRDF):
     # --- what the model says about itself
     chapter = 4                  # eqs. 4.2, 4.7
     param_ranges = {"R": Interval(0.0, 2.0, lo_open=True), "C": positive()}
+    test_ranges = {"R": log_range(1e-2, 2.0), "C": log_range(1e-3, 1e3)}     # R = 0.2 and below: Figure 4.3
     examples = {"typical": {"R": 0.5}, "narrowest": {"R": 0.2}}     # R = 0.2: Figure 4.3
     conserves_energy = True      # c(R) = 1/(π min(1, R²)): a = lens area / patch area ≤ 1 (eq. 4.8)
 
@@ -166,6 +167,7 @@ class PatchExponential(_MixtureSampling, BRDF):
     # --- what the model says about itself
     chapter = 4                  # eqs. 4.44–4.46
     param_ranges = {"s": non_negative(), "C": positive()}
+    test_ranges = {"s": log_range(1e-2, 1e3, zero=True), "C": log_range(1e-3, 1e3)}
     examples = {"typical": {"s": 4.0}, "narrowest": {"s": 512.0}}
     conserves_energy = True      # C_max of eq. 4.45 makes max a = a(N) = 1 (ξ decreasing)
     accuracy_families = {"patch_exponential": ("s", {})}
@@ -296,6 +298,7 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
     chapter = 4                  # eqs. 4.58, 4.59 (Table 4.3)
     param_ranges = {"d": Interval(0.0, 1.0), "m_clip": Interval(0.0, 2.0, lo_open=True, hi_open=True),
                     "C": positive()}
+    test_ranges = {"m_clip": log_range(5e-2, 1.99), "C": log_range(1e-3, 1e3)}
     examples = {"typical": {"d": 0.5}, "narrowest": {"d": 1.0}}
     conserves_energy = True      # C = 1/max a by default
     accuracy_families = {"generalized_lambertian": ("d", {})}
@@ -353,6 +356,8 @@ class PatchMixture(_MixtureSampling, BRDF):
     # --- what the model says about itself
     chapter = 4                  # eqs. 4.20, 4.21
     param_ranges = {"p_diffuse": non_negative(), "rtol": positive()}
+    #: rtol, the tolerance of the mixture's own integral (no physical parameter), held at its default
+    test_ranges = {"p_diffuse": log_range(1e-3, 10.0, zero=True), "rtol": log_range(1e-12, 1e-12)}
     examples = {"typical": {"weight": _uniform_weight}, "narrowest": {"weight": _falling_weight}}
     # conserves_energy = False: a ≤ W = ∫p + p_Diffuse, which is 1 only for a normalised weight
     # (eq. 4.21); the model takes any weight and does not normalise it
@@ -501,6 +506,8 @@ class PatchElliptical(_OnTheBasePlane, BRDF):
     param_ranges = {"b": Interval(0.0, 2.0, lo_open=True), "ratio": Interval(0.0, 1.0, lo_open=True),
                     "u_angle_deg": Interval(-np.inf, np.inf), "C": positive()}
     #: Figure 4.10's first ellipse; narrowest: Figure 4.11's copper (b = 0.08, B/A = 0.2)
+    test_ranges = {"b": log_range(2e-2, 2.0), "ratio": log_range(5e-2, 1.0),
+                   "u_angle_deg": linear_range(-180.0, 180.0), "C": log_range(1e-3, 1e3)}
     examples = {"typical": {"b": 0.3, "ratio": 0.5}, "narrowest": {"b": 0.08, "ratio": 0.2}}
     conserves_energy = True      # c(b) = 1/min(π a b, π) (eq. 4.36): a = area(E ∩ disk)/min(π a b, π) ≤ 1
 

@@ -13,7 +13,7 @@ from scipy.special import beta, gammaln
 
 from brdfs.core.estimate import Estimate
 
-from brdfs.physics.models.base import (BRDF, GrazingLaw, Interval, check_positive, exact, non_negative,
+from brdfs.physics.models.base import (BRDF, GrazingLaw, Interval, check_positive, exact, log_range, non_negative,
                                        positive, positive_power, register)
 from brdfs.physics import sampling
 
@@ -56,6 +56,8 @@ def phong_mean_albedo(n):
 class _PhongFamily(BRDF):
     n: float
     C: float | None = None
+    #: the generic tests draw n from 0 and 1e-2 … 1e4 (the thesis's narrowest lobe), C from 1e-3 … 1e3
+    test_ranges = {"n": log_range(1e-2, 1e4, zero=True), "C": log_range(1e-3, 1e3)}
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)
@@ -82,12 +84,10 @@ class _PhongFamily(BRDF):
     chi2_cases = ({"n": 512}, {"n": 20}, {"n": 1})
 
     def _sample_direction(self, L, u, strategy):
-        cos_a, sin_a = sampling.power_cosine(u[..., 0], self.n)
-        V = sampling.around_axis(sampling.mirror_direction(L), cos_a, sin_a, 2.0 * np.pi * u[..., 1])
-        return np.where((V[..., 2] > 0)[..., None], V, sampling.REJECTED)
+        return sampling.mirror_lobe_sample(L, u, self.n)
 
     def _pdf(self, L, V, strategy):
-        return sampling.power_cosine_pdf(r_dot_v(L, V), self.n)
+        return sampling.mirror_lobe_pdf(L, V, self.n)
 
 
 @register

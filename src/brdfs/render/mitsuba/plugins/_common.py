@@ -136,6 +136,20 @@ def cos_half_angle(L, V):
     return dr.select(norm > 0, dr.clip(dr.dot(L, h) / dr.select(norm > 0, norm, 1.0), 0.0, 1.0), 0.0)
 
 
+#: The scene keys every plugin reads besides its model's parameters: name -> (type, default, meaning),
+#: for the plugin reference of the documentation (``docs/_ext/model_pages.py``).  A plugin's own
+#: extra keys are its class's :attr:`ModelBSDF.extra_parameters`.
+COMMON_PARAMETERS = {
+    "specular": ("texture", "1", "the lobe's weight w_s (Lambert: ``reflectance``)"),
+    "diffuse_reflectance": ("texture", "none", "adds a Lambertian lobe ρ_d/π (eq. 3.31); one-sample MIS over the two"),
+    "eta": ("texture", "none", "real part n of a metal's index: the lobe times the conductor Fresnel factor "
+                               "at the model's declared angle (L·H for the microfacet models, Θ_min for the "
+                               "Phong family, θ' for the patch models)"),
+    "k": ("texture", "0", "imaginary part k of the metal's index (with ``eta``)"),
+    "strategy": ("string", "the model's own", "the lobe's sampler: the model's own strategy or ``cosine``"),
+}
+
+
 def channel_mean(value):
     """The mean over the channels of a Spectrum (a Float): the share a lobe gets in one-sample MIS."""
     return dr.mean(value, axis=0) if dr.depth_v(value) > 1 else value
@@ -205,6 +219,9 @@ class ModelBSDF(mi.BSDF):
     weight_name = "specular"
     #: Mitsuba's flag of the lobe.
     lobe_flag = mi.BSDFFlags.GlossyReflection
+    #: The plugin's scene keys beyond its model's parameters and :data:`COMMON_PARAMETERS`:
+    #: name -> (type, default, meaning), for the documentation's plugin reference.
+    extra_parameters: dict = {}
 
     def __init__(self, props):
         mi.BSDF.__init__(self, props)

@@ -71,6 +71,9 @@ class ModelPluginBSDF(ModelBSDF):
     """The package's model ``model`` (by name) with its numpy eval, pdf and sampler (module docstring)."""
 
     name = "model"
+    extra_parameters = {"model": ("string", "required", "a registered model's name (``brdfs models`` lists them); "
+                                                        "its parameters are further keys"),
+                        "pumping": ("string", "none", "``g1`` or ``g2``: divided by its albedo (eq. 2.20 / 2.21)")}
 
     def __init__(self, props):
         brdf = build_model(props)
@@ -80,7 +83,7 @@ class ModelPluginBSDF(ModelBSDF):
 
     def lobe_eval(self, L, V, active):
         L, V = _broadcast(to_numpy(L), to_numpy(V))
-        return mi.Float(self.brdf(L, V))
+        return mi.Float(self.brdf.unchecked(L, V))
 
     def own_pdf(self, L, V, active):
         L, V = _broadcast(to_numpy(L), to_numpy(V))

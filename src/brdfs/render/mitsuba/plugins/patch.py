@@ -298,6 +298,8 @@ class PatchBSDF(ModelBSDF):
 
     strategies = ("cosine",)
     parameters: tuple[str, ...] = ()
+    extra_parameters = {"count": ("boolean", "false", "count the samplers' tries and failures (the costs of "
+                                                      "Figure 4.9)")}
 
     def __init__(self, props):
         if "strategy" in props:
@@ -458,6 +460,9 @@ class PatchExponentialBSDF(PatchBSDF):
     #: ``mis_density``: "exact" (default), the marginal density of ``normal`` sampling in the MIS
     #: weights; "lobe", f cos θ_V / W (the accept/reject density, of the same shape) instead.
     MIS_DENSITIES = ("exact", "lobe")
+    extra_parameters = {**PatchBSDF.extra_parameters,
+                        "mis_density": ("string", "exact", "``exact``: the marginal density of ``normal`` sampling "
+                                                           "in the MIS weights; ``lobe``: f cos θ_V / W instead")}
 
     def __init__(self, props):
         mis_density = props.get("mis_density", "exact")

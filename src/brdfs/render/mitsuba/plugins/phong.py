@@ -44,6 +44,8 @@ class PhongBSDF(ModelBSDF):
 
     name = "phong"
     strategies = ("lobe", "cosine")
+    extra_parameters = {"pumping": ("string", "none", "``g1`` or ``g2``: divided by its albedo, eq. 2.20 / 2.21 "
+                                                      "(a table of the package's pumped model)")}
 
     def __init__(self, props):
         super().__init__(props)
