@@ -211,7 +211,10 @@ def model_page(name, cls, out_dir: Path, cache: Path) -> str:
     title = f"``{name}``"
     lines = [f".. _model-{name}:", "", title, "=" * len(title), "", escape_bars(_first_paragraph(cls)), "",
              f"*{'; '.join(claims)}.* Class :class:`{cls.__module__}.{cls.__qualname__}`; "
-             f"``brdfs.model({name!r}, ...)``.", "", "Parameters", "----------", ""]
+             f"``brdfs.model({name!r}, ...)``.", "",
+             f"**Explore it:** run ``brdfs explore`` (:doc:`../guide/explorer`), then open "
+             f"`http://127.0.0.1:8123/#left={name} <http://127.0.0.1:8123/#left={name}>`_: its parameters, lobe, "
+             "certified albedo, lit sphere and slice, live.", "", "Parameters", "----------", ""]
     lines += _list_table(["parameter", "declared range or choices", "default", "typical", "narrowest", "tests draw"],
                          _parameter_rows(cls)) if cls.param_columns() else ["No parameters.", ""]
     lines += ["Lobe", "----", "", f"At the typical example ({typical}).", "",
