@@ -75,9 +75,9 @@ lock: $(STAMP)
 check-wheel: $(STAMP)
 	PYTHON=$(PYTHON) workflow/scripts/check_wheel.sh
 
-# The full build batches cheap artifacts (workflow/profiles/full: --config batches=true).
+# The whole build: one job per artifact, as a plain `snakemake` plans it (the default profile).
 all: llvm $(STAMP)
-	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full $(TARGETS))
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(TARGETS))
 
 # Lint first (a few seconds), then the tests.
 test: llvm $(STAMP) lint
@@ -97,7 +97,7 @@ benchmark: llvm $(STAMP)
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.
 renders-final: llvm $(STAMP)
-	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full --config batches=true "renders={preset: final}" $(TARGETS))
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default "renders={preset: final}" $(TARGETS))
 
 # The seven deliberate renderer faults (issue 23's six and mis_weights_apart), each in a temporary copy; a named test must fail.
 check-mutations: llvm $(STAMP)
