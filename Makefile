@@ -16,6 +16,11 @@ export PYTHONPATH := $(CURDIR)/src
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM-19.so /usr/lib/llvm-19/lib/libLLVM.so))
 # A subset of the build: `make all TARGETS="results/tables/table_3_2_ward_cmax.png ..."` (default: everything).
 TARGETS ?=
+# Your own values over config.yaml: `make all CONFIGFILE=mine.yaml` (snakemake --configfile), checked first
+# with one line for a missing file (Snakemake's own reading of a --configfile shows a stack).
+CONFIGFILE ?=
+CONFIG_ARGS = $(if $(CONFIGFILE),--configfile $(CONFIGFILE))
+CHECK_CONFIG = $(if $(CONFIGFILE),$(BIN)/python -m brdfs.pipeline.config $(CONFIGFILE) || exit 1;)
 
 # Every target that lets Snakemake write in this tree (all, report, clean) runs under an exclusive
 # flock(1) on BUILD_LOCK. The kernel releases it when the last process holding it exits, killed or
@@ -77,7 +82,7 @@ check-wheel: $(STAMP)
 
 # The whole build: one job per artifact, as a plain `snakemake` plans it (the default profile).
 all: llvm $(STAMP)
-	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(TARGETS))
+	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS))
 
 # Lint first (a few seconds), then the tests.
 test: llvm $(STAMP) lint
