@@ -41,6 +41,9 @@ flock --nonblock --conflict-exit-code $(BUILD_LOCK_BUSY) $(BUILD_LOCK) sh -ec '$
   if [ $$rc -eq $(BUILD_LOCK_BUSY) ]; then echo "make $@: another build is running (lock held: $(CURDIR)/$(BUILD_LOCK))" >&2; fi; \
   exit $$rc; }
 endef
+# Inside $(call locked,...) only: the results whose bytes are not those their job wrote (truncated, edited by
+# hand, or from a build that recorded no digests; brdfs.pipeline.io), for `--forcerun`: `make all` rebuilds them.
+FORCE_DAMAGED = damaged=$$($(BIN)/python -m brdfs.pipeline.io damaged)
 # Inside $(call locked,...) only: clear the lock a killed Snakemake run left behind.
 UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
@@ -82,7 +85,7 @@ check-wheel: $(STAMP)
 
 # The whole build: one job per artifact, as a plain `snakemake` plans it (the default profile).
 all: llvm $(STAMP)
-	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS))
+	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); $(FORCE_DAMAGED); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS) $${damaged:+--forcerun $$damaged})
 
 # Lint first (a few seconds), then the tests.
 test: llvm $(STAMP) lint
@@ -131,9 +134,11 @@ sweep-truths: $(STAMP)
 	nice -n 10 $(BIN)/python -m sweep.tables
 	nice -n 10 $(BIN)/python -m sweep.compute_truths --resume tests/data/sweep_truths.csv
 
-# Re-record the regression baseline after a deliberate, reviewed change of numbers.
-baseline: $(STAMP)
+# Re-record the regression baselines after a deliberate, reviewed change of numbers: the published rows
+# (computed in-process) and every CSV of a fresh build (results/ after `make all`).
+baseline: all
 	$(BIN)/python -m brdfs.pipeline.regression --write tests/data/regression_baseline.csv
+	$(BIN)/python -m brdfs.pipeline.regression --write-results tests/data/results_baseline
 
 # The self-contained HTML report of the whole build (builds what is missing first).
 report: all

@@ -14,5 +14,5 @@ with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
     io.step(log, f"compute {name}")
     df = artifact.compute(snakemake.config, tables)  # noqa: F821 (params.config is only a digest)
     io.step(log, f"write {snakemake.output.csv} and plot {snakemake.output.png}")  # noqa: F821
-    artifact.write(df, snakemake.output.csv, snakemake.output.png)  # noqa: F821
+    artifact.write(df, snakemake.output.csv, snakemake.output.png, record=True)  # noqa: F821
     log.info("%s: %d rows -> %s", name, len(df), snakemake.output.csv)  # noqa: F821

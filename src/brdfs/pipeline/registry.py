@@ -284,10 +284,11 @@ class Artifact:
         """Draw the artifact with its module's ``plot(df, path)``."""
         importlib.import_module(self.module).plot(df, path)
 
-    def write(self, df: pd.DataFrame, csv: str | Path, png: str | Path) -> None:
-        """Write the CSV and the PNG, each atomically."""
-        io.write_csv(df, csv)
-        with io.atomic_output(png) as tmp:
+    def write(self, df: pd.DataFrame, csv: str | Path, png: str | Path, record: bool = False) -> None:
+        """Write the CSV (its shape checked) and the PNG, each atomically; ``record``: with their
+        digests (:func:`brdfs.pipeline.io.atomic_output`)."""
+        io.write_csv(df, csv, record)
+        with io.atomic_output(png, record) as tmp:
             self.plot(df, tmp)
 
 
@@ -566,8 +567,9 @@ def dependency_order(names: Iterable[str], registered: dict[str, Artifact] | Non
 
 
 def read_tables(paths: Iterable[str | Path]) -> dict[str, pd.DataFrame]:
-    """Read artifact CSVs, keyed by artifact name (the file stem)."""
-    return {Path(p).stem: io.read_csv(p) for p in paths}
+    """Read artifact CSVs, keyed by artifact name (the file stem), each checked
+    (:func:`brdfs.pipeline.io.read_result`: a damaged one is a one-line ResultError)."""
+    return {Path(p).stem: io.read_result(p) for p in paths}
 
 
 def compute_tables(cfg: dict, names: Iterable[str], cache: dict[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
