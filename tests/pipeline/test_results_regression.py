@@ -124,3 +124,17 @@ def test_a_frame_that_breaks_the_contracts_shape_is_not_written_and_not_read(tmp
     with pytest.raises(io.ResultError) as error:
         io.read_result(path)
     assert str(error.value).startswith(f"{path}: ") and "\n" not in str(error.value)
+
+
+def test_a_job_that_reads_a_damaged_result_stops_with_one_line_naming_it(built, tmp_path):
+    from brdfs.pipeline import registry
+
+    path = built / TABLE
+    path.write_text(path.read_text().replace("1.1576", "1.1577"))          # edited by hand
+    log = tmp_path / "job.log"
+    with pytest.raises(SystemExit) as stop:
+        with io.logged(log, heartbeat_s=None):
+            registry.read_tables([path])
+    line = f"{path}: damaged, its content changed since it was written (truncated or edited); `make all` rebuilds it"
+    assert stop.value.code == line
+    assert log.read_text().rstrip().endswith(f"ERROR {line}") and "Traceback" not in log.read_text()

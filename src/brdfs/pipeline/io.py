@@ -296,7 +296,7 @@ def logged(path: str | os.PathLike, heartbeat_s: float | None = HEARTBEAT_S) -> 
                 yield logger
         except ResultError as error:   # the damaged file is the whole story: one line, no stack
             logger.error("%s", error)
-            raise
+            raise SystemExit(str(error)) from None
         except BaseException:
             logger.exception("failed")
             raise
