@@ -22,7 +22,12 @@ from brdfs.pipeline.io import REPO_ROOT
 from brdfs.pipeline.registry import artifacts
 
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
-DELETE = object()
+class _Delete:
+    def __repr__(self) -> str:   # the same test id in every pytest-xdist worker
+        return "<deleted>"
+
+
+DELETE = _Delete()
 
 
 @functools.lru_cache(maxsize=None)
