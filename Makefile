@@ -16,6 +16,11 @@ export PYTHONPATH := $(CURDIR)/src
 export DRJIT_LIBLLVM_PATH ?= $(firstword $(wildcard /usr/lib/*/libLLVM-19.so /usr/lib/llvm-19/lib/libLLVM.so))
 # A subset of the build: `make all TARGETS="results/tables/table_3_2_ward_cmax.png ..."` (default: everything).
 TARGETS ?=
+# Your own values over config.yaml: `make all CONFIGFILE=mine.yaml` (snakemake --configfile), checked first
+# with one line for a missing file (Snakemake's own reading of a --configfile shows a stack).
+CONFIGFILE ?=
+CONFIG_ARGS = $(if $(CONFIGFILE),--configfile $(CONFIGFILE))
+CHECK_CONFIG = $(if $(CONFIGFILE),$(BIN)/python -m brdfs.pipeline.config $(CONFIGFILE) || exit 1;)
 
 # Every target that lets Snakemake write in this tree (all, report, clean) runs under an exclusive
 # flock(1) on BUILD_LOCK. The kernel releases it when the last process holding it exits, killed or
@@ -36,6 +41,9 @@ flock --nonblock --conflict-exit-code $(BUILD_LOCK_BUSY) $(BUILD_LOCK) sh -ec '$
   if [ $$rc -eq $(BUILD_LOCK_BUSY) ]; then echo "make $@: another build is running (lock held: $(CURDIR)/$(BUILD_LOCK))" >&2; fi; \
   exit $$rc; }
 endef
+# Inside $(call locked,...) only: the results whose bytes are not those their job wrote (truncated, edited by
+# hand, or from a build that recorded no digests; brdfs.pipeline.io), for `--forcerun`: `make all` rebuilds them.
+FORCE_DAMAGED = damaged=$$($(BIN)/python -m brdfs.pipeline.io damaged)
 # Inside $(call locked,...) only: clear the lock a killed Snakemake run left behind.
 UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
@@ -75,9 +83,9 @@ lock: $(STAMP)
 check-wheel: $(STAMP)
 	PYTHON=$(PYTHON) workflow/scripts/check_wheel.sh
 
-# The full build batches cheap artifacts (workflow/profiles/full: --config batches=true).
+# The whole build: one job per artifact, as a plain `snakemake` plans it (the default profile).
 all: llvm $(STAMP)
-	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full $(TARGETS))
+	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); $(FORCE_DAMAGED); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS) $${damaged:+--forcerun $$damaged})
 
 # Lint first (a few seconds), then the tests (the explorer's run in headless Chromium: `make chromium`).
 test: llvm chromium $(STAMP) lint
@@ -99,7 +107,7 @@ benchmark: llvm $(STAMP)
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.
 renders-final: llvm $(STAMP)
-	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/full --config batches=true "renders={preset: final}" $(TARGETS))
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default "renders={preset: final}" $(TARGETS))
 
 # The nine deliberate renderer faults (issue 23's six, mis_weights_apart, issue 42's fresnel_at_theta_l and
 # tangent_flipped), each in a temporary copy; a named test must fail.
@@ -129,9 +137,11 @@ sweep-truths: $(STAMP)
 	nice -n 10 $(BIN)/python -m sweep.tables
 	nice -n 10 $(BIN)/python -m sweep.compute_truths --resume tests/data/sweep_truths.csv
 
-# Re-record the regression baseline after a deliberate, reviewed change of numbers.
-baseline: $(STAMP)
+# Re-record the regression baselines after a deliberate, reviewed change of numbers: the published rows
+# (computed in-process) and every CSV of a fresh build (results/ after `make all`).
+baseline: all
 	$(BIN)/python -m brdfs.pipeline.regression --write tests/data/regression_baseline.csv
+	$(BIN)/python -m brdfs.pipeline.regression --write-results tests/data/results_baseline
 
 # The self-contained HTML report of the whole build (builds what is missing first).
 report: all

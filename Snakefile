@@ -3,6 +3,23 @@
 # explains the layout. Run `make all` (or plain `snakemake`).
 
 
+# config.yaml and every --configfile, read strictly before Snakemake reads them: a YAML syntax error
+# (with its line and column), a key given twice (with both lines), an empty or non-mapping file stop
+# the run with one line (brdfs.pipeline.config.read_config_file).
+import os
+import sys
+
+from brdfs.pipeline.config import ConfigError, read_config_file
+
+try:
+    for _path in ["config.yaml"] * (os.path.exists("config.yaml") or not workflow.overwrite_configfiles) + [
+        os.path.relpath(f) for f in workflow.overwrite_configfiles
+    ]:
+        read_config_file(_path)
+except ConfigError as _error:
+    sys.exit(str(_error))
+
+
 configfile: "config.yaml"
 
 

@@ -230,7 +230,11 @@ def _compare(args) -> int:
     if not path.is_file():
         raise argparse.ArgumentTypeError(f"--results {args.results!r}: no {path} (build it: make all)")
     with path.open(newline="") as f:
-        rows = list(csv.DictReader(f))
+        reader = csv.DictReader(f)
+        rows = list(reader)
+    used = ("artifact", "source", "model", "param", "param_value", "quantity", "published", "computed", "verdict", "reason")
+    if not rows or not set(used) <= set(reader.fieldnames or ()) or any(None in r for r in rows):
+        raise ValueError(f"{path}: not a comparison file (no rows, a row too long, or not the columns {', '.join(used)})")
     by_chapter: dict[str, Counter] = {}
     for r in rows:
         by_chapter.setdefault(_chapter(r["source"]), Counter())[r["verdict"]] += 1

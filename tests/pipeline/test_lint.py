@@ -65,9 +65,8 @@ def lint(directory: Path, *args: str) -> subprocess.CompletedProcess:
                           text=True, env=env, timeout=120)
 
 
-# One planning mode each, to save a few seconds (`make test` runs `make lint`, both modes, first).
 def test_the_workflow_as_it_is_passes():
-    clean = lint(REPO_ROOT, "--mode", "plain")
+    clean = lint(REPO_ROOT)
     assert clean.returncode == 0, clean.stdout + clean.stderr
     assert clean.stdout.startswith(f'lint: only "{lint_check.EXPLAINED}"'), clean.stdout
 
@@ -77,10 +76,10 @@ def test_a_rule_without_a_log_fails(tmp_path):
     with open(tree / "Snakefile", "a") as snakefile:
         snakefile.write('\n\nrule injected:\n    output:\n        "results/injected.txt",\n'
                         '    shell:\n        "touch {output}"\n')
-    run = lint(tree, "--mode", "plain")
+    run = lint(tree)
     assert run.returncode == 1, run.stdout + run.stderr
     lines = run.stdout.splitlines()
-    assert lines[0].startswith("lint (plain): rule injected (line ") and lines[0].endswith("No log directive defined")
+    assert lines[0].startswith("lint: rule injected (line ") and lines[0].endswith("No log directive defined")
     assert lines[1:] == [f'lint: FAILED, messages other than "{lint_check.EXPLAINED}" (README, Checks, Lint)'], lines
 
 

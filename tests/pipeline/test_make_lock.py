@@ -78,7 +78,7 @@ def test_a_second_build_fails_at_once_with_one_line_and_runs_nothing(tree, targe
 def test_make_all_passes_targets_to_snakemake_under_the_lock_and_releases_it(tree):
     run = make(tree, "all", "TARGETS=results/a.png results/b.png")
     assert run.returncode == 0, run.stderr
-    assert calls(tree) == ["held --profile workflow/profiles/full results/a.png results/b.png"]
+    assert calls(tree) == ["held --profile workflow/profiles/default results/a.png results/b.png"]
     with hold_lock(tree):  # released when make is done
         pass
 
@@ -89,7 +89,7 @@ def test_a_stale_snakemake_lock_is_cleared_under_the_flock_then_the_build_runs(t
     (locks / "0.output.lock").write_text("results/tables/table_3_2_ward_cmax.csv\n")
     run = make(tree, "all")
     assert run.returncode == 0, run.stderr
-    assert calls(tree) == ["held --unlock", "held --profile workflow/profiles/full"]
+    assert calls(tree) == ["held --unlock", "held --profile workflow/profiles/default"]
     assert "clearing the Snakemake lock of a run that was killed" in run.stdout
     assert not locks.exists()
 

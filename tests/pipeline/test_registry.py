@@ -1,5 +1,5 @@
 """The artifact registry: declarations (read without importing, and by the decorators), dependency
-resolution, batches, config subsets."""
+resolution, config subsets."""
 
 import importlib
 import pkgutil
@@ -132,7 +132,7 @@ def test_the_scan_of_the_decorator_lines_declares_what_importing_the_modules_reg
     for module in pkgutil.iter_modules(brdfs.artifacts.__path__):
         if not module.name.startswith("_"):
             importlib.import_module(f"brdfs.artifacts.{module.name}")
-    assert artifacts._ARTIFACTS == scanned                # name, kind, module, deps, config, resources, chapter, batch
+    assert artifacts._ARTIFACTS == scanned                # name, kind, module, deps, config, resources, chapter
     assert artifacts._COMPARISONS == scanned_comparisons  # artifact, module, tables, config
     assert artifacts.get_artifact("extra_microfacet_albedo").deps == (
         "extra_pumping_albedo_phong", "extra_pumping_albedo_blinn")  # tuple(mf.PUMPING_TABLES.values())
@@ -167,8 +167,8 @@ def test_a_decorator_argument_the_scan_cannot_read_is_reported_with_its_file_and
                         path if module == "brdfs.artifacts.extra_toy_scan" else real(module))
     declarations._scope.cache_clear()
     (entry,) = declarations._declarations_in("brdfs.artifacts.extra_toy_scan")
-    assert (entry.name, entry.kind, entry.config, entry.chapter, entry.batch, entry.resources["runtime"]) == (
-        "extra_toy_scan", "table", ("toy",), 2, "extra", 1)
+    assert (entry.name, entry.kind, entry.config, entry.chapter, entry.resources["runtime"]) == (
+        "extra_toy_scan", "table", ("toy",), 2, 1)
     assert entry.deps == ("extra_pumping_albedo_phong", "extra_pumping_albedo_blinn", "table_3_1_blinn_constants")
 
     path.write_text(path.read_text().replace("config=(\"toy\",)", "config=sections()"))
@@ -191,10 +191,3 @@ def test_thesis_artifacts_default_to_their_numbers_chapter_and_an_extra_must_dec
     assert artifacts.get_artifact("fig_4_99_toy").chapter == 4
     with pytest.raises(artifacts.DeclarationError, match="extra_toy_chapter: declare the report chapter"):
         artifacts.table("extra_toy_chapter")(extra)
-
-
-def test_a_batch_lists_its_members_after_their_dependencies():
-    chapter_3 = [a.name for a in artifacts.batches()["chapter_3"]]
-    assert chapter_3.index("table_3_1_blinn_constants") < chapter_3.index("table_1_1_blinn_constants")
-    assert chapter_3.index("table_3_1_blinn_constants") < chapter_3.index("table_3_3_mean_albedo")
-    assert "fig_3_4_albedo_with_new_model" not in chapter_3   # batch=None: a job of its own

@@ -16,6 +16,7 @@ import pandas as pd
 import pytest
 import yaml
 
+from brdfs.pipeline import registry
 from brdfs.pipeline.io import REPO_ROOT
 
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
@@ -65,23 +66,20 @@ def test_planning_one_table_from_scratch_yields_exactly_one_job(pristine):
     assert planned_jobs(run) == {"artifact": 1}
 
 
-@pytest.mark.parametrize("mode", [(), ("--config", "batches=true")], ids=["one-job-per-artifact", "full-build"])
-def test_planning_the_whole_workflow_writes_nothing_and_reads_no_output(pristine, mode):
+def test_planning_the_whole_workflow_writes_nothing_and_reads_no_output(pristine):
     # A comparison no parser reads: planning that read the outputs would stop on it.
     (pristine / "results" / "checks").mkdir(parents=True, exist_ok=True)
     (pristine / "results" / "checks" / "published_comparison.csv").write_text('artifact,"unterminated\n')
     before = tree(pristine)
-    run = snakemake(pristine, "-n", *mode)
+    run = snakemake(pristine, "-n")
     assert run.returncode == 0, run.stderr[-3000:]
     assert tree(pristine) == before
     assert not (pristine / ".snakemake" / "report_captions").exists()
     jobs = planned_jobs(run)
     assert jobs["check"] == jobs["merge_comparison"] == 1
-    if mode:   # the full build: cheap artifacts in batches, Table 3.2 with the rest of chapter 3
-        assert jobs["batch_chapter_3"] == 1 and jobs["artifact"] < 20
-    else:
-        assert not [rule for rule in jobs if rule.startswith("batch_")]
-        assert jobs["artifact"] + jobs["render_artifact"] >= 68 and jobs["render_artifact"] >= 12   # renders: + EXRs
+    # one job per artifact: no other rule computes one (a render's rule also declares its EXRs)
+    assert set(jobs) == {"all", "artifact", "render_artifact", "check", "merge_comparison", "report_pages"}, jobs
+    assert jobs["artifact"] + jobs["render_artifact"] >= 68 and jobs["render_artifact"] >= 12
 
 
 def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then_has_nothing_to_do(tmp_path):
@@ -123,6 +121,23 @@ def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then
     assert sorted_keys.returncode == 0, sorted_keys.stderr[-3000:]
     assert "Nothing to be done" in sorted_keys.stdout + sorted_keys.stderr, sorted_keys.stdout[-3000:]
 
+    # ... also given as --configfile over the file's own order (the other way to run it).
+    (tmp_path / "sorted.yaml").write_text(yaml.safe_dump(original, sort_keys=True))
+    config_yaml.write_text(yaml.safe_dump(original, sort_keys=False))
+    as_configfile = snakemake(tmp_path, "-n", *TARGETS, "--configfile", "sorted.yaml")
+    assert "Nothing to be done" in as_configfile.stdout + as_configfile.stderr, as_configfile.stdout[-3000:]
+
+    # A damaged result (truncated) is listed by `python -m brdfs.pipeline.io damaged`, which `make all`
+    # passes to --forcerun: exactly its job is planned again.
+    damaged_csv = tmp_path / "results" / "tables" / "table_1_2_metal_reflectance.csv"
+    damaged_csv.write_text(damaged_csv.read_text()[:-20])
+    listed = subprocess.run([sys.executable, "-m", "brdfs.pipeline.io", "damaged"], cwd=tmp_path, text=True,
+                            capture_output=True, env={**os.environ, "PYTHONPATH": str(tmp_path / "src")})
+    assert listed.stdout.split() == ["results/tables/table_1_2_metal_reflectance.csv"], listed
+    assert listed.stderr.startswith("results/tables/table_1_2_metal_reflectance.csv: damaged, its content changed")
+    rebuilt = snakemake(tmp_path, "-n", *TARGETS, "--forcerun", *listed.stdout.split())
+    assert planned_jobs(rebuilt) == {"artifact": 1} and "table_1_2_metal_reflectance" in rebuilt.stdout, rebuilt.stdout
+
     # A changed value in the section one target reads reruns that target alone (its digest changed).
     rewritten["metal_reflectance"]["metals"][4]["ior_im"] = 4.85
     config_yaml.write_text(yaml.safe_dump(rewritten, sort_keys=True))
@@ -130,3 +145,23 @@ def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then
     assert changed.returncode == 0, changed.stderr[-3000:]
     assert planned_jobs(changed) == {"artifact": 1} and "table_1_2_metal_reflectance" in changed.stdout, changed.stdout
 
+
+def test_a_copy_of_the_built_tree_plans_nothing_in_either_mode(tmp_path):
+    """After `make all`, a plain `snakemake -n` plans nothing, also with the config's keys reordered (one
+    job per artifact in every mode: the same inputs and params recorded)."""
+    outputs = [REPO_ROOT / "results" / "checks" / "published_comparison.csv",
+               *(REPO_ROOT / path for a in registry.artifacts().values() for path in (a.csv, a.png))]
+    code = [p for d in ("src", "workflow") for p in (REPO_ROOT / d).rglob("*") if p.is_file() and "__pycache__" not in p.parts]
+    code += [REPO_ROOT / "Snakefile", REPO_ROOT / "config.yaml"]
+    if not all(p.is_file() for p in outputs) or max(p.stat().st_mtime for p in code) > min(p.stat().st_mtime for p in outputs):
+        pytest.skip("results/ is not a complete build newer than the code (make all): nothing to plan nothing from")
+    copy_repository(tmp_path)
+    for name in ("results", ".snakemake/metadata"):
+        shutil.copytree(REPO_ROOT / name, tmp_path / name, symlinks=True)
+    for cache in (tmp_path / "src").rglob("__pycache__"):
+        shutil.rmtree(cache)
+    # with the keys of config.yaml reordered (the --configfile mode is planned on the small tree above)
+    config_yaml = tmp_path / "config.yaml"
+    config_yaml.write_text(yaml.safe_dump(yaml.safe_load(config_yaml.read_text()), sort_keys=True))
+    plain = snakemake(tmp_path, "-n")
+    assert "Nothing to be done" in plain.stdout + plain.stderr, plain.stdout[-3000:]

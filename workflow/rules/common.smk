@@ -10,13 +10,6 @@ from brdfs.pipeline import registry
 from brdfs.pipeline import report as report_text
 from brdfs.pipeline.config import ConfigError, validate_config
 
-# `--config batches=true` (the full build, `make all`: workflow/profiles/full): the cheap artifacts
-# of a batch are computed in one job, so that each does not pay the ~1 s start-up of a Python
-# process. Without it (the default: a single target, the report, the checks) every artifact is a
-# job of its own. A workflow switch, not a parameter of any artifact: taken out of the config
-# before the schema sees it.
-BATCHED = str(config.pop("batches", False)).lower() in ("true", "1", "yes")
-
 # The schema (workflow/schemas/config.schema.yaml) is applied, with its defaults, to the
 # config as Snakemake sees it (config.yaml deep-merged with --config/--configfile), before any
 # rule is planned. It first reads, in place, every string where the schema wants a number as YAML
@@ -37,10 +30,8 @@ VERDICT_COUNTS_PNG = "results/checks/published_verdicts.png"
 ARTIFACTS = registry.artifacts()
 COMPARISONS = registry.comparisons()
 ARTIFACT_OUTPUTS = [path for a in ARTIFACTS.values() for path in a.outputs]
-BATCHES = registry.batches(ARTIFACTS) if BATCHED else {}
-SOLO = sorted(set(ARTIFACTS) - {a.name for members in BATCHES.values() for a in members})
 # The rendered figures among them: their rule also declares the EXR directory (Artifact.renders).
-RENDERING = {name for name in SOLO if ARTIFACTS[name].renders}
+RENDERING = {name for name in ARTIFACTS if ARTIFACTS[name].renders}
 FRAGMENTS = [c.fragment_csv for c in COMPARISONS.values()]
 
 # What the report's caption templates (workflow/report/*.rst) show, read when the report is
@@ -51,11 +42,5 @@ config[report_text.CONFIG_KEY] = report_text.ReportTexts(
 
 
 def wildcard_choice(names):
-    """A wildcard constraint admitting exactly ``names`` (none: a name no file has)."""
-    return "|".join(sorted(names)) or "^$"
-
-
-def batch_inputs(members):
-    """The CSVs a batch reads that it does not write itself."""
-    own = {a.name for a in members}
-    return sorted({ARTIFACTS[d].csv for a in members for d in a.deps if d not in own})
+    """A wildcard constraint admitting exactly ``names``."""
+    return "|".join(sorted(names))

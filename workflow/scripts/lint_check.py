@@ -9,10 +9,10 @@ Snakemake's linter prints one block per rule or Snakefile it objects to::
 and exits 1 if it printed any. The one message this workflow keeps, on purpose, is the conda
 environment per rule (every rule runs the same package in the one environment `make venv` builds
 from requirements.lock; README "Checks", "Lint"). Anything else fails: another lint, for any rule
-or Snakefile, in either planning mode (plain, and the full build's `--config batches=true`, which
-adds one rule per batch); a workflow that does not load; output this script cannot read.
+or Snakefile (the one planning mode: `make all` plans as a plain `snakemake` does); a workflow that does
+not load; output this script cannot read.
 
-    python workflow/scripts/lint_check.py [--snakemake PATH] [--directory DIR] [--mode plain|batches]
+    python workflow/scripts/lint_check.py [--snakemake PATH] [--directory DIR]
 
 Exit status 0 when only the explained message was printed, 1 otherwise, with one line per
 unexplained message (and, if Snakemake did not lint, its output).
@@ -29,8 +29,6 @@ from pathlib import Path
 
 # The one lint the README explains: no conda environment or container per rule.
 EXPLAINED = "Specify a conda environment or container for each rule."
-# The two planning modes: `snakemake` (default profile) and the full build (`make all`).
-MODES = {"plain": [], "batches": ["--config", "batches=true"]}
 
 _ITEM = re.compile(r"^Lints for (?P<item>.+):$")
 _TITLE = re.compile(r"^    \* (?P<title>.+):$")
@@ -74,27 +72,19 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--snakemake", default=str(Path(sys.executable).with_name("snakemake")))
     parser.add_argument("--directory", default=".", help="the workflow to lint (default: here)")
-    parser.add_argument("--mode", action="append", choices=sorted(MODES), help="only this planning mode")
     args = parser.parse_args(argv)
-    modes = args.mode or list(MODES)
     env = {**os.environ, "COLUMNS": "200"}
-    # Both modes at once (each is mostly Python start-up and workflow parsing).
-    runs = {mode: subprocess.Popen([args.snakemake, "--lint", *extra], cwd=args.directory, env=env,
-                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-            for mode, extra in MODES.items() if mode in modes}
-    failed = False
-    for mode, run in runs.items():
-        output, _ = run.communicate()
-        problems = unexplained(output, run.returncode)
-        for problem in problems:
-            print(f"lint ({mode}): {problem}")
-        if problems and not lints(output)[0]:
-            print(output, end="")
-        failed |= bool(problems)
-    if failed:
+    run = subprocess.run([args.snakemake, "--lint"], cwd=args.directory, env=env, stdout=subprocess.PIPE,
+                         stderr=subprocess.STDOUT, text=True)
+    problems = unexplained(run.stdout, run.returncode)
+    for problem in problems:
+        print(f"lint: {problem}")
+    if problems and not lints(run.stdout)[0]:
+        print(run.stdout, end="")
+    if problems:
         print(f"lint: FAILED, messages other than \"{EXPLAINED}\" (README, Checks, Lint)")
         return 1
-    print(f"lint: only \"{EXPLAINED}\" ({', '.join(modes)}; explained in README, Checks, Lint)")
+    print(f"lint: only \"{EXPLAINED}\" (explained in README, Checks, Lint)")
     return 0
 
 

@@ -4,8 +4,10 @@ and write the same table as HTML for the report."""
 from brdfs.pipeline import io, published, readings, report
 
 with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
+    for fragment in snakemake.input.fragments:  # noqa: F821
+        io.verify(fragment)
     merged = published.merge_fragments(snakemake.input.fragments)  # noqa: F821
-    io.write_csv(merged, snakemake.output.csv)  # noqa: F821
+    io.write_csv(merged, snakemake.output.csv, record=True)  # noqa: F821
     with io.atomic_output(snakemake.output.html) as tmp:  # noqa: F821
         tmp.write_text(report.comparison_html(io.read_csv(snakemake.output.csv, dtype=str, keep_default_na=False)),  # noqa: F821
                        encoding="utf-8")

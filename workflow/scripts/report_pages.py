@@ -4,6 +4,8 @@
 from brdfs.pipeline import io, recomputed, registry
 
 with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
+    for path in [snakemake.input.comparison, *snakemake.input.tables]:  # noqa: F821
+        io.verify(path)
     comparison = io.read_csv(snakemake.input.comparison, dtype=str, keep_default_na=False)  # noqa: F821
     artifacts = registry.artifacts()
     sources = {name: c.tables for name, c in registry.comparisons().items()}

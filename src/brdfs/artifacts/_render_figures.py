@@ -39,6 +39,7 @@ section 3.6) unless a figure asks otherwise, and the same seeds (common random n
 """
 from __future__ import annotations
 
+import contextlib
 import textwrap
 from dataclasses import dataclass, field
 
@@ -260,23 +261,41 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1)
     # point lights: one scene per light (an emitter sample then picks no light at random)
     light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
-    for lights in light_sets:
-        part = Panel(**{**panel.__dict__, "lights": lights})
-        scene = msc.load(_scene(part, cfg, groups), camera, integrator, setup["sampler"])
-        for p in range(passes):
-            for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
-                image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
-                out[p] += chunk / spp * panel_channels(image, groups)
-                if first:
-                    ids += chunk / (spp * passes) * image[..., 3]
-                    cos_v += chunk / (spp * passes) * image[..., 4]
-                    ids_sq += chunk / (spp * passes) * image[..., -1]
-        if first:
-            labels, first = msc.object_labels(scene), False
-            ids = pure_ids(ids, ids_sq, spp * passes)
+    with one_thread():   # the same bytes in every run (one_thread)
+        for lights in light_sets:
+            part = Panel(**{**panel.__dict__, "lights": lights})
+            scene = msc.load(_scene(part, cfg, groups), camera, integrator, setup["sampler"])
+            for p in range(passes):
+                for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
+                    image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
+                    out[p] += chunk / spp * panel_channels(image, groups)
+                    if first:
+                        ids += chunk / (spp * passes) * image[..., 3]
+                        cos_v += chunk / (spp * passes) * image[..., 4]
+                        ids_sq += chunk / (spp * passes) * image[..., -1]
+            if first:
+                labels, first = msc.object_labels(scene), False
+                ids = pure_ids(ids, ids_sq, spp * passes)
     costs = _plugin_costs(scene) if count else {}
     rays = int(np.asarray(scene.integrator().rays)[0]) if count else None
     return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v)
+
+
+@contextlib.contextmanager
+def one_thread():
+    """Dr.Jit's thread pool at one thread for the block: every pixel's samples are then added up in
+    one order. With several threads a pixel whose samples span more than two of Dr.Jit's work blocks
+    (30 samples per pass of Fig. 4.16) receives its partial sums in the order the threads race, and
+    luminance_err moved by up to 1e-8 relative between two runs. The workflow runs its jobs side by
+    side, one thread each (the rule's ``threads``), so the renders lose no wall time in ``make all``."""
+    import drjit as dr
+
+    threads = dr.thread_count()
+    dr.set_thread_count(1)
+    try:
+        yield
+    finally:
+        dr.set_thread_count(threads)
 
 
 def panel_channels(image: np.ndarray, groups) -> np.ndarray:

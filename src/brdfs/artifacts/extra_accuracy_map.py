@@ -116,7 +116,7 @@ def flag(df: pd.DataFrame, tol: dict) -> pd.DataFrame:
     )
 
 
-@figure(NAME, config=(SECTION,), resources={"runtime": 5}, batch=None, chapter=None)
+@figure(NAME, config=(SECTION,), resources={"runtime": 5}, chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """``family, model, parameter, parameter_value, theta_deg, albedo, albedo_err, reference_albedo,
     reference_albedo_err, difference, ratio, judged, dishonest, failed, meets_tolerance``."""

@@ -56,7 +56,7 @@ class _MultipleScatteringOnly:
         return np.where((nl >= 0) & (nv > 0), self.brdf.multiple_scattering(nl, nv), 0.0)
 
 
-@figure("extra_compensation_lobes", deps=DEPS, config=("microfacet",), batch="microfacet", chapter=None)
+@figure("extra_compensation_lobes", deps=DEPS, config=("microfacet",), chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Rows ``family, model, variant, pumping, level, n, alpha, theta_deg, theta_v_deg, phi_deg, intensity, intensity_err``."""
     c = cfg["microfacet"]

@@ -59,7 +59,7 @@ def _evaluate(brdf, theta, method, n_theta, n_phi, n_samples, seq, tol):
     return float(est.value), float(est.rounding), float(est.error)
 
 
-@table("extra_divergence_readings", config=("grazing",), batch=None, chapter=3)
+@table("extra_divergence_readings", config=("grazing",), chapter=3)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Every reading at every printed angle.
 

@@ -183,7 +183,7 @@ def _gold_rows(alpha_by_family, c, seed):
     return frames
 
 
-@figure("extra_energy_compensation", deps=DEPS, config=("microfacet",), batch="microfacet", chapter=None)
+@figure("extra_energy_compensation", deps=DEPS, config=("microfacet",), chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Tidy rows ``family, model, variant, pumping, level, n, alpha, G2, quantity, theta_deg, value, value_err``."""
     c = cfg["microfacet"]

@@ -12,7 +12,7 @@ from brdfs.pipeline.registry import figure
 from brdfs.numerics.grazing import approach_angles, asymptotic_law
 
 
-@figure("extra_grazing_divergence", deps=("fig_3_4_albedo_with_new_model",), config=("grazing",), batch=None, chapter=3)
+@figure("extra_grazing_divergence", deps=("fig_3_4_albedo_with_new_model",), config=("grazing",), chapter=3)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Albedo curves with the law's exponent, constant (and its error) and value at each angle.
 

@@ -24,7 +24,7 @@ def incidence_grid(step_deg: float, extra_deg) -> np.ndarray:
     return np.unique(np.concatenate([uniform, np.asarray(extra_deg, float)]))
 
 
-@figure("extra_he_torrance_albedo", config=("he_torrance",), batch=None, chapter=2)
+@figure("extra_he_torrance_albedo", config=("he_torrance",), chapter=2)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Albedo of each term on the incidence grid.
 

@@ -30,7 +30,7 @@ def figure_alphas(deps) -> list[float]:
     return [float(mf.alpha_of_n(family, deps[name]["n"].iloc[0])) for family, name in mf.PUMPING_TABLES.items()]
 
 
-@table("extra_microfacet_albedo", deps=tuple(mf.PUMPING_TABLES.values()), config=("microfacet",), batch="microfacet", chapter=None)
+@table("extra_microfacet_albedo", deps=tuple(mf.PUMPING_TABLES.values()), config=("microfacet",), chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Columns ``model, G2, alpha, quantity (E | E_avg | E_table_node), mu, albedo, albedo_err`` and, for the
     node rows, ``piece, x_lo, x_hi, node``."""

@@ -13,7 +13,7 @@ from brdfs.artifacts import _pumping_figures as shared
 from brdfs.pipeline.registry import table
 
 
-@table("extra_pumping_albedo_phong", config=("pumping",), batch=None, chapter=2)
+@table("extra_pumping_albedo_phong", config=("pumping",), chapter=2)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Table nodes: columns model, n, C, pumping, level, piece, x_lo, x_hi, node, cos_theta, albedo, albedo_err, model_rtol."""
     return shared.albedo_tables("phong", cfg)

@@ -193,7 +193,7 @@ def near_grazing_search(cfg: dict, constants: pd.DataFrame) -> readings.Search:
                            procedure="the albedo at 90 deg")
 
 
-@table(NAME, deps=(CONSTANTS, "table_3_2_ward_cmax"), config=("readings", "seed"), chapter=3, batch=None)
+@table(NAME, deps=(CONSTANTS, "table_3_2_ward_cmax"), config=("readings", "seed"), chapter=3)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """One row per (group, reading, entry) of chapter 3's four searches."""
     blinn, ward = deps[CONSTANTS], deps["table_3_2_ward_cmax"]

@@ -76,7 +76,7 @@ _FACTORS = {"1/(2 pi)": 1 / (2 * np.pi), "1/pi": 1 / np.pi, "1/2": 0.5, "1": 1.0
             "2 pi": 2 * np.pi}
 
 
-@table(NAME, deps=(TABLE,), config=("readings", "seed"), chapter=4, batch=None)
+@table(NAME, deps=(TABLE,), config=("readings", "seed"), chapter=4)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """One row per (group, reading, entry) of Table 4.1's two searches."""
     table_df = deps[TABLE]

@@ -140,7 +140,7 @@ def run_search(cfg: dict) -> readings.Search:
                            axes=("step", "rule", "end", "clip_node"), procedure=PROCEDURE)
 
 
-@table(NAME, config=("patch", "readings", "seed"), chapter=4, batch=None)
+@table(NAME, config=("patch", "readings", "seed"), chapter=4)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """One row per (reading, entry): the value each reading prints for each entry of Table 4.3."""
     return run_search(cfg).tidy()

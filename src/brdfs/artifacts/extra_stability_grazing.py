@@ -59,7 +59,7 @@ def disk_points(stability: dict, tol: dict) -> pd.DataFrame:
                      finite=np.isfinite(df["albedo"]), nonnegative=df["albedo"] >= 0)
 
 
-@figure("extra_stability_grazing", config=("grazing",), batch=None, chapter=None)
+@figure("extra_stability_grazing", config=("grazing",), chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Sweep rows and disk cross-check rows (``check`` = ``sweep`` or ``disk``)."""
     s = cfg["grazing"]["stability"]

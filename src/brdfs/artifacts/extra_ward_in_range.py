@@ -16,7 +16,7 @@ ARTIFACT = "ward_in_range"
 GRID_STEP_DEG = 1.0
 
 
-@table("extra_ward_in_range", config=("grazing",), batch=None, chapter=3)
+@table("extra_ward_in_range", config=("grazing",), chapter=3)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Columns ``model, m, C, theta_max_deg, max_albedo, max_albedo_err, theta_at_max_deg``.
 

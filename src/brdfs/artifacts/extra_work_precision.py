@@ -19,7 +19,7 @@ STYLE = {("engine", ""): ("o", "-"), ("product_grid", ""): ("s", "-"), ("dblquad
 FLOOR = 1e-17
 
 
-@figure(NAME, config=(SECTION,), batch=None, resources={"runtime": 5}, chapter=None)
+@figure(NAME, config=(SECTION,), resources={"runtime": 5}, chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """``case, model, theta_deg, method, sampler, setting, evaluations, status, albedo, albedo_err,
     reference, reference_err, reference_kind, true_error, dishonest``."""

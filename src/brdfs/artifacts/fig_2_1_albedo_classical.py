@@ -10,7 +10,7 @@ from brdfs.pipeline.registry import figure
 from brdfs.numerics.grazing import incidence_grid
 
 
-@figure("fig_2_1_albedo_classical", config=("grazing",), batch=None)
+@figure("fig_2_1_albedo_classical", config=("grazing",))
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """The curves: columns ``model, G, n, m, sigma0_um, tau_um, term, C, label, theta_deg, cos_theta, albedo, albedo_err``."""
     g = cfg["grazing"]

@@ -120,7 +120,7 @@ def profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
     return np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_paths")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     profiles = []
 

@@ -26,7 +26,7 @@ def panels(cfg: dict) -> list:
             for p in ms.row_of_objects(cfg, entries, "teapots: " + ms.describe(entries), ms.three_teapots())]
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_paths")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

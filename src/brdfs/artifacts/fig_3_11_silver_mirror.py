@@ -16,7 +16,7 @@ def panels(cfg: dict) -> list:
     return ms.mirror_scene(cfg, s['new_model_metals']['fig_3_11'], 'head, sphere, pyramid, plate: ' + ms.describe(s['new_model_metals']['fig_3_11']))
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_paths")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

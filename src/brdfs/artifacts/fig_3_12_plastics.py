@@ -23,7 +23,7 @@ def panels(cfg: dict) -> list:
     return [rf.Panel(title, objects, rf.TWO_LIGHTS, rf.STREET_CAMERA, channels="rgb", aspect=1.6)]
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 2}, batch="renders_paths")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 2})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

@@ -9,7 +9,7 @@ from brdfs.pipeline.registry import figure
 from brdfs.numerics.grazing import incidence_grid
 
 
-@figure("fig_3_4_albedo_with_new_model", deps=("fig_2_1_albedo_classical",), config=("grazing",), batch=None)
+@figure("fig_3_4_albedo_with_new_model", deps=("fig_2_1_albedo_classical",), config=("grazing",))
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """The curves, columns as Figure 2.1's; the curves Figure 2.1 already has are taken from its table."""
     g = cfg["grazing"]

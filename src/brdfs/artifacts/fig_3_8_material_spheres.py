@@ -75,7 +75,7 @@ def with_daylight(cfg: dict):
     return post
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 2}, batch="renders_patch_and_direct")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 2})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg), post=with_daylight(cfg))
 

@@ -15,7 +15,7 @@ def panels(cfg: dict) -> list:
     return ms.tank_and_spheres(cfg, s['new_model_metals']['fig_3_9'], 'phong_cosmin', 'tank ' + ms.describe(s['new_model_metals']['fig_3_9'][:1]) + '; spheres ' + ms.describe(s['new_model_metals']['fig_3_9'][1:]))
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_paths")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

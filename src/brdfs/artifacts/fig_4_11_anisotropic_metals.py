@@ -29,7 +29,7 @@ def panels(cfg: dict) -> list:
     return [rf.Panel(title, objects, rf.THREE_LIGHTS, rf.STREET_CAMERA, aspect=1.6)]
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 2}, batch="renders_patch_and_direct")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 2})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

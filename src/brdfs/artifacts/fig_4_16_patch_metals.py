@@ -24,7 +24,7 @@ def _short(entry):
     return SYMBOL.get(entry["metal"], entry["metal"])
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_patch_and_direct")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

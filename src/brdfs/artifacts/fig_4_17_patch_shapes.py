@@ -29,7 +29,7 @@ def panels(cfg: dict) -> list:
             for p in ms.row_of_objects(cfg, entries, title, shapes, model="patch_exponential")]
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3}, batch="renders_patch_and_direct")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg))
 

@@ -39,7 +39,7 @@ def panels(cfg: dict) -> list:
                      spp=DIRECT_SPP)]
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 1}, batch="renders_patch_and_direct")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 1})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return rf.compute_panels(cfg, NAME, panels(cfg), shared_scale=False)
 

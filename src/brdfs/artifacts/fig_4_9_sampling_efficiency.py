@@ -45,7 +45,7 @@ def _costs(df: pd.DataFrame) -> pd.DataFrame:
     return df
 
 
-@figure(NAME, config=(rf.SECTION,), resources={"runtime": 5}, batch="renders_paths")
+@figure(NAME, config=(rf.SECTION,), resources={"runtime": 5})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return _costs(rf.compute_panels(cfg, NAME, panels(cfg), count=True))
 

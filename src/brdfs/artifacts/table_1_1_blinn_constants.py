@@ -9,7 +9,7 @@ from brdfs.pipeline.registry import table
 SOURCE = "table_3_1_blinn_constants"
 
 
-@table("table_1_1_blinn_constants", deps=(SOURCE,), batch="chapter_3")
+@table("table_1_1_blinn_constants", deps=(SOURCE,))
 def compute(cfg: dict, deps: dict) -> pd.DataFrame:
     df = deps[SOURCE]
     return df[df["model"] == "blinn"][["model", "n", "C", "C_err", "theta_max_deg"]].reset_index(drop=True)

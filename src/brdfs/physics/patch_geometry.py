@@ -17,7 +17,6 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from scipy.special import gammainc
 
 from brdfs.physics.geometry import sin_incidence
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
@@ -237,6 +236,8 @@ class ExponentialProfile:
         regularised incomplete gamma function, free of cancellation; its s → 0 limit is 1/π."""
         if self.s == 0:
             return 1.0 / np.pi
+        from scipy.special import gammainc   # scipy only where it is used: the diagrams import this module
+
         return self.s**2 / (2.0 * np.pi * gammainc(2.0, self.s))
 
     @property
@@ -250,6 +251,8 @@ class ExponentialProfile:
         R = np.asarray(R, float)
         if self.s == 0:
             return np.zeros_like(R)
+        from scipy.special import gammainc
+
         s, norm = self.s, gammainc(2.0, self.s)
         inner = gammainc(3.0, s * np.minimum(R, 1.0)) / norm
         outer = s * s * (np.exp(-s) - np.exp(-s * np.maximum(R, 1.0))) / (2.0 * norm)

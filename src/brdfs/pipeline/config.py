@@ -34,12 +34,19 @@ CONFIG_SCHEMA = REPO_ROOT / "workflow" / "schemas" / "config.schema.yaml"
 NOT_FINITE = "must be a finite number"
 
 
+def _is_integer(checker, instance) -> bool:
+    """An int and only an int: 121.0 is no grid size (JSON Schema's own "integer" admits it)."""
+    return isinstance(instance, int) and not isinstance(instance, bool)
+
+
 def _validator_filling_defaults(schema: dict) -> jsonschema.protocols.Validator:
-    """The schema's validator, filling defaults (the jsonschema FAQ recipe Snakemake uses), and
-    refusing NaN and +-inf wherever the schema wants a number or an integer."""
+    """The schema's validator, filling defaults (the jsonschema FAQ recipe Snakemake uses),
+    refusing NaN and +-inf wherever the schema wants a number or an integer, an integer that is a
+    float, and what the keywords of :data:`MEANING_KEYWORDS` say."""
     base = jsonschema.Draft202012Validator
     validate_properties = base.VALIDATORS["properties"]
     validate_type = base.VALIDATORS["type"]
+    checker = base.TYPE_CHECKER.redefine("integer", _is_integer)
 
     def set_defaults(validator, properties, instance, subschema):
         for name, property_schema in properties.items() if isinstance(instance, dict) else ():
@@ -54,7 +61,95 @@ def _validator_filling_defaults(schema: dict) -> jsonschema.protocols.Validator:
             return
         yield from validate_type(validator, types, instance, subschema)
 
-    return jsonschema.validators.extend(base, {"properties": set_defaults, "type": finite_type})(schema)
+    keywords = {"properties": set_defaults, "type": finite_type, **MEANING_KEYWORDS}
+    return jsonschema.validators.extend(base, keywords, type_checker=checker)(schema)
+
+
+# --- what the schema says beyond JSON Schema ----------------------------------------------------
+# Keywords of config.schema.yaml that say what a job would otherwise reject only when it runs. Each
+# yields an error at the offending key (its path below the object the keyword stands on).
+
+def _error(path, value, reason: str) -> jsonschema.ValidationError:
+    return jsonschema.ValidationError(reason, path=list(path), instance=value)
+
+
+def _increasing(validator, wanted, instance, schema):
+    """``increasing: true``: an array whose every item is larger than the one before."""
+    if wanted and isinstance(instance, list):
+        for k in range(1, len(instance)):
+            if _is_number(instance[k]) and _is_number(instance[k - 1]) and not instance[k] > instance[k - 1]:
+                yield _error([k], instance[k], f"must be larger than the item before it ({instance[k - 1]!r})")
+                return
+
+
+def _ordered(validator, pairs, instance, schema):
+    """``ordered: [[lo, hi], ...]``: the value of key ``lo`` below that of key ``hi``."""
+    for lo, hi in pairs if isinstance(instance, dict) else ():
+        a, b = instance.get(lo), instance.get(hi)
+        if _is_number(a) and _is_number(b) and not a < b:
+            yield _error([hi], b, f"must be larger than {lo} ({a!r})")
+
+
+def _multiples_of(validator, spec, instance, schema):
+    """``multiplesOf: {divisor: key, fields: [...]}``: every integer of the fields (an integer, a list
+    of them, or a mapping of either) is a multiple of the value of key ``divisor``."""
+    divisor = instance.get(spec["divisor"]) if isinstance(instance, dict) else None
+    if not _is_integer(None, divisor) or divisor <= 0:
+        return
+    for field in spec["fields"]:
+        for path, value in _integers(instance.get(field), [field]):
+            if value % divisor:
+                yield _error(path, value, f"must be a multiple of {spec['divisor']} ({divisor})")
+                return
+
+
+def _integers(node, path):
+    if _is_integer(None, node):
+        yield path, node
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, value in items:
+        yield from _integers(value, [*path, key])
+
+
+def _sum_at_most(validator, spec, instance, schema):
+    """``sumAtMost: {fields: [...], limit: x}``: the fields' values (the largest item of a list) add up
+    to at most ``limit`` (e.g. a plastic's a_s + max(r, g, b) <= 1: it reflects no more than it receives)."""
+    if not isinstance(instance, dict) or not all(f in instance for f in spec["fields"]):
+        return
+    parts = [max(v) if isinstance(v, list) and v else v for v in (instance[f] for f in spec["fields"])]
+    if all(_is_number(p) for p in parts) and sum(parts) > spec["limit"]:
+        names = " + ".join(f"max({f})" if isinstance(instance[f], list) else f for f in spec["fields"])
+        yield _error([spec["fields"][0]], instance[spec["fields"][0]],
+                     f"{names} = {sum(parts):g} must be <= {spec['limit']:g}")
+
+
+def _datasets_of(validator, spec, instance, schema):
+    """``datasetsOf``: optical-constants data sets (:data:`brdfs.physics.optical_constants.DATASETS`)
+    of a metal. ``{field: metal}``: the field (a name or a list of them) names data sets of ``metal``,
+    or of the metal the object's key ``<key>`` names when ``metal`` is ``$<key>``; ``$keys``: each
+    key is a metal, its value a data set of it."""
+    from brdfs.physics.optical_constants import DATASETS
+
+    if not isinstance(instance, dict):
+        return
+    pairs = ([(k, k) for k in instance] if spec == "$keys" else
+             [(f, instance.get(m[1:]) if m.startswith("$") else m) for f, m in spec.items()])
+    for field, metal in pairs:
+        if field not in instance or metal not in DATASETS:
+            continue
+        names = instance[field]
+        for path, name in ([([field, k], v) for k, v in enumerate(names)] if isinstance(names, list)
+                           else [([field], names)]):
+            if name not in DATASETS[metal]:
+                yield _error(path, name, f"no data set of {metal}; known: {', '.join(DATASETS[metal])}")
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+MEANING_KEYWORDS = {"increasing": _increasing, "ordered": _ordered, "multiplesOf": _multiples_of,
+                    "sumAtMost": _sum_at_most, "datasetsOf": _datasets_of}
 
 
 # --- strings that are YAML 1.2 scalars -----------------------------------------------------------
@@ -183,7 +278,7 @@ def describe_error(error: jsonschema.ValidationError) -> str:
             path.append(unknown[0])
             value, reason = value[unknown[0]], "unknown key"
     elif error.validator == "required" and isinstance(value, dict):
-        missing = [k for k in error.validator_value if k not in value]
+        missing = [k for k in error.validator_value if k not in value] or [error.message.split("'")[1]]
         return f"Error validating config file: {_key([*path, missing[0]])} is missing (required)"
     elif error.validator in _REASONS:
         reason = _REASONS[error.validator](error.validator_value)
@@ -296,14 +391,118 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
     # Every number the schema types is finite (above); this holds any other NaN or inf too.
     if (found := _first_non_finite(config)) is not None:
         raise ConfigError(f"Error validating config file: {_key(found[0])} = {_short(found[1])}: {NOT_FINITE}")
+    _check_model_entries(config)
     return config
 
 
-def load_config(path: str | os.PathLike = CONFIG_YAML, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
-    """Read and validate a configuration file (default: the repository's ``config.yaml``)."""
-    with open(path, encoding="utf-8") as stream:
-        config = yaml.safe_load(stream)
+#: Keys of a model entry (``{model: phong, n: 150, theta_deg: 60}``) that are not the model's parameters.
+NOT_PARAMETERS = ("model", "theta_deg", "label")
+
+
+def _model_entries_of(node, path=()):
+    """The path and value of every mapping in ``node`` that names a model (a ``model`` key)."""
+    if isinstance(node, dict) and isinstance(node.get("model"), str):
+        yield path, node
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, value in items:
+        yield from _model_entries_of(value, (*path, key))
+
+
+def _check_model_entries(config: dict) -> None:
+    """Every model entry as :func:`brdfs.model` checks its call: the model's own parameter names
+    (another model's parameter is refused), its required parameters, and each value in the range or
+    among the choices its class declares (the schema admits any registered model's parameter)."""
+    from brdfs.numerics.arguments import ArgumentError, check_model_call
+
+    for path, entry in _model_entries_of(config):
+        params = {k: v for k, v in entry.items() if k not in NOT_PARAMETERS}
+        try:
+            check_model_call(entry["model"], params)
+        except ArgumentError as error:
+            # "model('phong'): m = 0.1: unknown parameter; ..." -> "<path>.m = 0.1: unknown parameter; ..."
+            detail = str(error).split(": ", 1)[1]
+            raise ConfigError(f"Error validating config file: {_key(path)}.{detail} (model {entry['model']})") from None
+
+
+# --- reading a configuration file ----------------------------------------------------------------
+
+class _StrictLoader(yaml.SafeLoader):
+    """PyYAML's safe loader (what Snakemake reads config.yaml with) refusing a key given twice in one
+    mapping, which PyYAML reads as "the last one wins"."""
+
+    def construct_mapping(self, node, deep=False):
+        lines: dict = {}
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=True)
+            line = key_node.start_mark.line + 1
+            if isinstance(key, (str, int, float, bool)) and key in lines:
+                raise ConfigError(f"{key_node.start_mark.name}:{line}: duplicate key {key!r} "
+                                  f"(lines {lines[key]} and {line}); give each key once")
+            lines.setdefault(key, line) if isinstance(key, (str, int, float, bool)) else None
+        return super().construct_mapping(node, deep)
+
+
+def read_config_file(path: str | os.PathLike) -> dict:
+    """The mapping of a YAML configuration file, as Snakemake reads it, or a :class:`ConfigError`
+    whose one line names the file and what is wrong: not found, a YAML syntax error (with its line
+    and column), a duplicate key (with both lines), empty, or not a mapping of sections."""
+    try:
+        with open(path, encoding="utf-8") as stream:
+            config = yaml.load(stream, Loader=_StrictLoader)  # noqa: S506 (a SafeLoader)
+    except (FileNotFoundError, IsADirectoryError, PermissionError) as error:
+        raise ConfigError(f"config file {os.fspath(path)}: cannot be read ({error.strerror})") from None
+    except yaml.MarkedYAMLError as error:
+        mark = error.problem_mark or error.context_mark
+        where = f"{os.fspath(path)}:{mark.line + 1}:{mark.column + 1}" if mark else os.fspath(path)
+        context = error.context_mark
+        opened = (f" ({error.context} at line {context.line + 1}, column {context.column + 1})"
+                  if error.context and context and context is not mark else "")
+        raise ConfigError(f"{where}: YAML syntax error: {error.problem or error.context}{opened}") from None
+    except yaml.YAMLError as error:
+        raise ConfigError(f"{os.fspath(path)}: YAML syntax error: {str(error).splitlines()[0]}") from None
+    if config is None:
+        raise ConfigError(f"config file {os.fspath(path)} is empty: it must map each section to its values")
+    if not isinstance(config, dict):
+        raise ConfigError(f"config file {os.fspath(path)} is a {type(config).__name__}, not a mapping of "
+                          "sections to their values")
+    return config
+
+
+def load_config(path: str | os.PathLike = CONFIG_YAML, schema_path: str | os.PathLike = CONFIG_SCHEMA,
+                overrides: tuple[str | os.PathLike, ...] = ()) -> dict:
+    """Read and validate a configuration file (default: the repository's ``config.yaml``), each of
+    ``overrides`` deep-merged into it as Snakemake merges ``--configfile`` files."""
+    config = read_config_file(path)
+    for override in overrides:
+        _deep_update(config, read_config_file(override))
     return validate_config(config, schema_path)
+
+
+def _deep_update(config: dict, other: dict) -> None:
+    """Snakemake's merge of a ``--configfile`` into the config (snakemake.utils.update_config)."""
+    for key, value in other.items():
+        if isinstance(value, dict) and isinstance(config.get(key), dict):
+            _deep_update(config[key], value)
+        else:
+            config[key] = value
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m brdfs.pipeline.config [FILE ...]``: validate config.yaml with the files merged in
+    (``make all CONFIGFILE=...`` runs this first); one line and exit status 1 when it is invalid."""
+    import sys
+
+    files = list(sys.argv[1:] if argv is None else argv)
+    try:
+        load_config(overrides=tuple(files))
+    except ConfigError as error:
+        print(error, file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
 
 
 def check_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:

@@ -18,16 +18,16 @@ the config.yaml sections the function reads: ``cfg`` holds exactly those plus
 only when, a section it reads changes. ``chapter`` is the thesis chapter the HTML
 report files it under (default: the number in a ``fig_N_M``/``table_N_M`` name;
 ``extra_*`` and checks declare it, None for numerics and extensions beyond the
-thesis). ``resources`` are its rule's threads, memory and run time; ``batch`` the
-job it shares with other cheap artifacts in the full build (``make all``). A
+thesis). ``resources`` are its rule's threads, memory and run time. Every artifact
+is one job, in every mode (``make all``, plain ``snakemake``, a single target). A
 comparison's rows go through :func:`brdfs.pipeline.published.make_fragment`.
 
 The registry knows what only it can know: which artifacts exist, their config
-sections, dependencies, resources, chapters and batches, and the package source
+sections, dependencies, resources and chapters, and the package source
 files each module imports (so that an edit reruns exactly the artifacts it
 affects). Scheduling is Snakemake's; the registry's one dependency resolution
 (:func:`dependency_order`, the only place a cycle is detected) serves in-process
-runs (:func:`compute_tables`, the regression baseline) and the order within a batch.
+runs (:func:`compute_tables`, the regression baseline).
 
 The declarations are read in two ways that agree (``tests/pipeline/test_registry.py``):
 
@@ -89,7 +89,7 @@ RENDERS_SECTION = "renders"
 RENDERS_DIRECTORY = "results/renders"
 RENDERS_WRITER = "brdfs.artifacts._render_figures"
 
-#: Default of ``chapter=`` and ``batch=``: derived from the artifact's name.
+#: Default of ``chapter=``: derived from the artifact's name.
 AUTO = "auto"
 
 
@@ -247,9 +247,6 @@ class Artifact:
         (:data:`DEFAULT_RESOURCES` updated by the decorator's ``resources``).
     chapter : int or None
         The thesis chapter the report files it under; None: numerics and extensions beyond the thesis.
-    batch : str or None
-        The job it shares with other cheap artifacts in the full build (default: ``chapter_<N>`` or
-        ``extra``, from its name); None for a job of its own.
     fn : callable or None
         ``compute(cfg, deps) -> DataFrame`` once its module is imported (not part of the declaration).
     """
@@ -261,7 +258,6 @@ class Artifact:
     config: tuple[str, ...] = ()
     resources: dict = dataclasses.field(default_factory=lambda: dict(DEFAULT_RESOURCES))
     chapter: int | None = None
-    batch: str | None = None
     fn: ComputeFn | None = dataclasses.field(default=None, compare=False, repr=False)
 
     @property
@@ -305,10 +301,13 @@ class Artifact:
         """Draw the artifact with its module's ``plot(df, path)``."""
         importlib.import_module(self.module).plot(df, path)
 
-    def write(self, df: pd.DataFrame, csv: str | Path, png: str | Path, renders: str | Path | None = None) -> None:
-        """Write the CSV and the PNG, each atomically, and the OpenEXR renders into ``renders`` if given."""
-        io.write_csv(df, csv)
-        with io.atomic_output(png) as tmp:
+    def write(self, df: pd.DataFrame, csv: str | Path, png: str | Path, renders: str | Path | None = None,
+              record: bool = False) -> None:
+        """Write the CSV (its shape checked) and the PNG, each atomically, and the OpenEXR renders into
+        ``renders`` if given; ``record``: with the CSV's and PNG's digests
+        (:func:`brdfs.pipeline.io.atomic_output`)."""
+        io.write_csv(df, csv, record)
+        with io.atomic_output(png, record) as tmp:
             self.plot(df, tmp)
         if renders is not None:
             importlib.import_module(RENDERS_WRITER).write_renders(df, renders)
@@ -380,19 +379,8 @@ def _check_name(kind: str, name: str) -> None:
         raise ValueError(f"{kind} name {name!r} does not match {_NAME_PATTERNS[kind].pattern}")
 
 
-def default_batch(name: str) -> str:
-    """The batch of a cheap artifact in the full build: its thesis chapter (``chapter_3``), or ``extra``.
-
-    >>> default_batch("fig_4_13_inverse_cdf"), default_batch("extra_ward_in_range")
-    ('chapter_4', 'extra')
-    """
-    match = _NUMBERED.match(name)
-    return f"chapter_{match[1]}" if match else "extra"
-
-
 def _declare_artifact(kind: str, module: str, name: str, deps: Iterable[str] = (), config: Iterable[str] = (),
-                      resources: dict | None = None, chapter: int | None | str = AUTO,
-                      batch: str | None = AUTO) -> Artifact:
+                      resources: dict | None = None, chapter: int | None | str = AUTO) -> Artifact:
     """The one constructor of a declaration, for the decorators and for the static scan alike."""
     _check_name(kind, name)
     unknown = set(resources or {}) - set(DEFAULT_RESOURCES)
@@ -407,7 +395,7 @@ def _declare_artifact(kind: str, module: str, name: str, deps: Iterable[str] = (
     if chapter is not None and not (isinstance(chapter, int) and chapter >= 1):
         raise DeclarationError(f"{name}: chapter must be a thesis chapter number or None, not {chapter!r}")
     return Artifact(name, kind, module, tuple(deps), tuple(config), {**DEFAULT_RESOURCES, **(resources or {})},
-                    chapter, default_batch(name) if batch == AUTO else batch)
+                    chapter)
 
 
 def _declare_comparison(module: str, artifact: str, tables: Iterable[str] = (),
@@ -445,7 +433,7 @@ def _artifact_decorator(kind: str, *args, **kwargs):
 
 
 def table(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
-          chapter: int | None | str = AUTO, batch: str | None = AUTO):
+          chapter: int | None | str = AUTO):
     """Register ``compute(cfg, deps) -> DataFrame`` as the table ``name``.
 
     Parameters
@@ -462,31 +450,27 @@ def table(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resou
     chapter : int or None
         The thesis chapter of its place in the report: by default N of ``table_N_M``; an
         ``extra_*`` declares it (None: numerics and extensions beyond the thesis).
-    batch : str or None
-        The job it shares with other cheap artifacts in the full build (default: its chapter,
-        :func:`default_batch`); None for an expensive artifact, which always has a job of its own.
     """
-    return _artifact_decorator("table", name, deps, config, resources, chapter, batch)
+    return _artifact_decorator("table", name, deps, config, resources, chapter)
 
 
 def figure(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
-           chapter: int | None | str = AUTO, batch: str | None = AUTO):
+           chapter: int | None | str = AUTO):
     """Register ``compute(cfg, deps) -> DataFrame`` (the plotted data) as the figure ``name``.
 
     As :func:`table`, with names ``fig_<N>_<M>_<slug>`` or ``extra_<slug>``,
     written to ``results/figures/``.
     """
-    return _artifact_decorator("figure", name, deps, config, resources, chapter, batch)
+    return _artifact_decorator("figure", name, deps, config, resources, chapter)
 
 
 def check(name: str, deps: Iterable[str] = (), config: Iterable[str] = (), resources: dict | None = None,
-          chapter: int | None | str = AUTO, batch: str | None = None):
+          chapter: int | None | str = AUTO):
     """Register ``compute(cfg, deps) -> DataFrame`` (a verification's tidy results) as the check ``name``.
 
-    As :func:`table`, with any ``[a-z0-9_]+`` name, written to ``results/checks/<name>.csv`` and ``.png``;
-    a job of its own by default.
+    As :func:`table`, with any ``[a-z0-9_]+`` name, written to ``results/checks/<name>.csv`` and ``.png``.
     """
-    return _artifact_decorator("check", name, deps, config, resources, chapter, batch)
+    return _artifact_decorator("check", name, deps, config, resources, chapter)
 
 
 def comparison(artifact: str, tables: Iterable[str] = (), config: Iterable[str] = ()):
@@ -603,20 +587,10 @@ def dependency_order(names: Iterable[str], registered: dict[str, Artifact] | Non
     return order
 
 
-def batches(registered: dict[str, Artifact] | None = None) -> dict[str, list[Artifact]]:
-    """The batched artifacts by batch, each list in dependency order (a member's dependencies in
-    the same batch come first)."""
-    registered = artifacts() if registered is None else registered
-    groups: dict[str, list[Artifact]] = {}
-    for name in dependency_order(sorted(registered), registered):
-        if registered[name].batch is not None:
-            groups.setdefault(registered[name].batch, []).append(registered[name])
-    return groups
-
-
 def read_tables(paths: Iterable[str | Path]) -> dict[str, pd.DataFrame]:
-    """Read artifact CSVs, keyed by artifact name (the file stem)."""
-    return {Path(p).stem: io.read_csv(p) for p in paths}
+    """Read artifact CSVs, keyed by artifact name (the file stem), each checked
+    (:func:`brdfs.pipeline.io.read_result`: a damaged one is a one-line ResultError)."""
+    return {Path(p).stem: io.read_result(p) for p in paths}
 
 
 def compute_tables(cfg: dict, names: Iterable[str], cache: dict[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:

@@ -13,14 +13,26 @@ Re-record the baseline, after a deliberate and reviewed change of numbers, with:
     python -m brdfs.pipeline.regression --write tests/data/regression_baseline.csv
 
 (``make baseline``); ``--check`` compares without writing.
+
+A build's results are checked too (:func:`check_results`; ``tests/pipeline/test_results_regression.py``
+runs it when ``results/`` exists): its published comparison against that baseline, and every CSV's
+numbers against ``tests/data/results_baseline/`` (the CSVs of a build, gzipped; ``--write-results``,
+which ``make baseline`` runs after ``make all``). A number may move by 4 times its row's own error
+(column ``<x>_err``; ``luminance_err`` for a render's luminance), else by 1e-9 relative; columns,
+texts and row counts may not change. A CSV older than the code it comes from is stale, reported as
+such and not compared.
 """
 
 from __future__ import annotations
 
 import argparse
+import gzip
 import io as _stringio
 import os
+import re
 import sys
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -111,14 +123,148 @@ def compare_to_baseline(current: pd.DataFrame, baseline: pd.DataFrame) -> list[s
     return problems
 
 
+# --- a build's results against the committed baselines ---------------------------------------------
+
+RESULTS_BASELINE = io.REPO_ROOT / "tests" / "data" / "results_baseline"
+#: A number may move by this many times its row's own error ...
+RESULT_ERR_FACTOR = 4.0
+#: ... or, without an error column, by this much relative.
+RESULT_RTOL = 1e-9
+#: Columns of wall or CPU times, never compared (an artifact holds none today; logs hold the times).
+TIMING = re.compile(r"(^|_)(time|seconds|wall|cpu)(_s|_ms)?$")
+#: How many moved rows a CSV's problem line names.
+FIRST_ROWS = 3
+
+
+@dataclass
+class ResultsCheck:
+    """What :func:`check_results` found: problems (one line each), stale CSVs, CSVs compared."""
+
+    problems: list[str] = field(default_factory=list)
+    stale: list[str] = field(default_factory=list)
+    compared: int = 0
+
+
+def result_csvs(root: str | os.PathLike) -> list[str]:
+    """The CSVs of a build under ``root`` (paths relative to it: results/tables/..., results/figures/...,
+    results/checks/...)."""
+    root = Path(root)
+    return sorted(p.relative_to(root).as_posix() for d in io.CHECKED_RESULTS for p in (root / d).rglob("*.csv")
+                  if io.DIGESTS not in p.parts and not p.name.startswith("."))
+
+
+def write_results_baseline(root: str | os.PathLike = io.REPO_ROOT, out: str | os.PathLike = RESULTS_BASELINE) -> int:
+    """Record every CSV of the build under ``root`` in ``out`` (``<path under results>.csv.gz``,
+    byte-reproducible gzip); returns how many."""
+    out = Path(out)
+    paths = result_csvs(root)
+    for old in out.rglob("*.csv.gz") if out.is_dir() else ():
+        old.unlink()
+    for relative in paths:
+        target = out / (Path(relative).relative_to("results").as_posix() + ".gz")
+        with io.atomic_output(target) as tmp:
+            tmp.write_bytes(gzip.compress((Path(root) / relative).read_bytes(), compresslevel=9, mtime=0))
+    return len(paths)
+
+
+def _sources(root: Path) -> dict[str, list[str]]:
+    """The code each result CSV comes from (the registry's sources of its artifact or comparison)."""
+    from brdfs.pipeline import registry
+
+    out = {a.csv: a.sources for a in registry.artifacts().values()}
+    fragments = {c.fragment_csv: c.sources for c in registry.comparisons().values()}
+    out.update(fragments)
+    out["results/checks/published_comparison.csv"] = sorted({s for v in fragments.values() for s in v})
+    return out
+
+
+def _is_stale(root: Path, relative: str, sources: dict[str, list[str]]) -> bool:
+    """Older than ``config.yaml`` or than any source file it comes from."""
+    made = (root / relative).stat().st_mtime
+    code = [root / "config.yaml", *(root / s for s in sources.get(relative, ()))]
+    return any(p.exists() and p.stat().st_mtime > made for p in code)
+
+
+def _moved_rows(now: pd.DataFrame, then: pd.DataFrame) -> list[str]:
+    """The rows of ``now`` whose numbers moved beyond their tolerance from ``then`` (same shape),
+    or whose texts changed, each as ``row k: column old -> new``."""
+    moved: dict[int, str] = {}
+    for column in now.columns:
+        if TIMING.search(str(column)):
+            continue
+        a, b = then[column], now[column]
+        if a.dtype.kind in "fiu" and b.dtype.kind in "fiu":
+            x, y = a.to_numpy(float), b.to_numpy(float)
+            err = f"{column}_err"
+            if err in now.columns and then[err].dtype.kind in "fiu":
+                tol = RESULT_ERR_FACTOR * np.fmax(then[err].to_numpy(float), now[err].to_numpy(float))
+            else:
+                tol = RESULT_RTOL * np.fmax(np.abs(x), np.abs(y))
+            with np.errstate(invalid="ignore"):
+                same = (x == y) | (np.isnan(x) & np.isnan(y)) | (np.abs(y - x) <= tol)
+        else:
+            same = ((a.isna() & b.isna()) | (a.astype(object) == b.astype(object))).to_numpy(bool)
+        for k in np.flatnonzero(~same)[:FIRST_ROWS]:
+            moved.setdefault(int(k), f"row {int(k)}: {column} {_plain(a.iloc[k])} -> {_plain(b.iloc[k])}")
+    return [moved[k] for k in sorted(moved)[:FIRST_ROWS]]
+
+
+def _plain(value) -> str:
+    return repr(value.item() if isinstance(value, np.generic) else value)
+
+
+def check_results(root: str | os.PathLike = io.REPO_ROOT, baseline: str | os.PathLike = RESULTS_BASELINE,
+                  published_baseline: str | os.PathLike = BASELINE_CSV) -> ResultsCheck:
+    """Check the build under ``root`` (module docstring): damaged CSVs (their digests), the published
+    comparison against ``published_baseline``, every CSV against ``baseline``."""
+    root, baseline = Path(root), Path(baseline)
+    check, sources = ResultsCheck(), _sources(root)
+    for relative in result_csvs(root):
+        problem = io.damage(root / relative)
+        if problem is not None and problem != io.NO_RECORD:
+            check.problems.append(f"{relative}: damaged, {problem}")
+            continue
+        if _is_stale(root, relative, sources):
+            check.stale.append(relative)
+            continue
+        recorded = baseline / (Path(relative).relative_to("results").as_posix() + ".gz")
+        if not recorded.is_file():
+            check.problems.append(f"{relative}: not in the baseline {baseline} (make baseline records it)")
+            continue
+        now, then = io.read_csv(root / relative), pd.read_csv(recorded)
+        check.compared += 1
+        if list(now.columns) != list(then.columns):
+            check.problems.append(f"{relative}: columns {list(now.columns)}, the baseline's {list(then.columns)}")
+        elif len(now) != len(then):
+            check.problems.append(f"{relative}: {len(now)} rows, the baseline's {len(then)}")
+        elif rows := _moved_rows(now, then):
+            check.problems.append(f"{relative}: moved beyond 4x its error or 1e-9 relative: " + "; ".join(rows))
+    comparison = "results/checks/published_comparison.csv"
+    if (root / comparison).is_file() and comparison not in check.stale and not any(
+            p.startswith(comparison) for p in check.problems):
+        current = pd.read_csv(root / comparison, dtype={c: (float if c in ("computed", "computed_err") else str)
+                                                        for c in BASELINE_COLUMNS[:-1]}, keep_default_na=False)
+        check.problems += [f"{comparison}: {p}" for p in compare_to_baseline(current, read_baseline(published_baseline))]
+    return check
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Command line: ``--write PATH`` records the baseline, ``--check PATH`` compares with it."""
+    """Command line: ``--write PATH`` records the baseline, ``--check PATH`` compares with it,
+    ``--write-results DIR`` records the CSVs of the build in results/."""
     parser = argparse.ArgumentParser(prog="python -m brdfs.pipeline.regression", description=__doc__.split("\n\n")[0])
     action = parser.add_mutually_exclusive_group(required=True)
     action.add_argument("--write", metavar="PATH", help="record the baseline of every comparison row")
     action.add_argument("--check", metavar="PATH", help="compare every comparison row with the baseline")
+    action.add_argument("--write-results", metavar="DIR", help="record every CSV of results/ (after make all)")
     parser.add_argument("--config", default=str(CONFIG_YAML), help="config file (default: config.yaml)")
     args = parser.parse_args(argv)
+    if args.write_results:
+        stale = [p for p in result_csvs(io.REPO_ROOT) if _is_stale(io.REPO_ROOT, p, _sources(io.REPO_ROOT))]
+        if stale or (damaged := io.damaged_results(io.REPO_ROOT)):
+            print(f"results/ is not a fresh build ({(stale or list(damaged))[0]} ...): run make all first")
+            return 1
+        print(f"wrote {write_results_baseline(io.REPO_ROOT, args.write_results)} CSVs to {args.write_results}")
+        return 0
     comparison = compute_all_comparisons(load_config(args.config))
     if args.write:
         write_baseline(comparison, args.write)
