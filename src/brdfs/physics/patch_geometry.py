@@ -223,6 +223,12 @@ class ExponentialProfile:
         if not (np.isfinite(self.s) and self.s >= 0):
             raise ValueError(f"exponential profile: s must be finite and >= 0, got {self.s!r}")
 
+    @property
+    def negligible(self) -> bool:
+        """s so small that e^{−s m} rounds to 1 for every m ≤ 2 (s < 2⁻⁵⁶): the profile is s = 0's,
+        to the bit, and s² would underflow in C_max and the CDF (s = 1e-300 gave C = NaN)."""
+        return self.s < 2.0 ** -56
+
     def xi(self, m):
         """ξ(m) = e^{−s m}  (eq. 4.44)."""
         return np.exp(-self.s * np.asarray(m, float))
@@ -235,7 +241,7 @@ class ExponentialProfile:
     def c_max(self) -> float:
         """C_max = s² / (2π (1 − (1 + s) e^{−s}))  (eq. 4.45); 1 − (1+s)e^{−s} = P(2, s), the
         regularised incomplete gamma function, free of cancellation; its s → 0 limit is 1/π."""
-        if self.s == 0:
+        if self.negligible:
             return 1.0 / np.pi
         return self.s**2 / (2.0 * np.pi * gammainc(2.0, self.s))
 
@@ -248,7 +254,7 @@ class ExponentialProfile:
         """F(R) = ∫₀^R p  (eq. 4.27): P(3, sR)/P(2, s) for R ≤ 1, then + s²(e^{−s} − e^{−sR})/(2P(2, s));
         the jump p_Diffuse at R = 2 is not included (F(2⁻) = 1 − p_Diffuse)."""
         R = np.asarray(R, float)
-        if self.s == 0:
+        if self.negligible:
             return np.zeros_like(R)
         s, norm = self.s, gammainc(2.0, self.s)
         inner = gammainc(3.0, s * np.minimum(R, 1.0)) / norm

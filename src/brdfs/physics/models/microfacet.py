@@ -12,7 +12,7 @@ from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.physics.lobes import HALF, MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
 from brdfs.physics.fresnel import unpolarised_reflectance
-from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, positive, register
+from brdfs.physics.models.base import M_MIN, BRDF, check_declared, GrazingLaw, Interval, check_positive, exact, positive, register
 from brdfs.physics import sampling
 
 
@@ -29,6 +29,7 @@ class _BeckmannFamily(BRDF):
 
     def __post_init__(self):
         check_positive("m", self.m)
+        check_declared(self, "m")
         check_positive("C", self.C)
 
     @property
@@ -70,7 +71,7 @@ class Ward(_BeckmannFamily):
     name = "ward"
     # --- what the model says about itself
     chapter = 2                  # eq. 2.8 (and eq. 3.35)
-    param_ranges = {"m": positive(), "C": positive()}
+    param_ranges = {"m": Interval(M_MIN, np.inf), "C": positive()}
     examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}     # m = 0.005 … 0.4: Table 3.2
     # conserves_energy = False: a(θ) ~ K/√(cos θ) diverges at grazing incidence (sec. 2.2.1, :func:`ward_constant`)
     conserves_energy = False
@@ -95,7 +96,7 @@ class WardCosmin(_BeckmannFamily):
 
     name = "ward_cosmin"
     chapter = 3                  # eq. 3.36
-    param_ranges = {"m": positive(), "C": positive()}
+    param_ranges = {"m": Interval(M_MIN, np.inf), "C": positive()}
     examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}     # m = 0.005 … 0.4: Table 3.2
     conserves_energy = True      # Table 3.2: C_max = 1/max a ≥ 1, so max a ≤ 1 at the default C = 1
     accuracy_families = {"ward_cosmin": ("m", {})}
@@ -160,7 +161,7 @@ class CookTorrance(_BeckmannFamily):
     name = "cook_torrance"
     # --- what the model says about itself
     chapter = 2                  # eqs. 2.9, 2.10
-    param_ranges = {"m": positive(), "C": positive()}
+    param_ranges = {"m": Interval(M_MIN, np.inf), "C": positive()}
     param_choices = {"G": GEOMETRY_FACTORS}
     examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}
     # conserves_energy = False: with G = 1 the albedo diverges like 1/cos θ (sec. 2.2.1,

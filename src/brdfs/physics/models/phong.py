@@ -13,7 +13,7 @@ from scipy.special import beta, gammaln
 
 from brdfs.core.estimate import Estimate
 
-from brdfs.physics.models.base import (BRDF, GrazingLaw, Interval, check_positive, exact, non_negative,
+from brdfs.physics.models.base import (N_MAX, BRDF, check_declared, GrazingLaw, Interval, check_positive, exact, non_negative,
                                        positive, positive_power, register)
 from brdfs.physics import sampling
 
@@ -59,6 +59,7 @@ class _PhongFamily(BRDF):
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)
+        check_declared(self, "n")
         if self.C is None:
             object.__setattr__(self, "C", float(phong_constant(self.n)))
         check_positive("C", self.C)
@@ -98,7 +99,7 @@ class Phong(_PhongFamily):
     name = "phong"
     # --- what the model says about itself
     chapter = 2                  # eq. 2.6 (and eq. 3.5)
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     half_angle_exponent_factor = 4.0     # (R·V)^n = cos^n 2δ ≈ cos^{4n} δ at normal incidence
     corrected_by = "phong_cosmin"        # eq. 3.10
@@ -139,7 +140,7 @@ class PhongOriginal(_PhongFamily):
     name = "phong_original"
     # reciprocal = False: f divides by cos θ_L alone, f(L, V) ≠ f(V, L) (eq. 2.5)
     chapter = 2                  # eq. 2.5
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     # conserves_energy = False: divided by cos θ_L, its albedo grows without bound toward grazing
     # incidence (sec. 2.2, Figure 2.1; a(89.9°) ≈ 51 for n = 20)
@@ -158,7 +159,7 @@ class PhongCosmin(_PhongFamily):
 
     name = "phong_cosmin"
     chapter = 3                  # eq. 3.10
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     # conserves_energy = False: with c = (n+2)/2π the albedo overshoots 1 slightly at intermediate
     # angles (sec. 3.2.2; Figure 3.1)
@@ -192,7 +193,7 @@ class PModel(_PhongFamily):
     p: float = 1.0
     name = "p_model"
     chapter = 3                  # eq. 3.12
-    param_ranges = {"n": non_negative(), "C": positive(), "p": Interval(0.0, 1.0)}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive(), "p": Interval(0.0, 1.0)}
     examples = {"typical": {"n": 20.0, "p": 0.5}, "narrowest": {"n": 1.0e4, "p": 0.5}}
     # conserves_energy = False: p = 1 is the new model (eq. 3.10), which overshoots (sec. 3.2.2)
     conserves_energy = False
