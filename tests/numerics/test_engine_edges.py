@@ -94,3 +94,67 @@ def test_patch_exponential_takes_the_smallest_s_as_its_s0_limit():
     tiny, zero = model("patch_exponential", s=1e-300), model("patch_exponential", s=0.0)
     assert tiny.C == zero.C == 1 / np.pi
     _honest(albedo(tiny, [0.0, 45.0, 89.0]), [1.0, 1.0, 1.0])
+
+
+def _typical(name):
+    cls = MODELS[name]
+    if name == "patch_mixture":
+        return cls.example()
+    return model(name, **cls.examples["typical"])
+
+
+def _horizon_pairs(n=64, seed=90):
+    rng = np.random.default_rng(seed)
+    u = rng.uniform(size=(n, 2))
+    z = u[:, 0]
+    above = np.stack([np.sqrt(1 - z * z) * np.cos(2 * np.pi * u[:, 1]), np.sqrt(1 - z * z) * np.sin(2 * np.pi * u[:, 1]), z], -1)
+    phi = rng.uniform(0.0, 2 * np.pi, n)
+    on = np.stack([np.cos(phi), np.sin(phi), np.zeros(n)], -1)
+    return on, above
+
+
+@pytest.mark.parametrize("name", sorted(n for n, c in MODELS.items() if c.reciprocal))
+def test_reciprocity_holds_at_exactly_90_degrees(name):
+    """The horizon convention (brdfs.physics.models.base): a direction on the horizon gives f's limit,
+    for L and V alike, so f(L, V) = f(V, L) with either on it (at e0ba585, V on the horizon gave 0 and L
+    on it the formula: 16 of 17 reciprocal models differed)."""
+    brdf = _typical(name)
+    on, above = _horizon_pairs()
+    there, back = brdf(on, above), brdf(above, on)
+    assert not np.isnan(there).any() and not np.isnan(back).any()
+    assert np.all((there == back) | np.isclose(there, back, rtol=1e-12, atol=0.0)), (there, back)
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_no_model_returns_nan_with_a_direction_on_the_horizon(name):
+    """Cook–Torrance with the light on the horizon returned NaN (0/0 in G / (N·L N·V))."""
+    brdf = _typical(name)
+    on, above = _horizon_pairs()
+    for L, V in ((on, above), (above, on), (on, on[::-1])):
+        assert not np.isnan(brdf(L, V)).any(), name
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_sampler_draws_finite_directions_and_densities_at_a_light_1e300_rad_from_the_pole(name):
+    """θ_L = 1e-300 rad: each strategy's directions are finite unit vectors above the horizon or the
+    rejected −N, their pdf finite and the model's own pdf of them, their weights finite."""
+    brdf = _typical(name)
+    L = np.array([np.sin(1e-300), 0.0, np.cos(1e-300)])
+    rng = np.random.default_rng(300)
+    for strategy in list(brdf.strategies) + ["uniform"]:
+        u = rng.uniform(size=(400, brdf.sample_dimension(strategy)))
+        V, weight, pdf = brdf.sample(L, u, strategy)
+        assert np.all(np.isfinite(V)) and np.all(np.isfinite(weight)) and np.all(np.isfinite(pdf)), strategy
+        drawn = pdf > 0
+        assert drawn.mean() > 0.5, strategy
+        assert np.allclose(np.linalg.norm(V[drawn], axis=-1), 1.0, rtol=1e-12), strategy
+        assert np.allclose(pdf[drawn], brdf.pdf(L, V[drawn], strategy), rtol=1e-12, atol=0.0), strategy
+
+
+@pytest.mark.parametrize("theta_rad", [5e-324, 1e-300, 1e-238, 1e-100])
+def test_the_exact_patch_sampler_has_its_true_pdf_next_to_the_pole(theta_rad):
+    """R = 1: the lens C(V'_P, 1) ∩ disk is the disk to rounding, pdf = cos θ_V / π (at θ_L ≈ 1e-238 rad
+    Heron's product underflowed: lens area 0, pdf 0 for every sample)."""
+    L = np.array([np.sin(theta_rad), 0.0, np.cos(theta_rad)])
+    V, _, pdf = model("patch_basic", R=1.0).sample(L, np.random.default_rng(1).uniform(size=(500, 2)), "exact")
+    assert np.allclose(pdf, V[:, 2] / np.pi, rtol=1e-14, atol=0.0)

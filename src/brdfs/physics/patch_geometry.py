@@ -67,8 +67,21 @@ def _factorial(n):
 def _four_triangle_area(a, b, c):
     """4 × area of the triangle with sides a, b, c (Kahan's stable Heron formula); 0 if degenerate."""
     a, b, c = np.sort(np.stack(np.broadcast_arrays(a, b, c)), axis=0)[::-1]
-    prod = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c))
-    return np.sqrt(np.maximum(prod, 0.0))
+    factors = (a + (b + c)), (c - (a - b)), (c + (a - b)), (a + (b - c))
+    prod = factors[0] * factors[1] * factors[2] * factors[3]
+    out = np.sqrt(np.maximum(prod, 0.0))
+    tiny = prod < _UNDERFLOWING
+    if np.any(tiny):
+        # a sliver of a triangle (sides 1, 1, d < 1e-160: the lens of R = 1 next to the pole) whose
+        # product underflowed to 0, a lens area of 0 and an exact sampler's pdf of 0: the factors' roots
+        roots = np.sqrt(np.maximum(factors[0], 0.0)) * np.sqrt(np.maximum(factors[1], 0.0))
+        roots = roots * np.sqrt(np.maximum(factors[2], 0.0)) * np.sqrt(np.maximum(factors[3], 0.0))
+        out = np.where(tiny, roots, out)
+    return out
+
+
+#: Below this Heron's product is near or past underflow (:func:`_four_triangle_area`).
+_UNDERFLOWING = 1e-280
 
 
 def circle_intersection(d, R, cos_theta=None):

@@ -1,7 +1,13 @@
 """The BRDF protocol: the verbs every model of the package answers, with their defaults.
 
 A model is a small frozen value type.  Calling it, ``f(L, V)``, evaluates the BRDF on arrays of
-unit vectors (…, 3) with N = (0, 0, 1); directions below the horizon give 0.  A subclass
+unit vectors (…, 3) with N = (0, 0, 1); directions below the horizon give 0.  The horizon, one
+convention for L and V alike: a direction exactly on it (N·L = 0 or N·V = 0) gives f's limit as
+that direction rises to the horizon, finite or +inf (Ward's 1/√(N·L N·V), Cook–Torrance with G = 1),
+never NaN; with both on it, where the limit depends on the approach, f = 0 (the disk's rays start
+there at 90°).  A reciprocal model stays reciprocal there (at e0ba585 V on the horizon gave 0 and
+L on it the formula: 16 of 17 reciprocal models broke f(L, V) = f(V, L) at exactly 90°).  The
+integrators evaluate f with L on the horizon for the albedo at θ = 90°; the limit is what they need.  A subclass
 implements ``_eval`` and ``lobe`` and overrides whichever other verbs it knows more about:
 
 Shape of the integrand (read by the integration engine, :mod:`brdfs.numerics.integrate`):
@@ -203,7 +209,9 @@ class BRDF:
         nl, nv = L[..., 2], V[..., 2]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             f = self._eval(L, V, nl, nv)
-        f = np.where((nl >= 0) & (nv > 0), f, 0.0)
+        f = np.where((nl >= 0) & (nv >= 0), f, 0.0)       # the horizon convention (module docstring)
+        if np.any(nl == 0):                                # both on it: no limit (it depends on the approach)
+            f = np.where((nl == 0) & (nv == 0), 0.0, f)
         for box in _COUNTERS.boxes:
             box[0] += f.size
         return f
@@ -512,13 +520,15 @@ def non_negative(hi: float = np.inf) -> Interval:
 #: model or the engine stops coping (issue 41; beyond them brdfs.model and brdfs.albedo refuse in one line):
 #: cosine powers to n = 10⁴ (the narrowest lobe the package treats: the pumping tables and the sweep
 #: reach it); Beckmann's m of Ward and Cook–Torrance from 0.005 (Table 3.2's narrowest, the sweep's
-#: end; m = 1e-300 divided by zero); the Smith models' α in [1e-4, 1] (α = 1e-9 came back 0.9961 for
-#: the mirror's 1 at 0°, α = 1e-12 took 110 s, α = 1e6 was off 35 errors at 90°); patch radii from
+#: end; m = 1e-300 divided by zero); the Smith models' α in [0.01, 1], where the sweep's independent
+#: truths reach (α = 1e-9 came back 0.9961 for the mirror's 1 at 0°, α = 1e-12 took 110 s, α = 1e6 was off
+#: 35 errors at 90°; engine and disk agree within their errors down to α = 1e-8, but the long-double
+#: truths take minutes a cell below α = 1e-3, so the range stops where it is held); patch radii from
 #: 1e-8 (R, m_clip = 1e-300 made C infinite or NaN; the lens areas are held to 50 digits down to R = 1e-8),
 #: the ellipse's b from 1e-3 (b = 1e-30 gave an albedo of 0, b = 1e-12 ran out of budget).
 N_MAX = 1.0e4
 M_MIN = 0.005
-ALPHA_MIN, ALPHA_MAX = 1.0e-4, 1.0
+ALPHA_MIN, ALPHA_MAX = 0.01, 1.0
 RADIUS_MIN, ELLIPSE_B_MIN = 1.0e-8, 1.0e-3
 
 

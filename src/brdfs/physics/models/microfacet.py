@@ -82,7 +82,8 @@ class Ward(_BeckmannFamily):
 
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
-        return self.C / (4 * np.pi * self.m ** 2) * e / np.sqrt(nl * nv)
+        f = self.C / (4 * np.pi * self.m ** 2) * e / np.sqrt(nl * nv)
+        return np.where((nl > 0) & (nv > 0), f, np.inf)        # the horizon: e > 0, 1/√(N·L N·V) → ∞
 
     def grazing_law(self):
         """Diverges: a(μ) √μ → K (:func:`ward_constant`)."""
@@ -133,6 +134,10 @@ def ward_cosmin_normal_incidence(m) -> Estimate:
     return Estimate(val, err)
 
 
+#: The cosine at which Cook–Torrance evaluates the limit of G / (N·L N·V) on the horizon.
+_HORIZON_COS = 1e-150
+
+
 def g_torrance_sparrow(nh, nl, nv, lh):
     """G = min{1, 2 NH NV / VH, 2 NH NL / LH} (eq. 2.10; V·H = L·H)."""
     return np.minimum(1.0, np.minimum(2 * nh * nv / lh, 2 * nh * nl / lh))
@@ -179,7 +184,15 @@ class CookTorrance(_BeckmannFamily):
     def _eval(self, L, V, nl, nv):
         tan2, nh, h_norm = half_vector_parts(L, V)
         d = self.C * self.distribution.slope_weight(tan2) / (4 * np.pi * self.m ** 2 * nh ** 4)
-        return d * self._geometry(nl, nv, nh, 0.5 * h_norm) / (nl * nv)
+        f = d * self._geometry(nl, nv, nh, 0.5 * h_norm) / (nl * nv)
+        horizon = (nl == 0) | (nv == 0)
+        if not horizon.any():
+            return f
+        # on the horizon G / (N·L N·V) is 0/0: its limit, with the zero cosine replaced by 1e-150 (G of
+        # eq. 2.10 and Smith's G* are linear in it there, to rounding; G = 1 diverges)
+        nl_h, nv_h = np.where(nl == 0, _HORIZON_COS, nl), np.where(nv == 0, _HORIZON_COS, nv)
+        limit = np.inf if self.G == "none" else d * self._geometry(nl_h, nv_h, nh, 0.5 * h_norm) / (nl_h * nv_h)
+        return np.where(horizon, limit, f)
 
     def _geometry(self, nl, nv, nh, lh):
         if self.G == "torrance_sparrow":

@@ -149,7 +149,8 @@ class PhongOriginal(_PhongFamily):
     diverges_at_grazing = True   # a(θ) cos θ → the reciprocal Phong's a(90°) = c B(3/2, (n+1)/2) > 0
 
     def _eval(self, L, V, nl, nv):
-        return self._lobe_value(L, V) / nl
+        lobe = self._lobe_value(L, V)
+        return np.where(lobe > 0, lobe / nl, 0.0)          # 0, not 0/0, beyond the lobe on the horizon
 
 
 @register
@@ -170,7 +171,8 @@ class PhongCosmin(_PhongFamily):
     limit_albedo_90 = 0.5        # eq. 3.27: (n+2)/(2(n+1)) → 1/2
 
     def _eval(self, L, V, nl, nv):
-        return self._lobe_value(L, V) / np.maximum(nl, nv)
+        lobe = self._lobe_value(L, V)
+        return np.where(lobe > 0, lobe / np.maximum(nl, nv), 0.0)
 
     def nv_levels(self, nl):
         return (nl,)
@@ -205,7 +207,8 @@ class PModel(_PhongFamily):
             raise ValueError(f"p must lie in [0, 1], got {self.p!r}")
 
     def _eval(self, L, V, nl, nv):
-        return self._lobe_value(L, V) / np.maximum(nl, nv) ** self.p
+        lobe = self._lobe_value(L, V)
+        return np.where(lobe > 0, lobe / np.maximum(nl, nv) ** self.p, 0.0)
 
     def nv_levels(self, nl):
         return (nl,)
