@@ -179,3 +179,10 @@ def test_pump_builds_the_tables_of_narrow_lobes_in_pieces_graded_toward_grazing(
     pumped = pump(base)
     assert len(pumped.table.edges) > 2
     assert pumped.table.error <= 1e-9 * float(np.max(pumped.table.values))
+
+
+def test_pump_refuses_an_exponent_beyond_its_tables_in_one_line_before_any_work():
+    from brdfs.numerics.arguments import ArgumentError
+    from brdfs.numerics.tables import pump
+    with pytest.raises(ArgumentError, match=r"^pump\(\): n = 30000.0: the albedo table of phong reaches n <= 10000"):
+        pump(model("phong", n=3e4))

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from brdfs.numerics.arguments import check_model_call
+from brdfs.numerics.arguments import ArgumentError, check_model_call
 from brdfs.numerics.pumping import tabulate_albedo
 from brdfs.physics.models import MODELS
 from brdfs.physics.models import model as plain_model
@@ -62,7 +62,14 @@ def build(name: str, **params):
 
 def pump(base, correction: str = "g1", target_rtol: float = 1e-9, engine_rtol: float = 1e-11) -> Pumped:
     """``base`` pumped once with ``correction`` (eq. 2.20 ``'g1'`` or 2.21 ``'g2'``), dividing by its
-    albedo tabulated on [0, 1] in cos θ to ``target_rtol`` on engine values at ``engine_rtol``."""
+    albedo tabulated on [0, 1] in cos θ to ``target_rtol`` on engine values at ``engine_rtol``; a
+    parameter beyond the model's ``pumping_ranges`` is refused in one line before any work."""
+    for key, interval in base.pumping_ranges.items():
+        value = getattr(base, key)
+        if not interval.contains(value):
+            raise ArgumentError(f"pump(): {key} = {value!r}: the albedo table of {base.name} reaches {key} <= "
+                                f"{interval.hi:g} at its target (pieces of degree 256 miss 1e-9 beyond); "
+                                f"pump a model with {key} <= {interval.hi:g}")
     table = tabulate(TableRequest(base, pump_edges(base), target_rtol=target_rtol, engine_rtol=engine_rtol))
     return Pumped(base, table, correction)
 

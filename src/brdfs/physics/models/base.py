@@ -433,6 +433,9 @@ class BRDF:
     #: name -> :class:`Interval`; an infinite bound means unbounded.  Sweeps, property tests and the
     #: config schema take the ranges from here.
     param_ranges: ClassVar[dict[str, "Interval"]] = {}
+    #: Ranges within which :func:`brdfs.numerics.tables.pump` tabulates the model's albedo at its default
+    #: target (it refuses beyond them in one line, before any work); none beyond :attr:`param_ranges` by default.
+    pumping_ranges: ClassVar[dict[str, "Interval"]] = {}
     #: The choices of the model's categorical parameters (e.g. Cook–Torrance's G), name -> values.
     param_choices: ClassVar[dict[str, tuple]] = {}
     #: Example parameters for sweeps and tests: ``"typical"`` (the default of :meth:`example`) and
@@ -518,15 +521,18 @@ def non_negative(hi: float = np.inf) -> Interval:
 
 #: The ends of the declared ranges (:attr:`BRDF.param_ranges`) where a parameter stops before the
 #: model or the engine stops coping (issue 41; beyond them brdfs.model and brdfs.albedo refuse in one line):
-#: cosine powers to n = 10⁴ (the narrowest lobe the package treats: the pumping tables and the sweep
-#: reach it); Beckmann's m of Ward and Cook–Torrance from 0.005 (Table 3.2's narrowest, the sweep's
+#: cosine powers to n = 10⁵ (the limit checks of chapter 3 take n = 10⁵; engine and disk agree within
+#: their errors there, the sweep holds n ≤ 10⁴; the pumping tables reach n ≤ 10⁴, :data:`PUMP_N_MAX`); Beckmann's m of Ward and Cook–Torrance from 0.005 (Table 3.2's narrowest, the sweep's
 #: end; m = 1e-300 divided by zero); the Smith models' α in [0.01, 1], where the sweep's independent
 #: truths reach (α = 1e-9 came back 0.9961 for the mirror's 1 at 0°, α = 1e-12 took 110 s, α = 1e6 was off
 #: 35 errors at 90°; engine and disk agree within their errors down to α = 1e-8, but the long-double
 #: truths take minutes a cell below α = 1e-3, so the range stops where it is held); patch radii from
 #: 1e-8 (R, m_clip = 1e-300 made C infinite or NaN; the lens areas are held to 50 digits down to R = 1e-8),
 #: the ellipse's b from 1e-3 (b = 1e-30 gave an albedo of 0, b = 1e-12 ran out of budget).
-N_MAX = 1.0e4
+N_MAX = 1.0e5
+#: The largest n whose albedo table :func:`brdfs.numerics.tables.pump` builds at its default target
+#: (1e-9; beyond, pieces of degree 256 miss it: Blinn n = 3e4, Phong n = 3e4): ``pumping_ranges``.
+PUMP_N_MAX = 1.0e4
 M_MIN = 0.005
 ALPHA_MIN, ALPHA_MAX = 0.01, 1.0
 RADIUS_MIN, ELLIPSE_B_MIN = 1.0e-8, 1.0e-3

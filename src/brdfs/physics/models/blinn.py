@@ -8,7 +8,7 @@ import numpy as np
 
 from brdfs.physics.geometry import n_dot_h
 from brdfs.physics.lobes import HALF, PowerCosine
-from brdfs.physics.models.base import N_MAX, BRDF, check_declared, check_positive, non_negative, positive, positive_power, register
+from brdfs.physics.models.base import N_MAX, PUMP_N_MAX, BRDF, check_declared, check_positive, non_negative, positive, positive_power, register
 from brdfs.physics import sampling
 
 
@@ -16,6 +16,7 @@ from brdfs.physics import sampling
 class _BlinnFamily(BRDF):
     n: float
     C: float = 1.0
+    pumping_ranges = {"n": non_negative(PUMP_N_MAX)}
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)

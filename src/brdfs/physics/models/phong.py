@@ -13,7 +13,7 @@ from scipy.special import beta, gammaln
 
 from brdfs.core.estimate import Estimate
 
-from brdfs.physics.models.base import (N_MAX, BRDF, check_declared, GrazingLaw, Interval, check_positive, exact, non_negative,
+from brdfs.physics.models.base import (N_MAX, PUMP_N_MAX, BRDF, check_declared, GrazingLaw, Interval, check_positive, exact, non_negative,
                                        positive, positive_power, register)
 from brdfs.physics import sampling
 
@@ -56,6 +56,7 @@ def phong_mean_albedo(n):
 class _PhongFamily(BRDF):
     n: float
     C: float | None = None
+    pumping_ranges = {"n": non_negative(PUMP_N_MAX)}
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)
