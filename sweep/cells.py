@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from brdfs.physics.models import MODELS
+from brdfs.physics.models.base import ALPHA_MAX, ALPHA_MIN
 from brdfs.physics.models.pumped import Pumped
 from brdfs.physics.tables import AlbedoTable
 
@@ -75,6 +76,8 @@ class Family:
     #: The package's class of the cell's model where it is not ``MODELS[model]`` (a model without its
     #: own albedo route, as a user writes it, so that the engine integrates its BRDF)
     model_class: type | None = None
+    #: The parameter sets where they are given rather than drawn (the ends of a declared range)
+    param_sets: tuple = ()
 
     @property
     def fixed_dict(self):
@@ -122,6 +125,19 @@ FAMILIES = (
     # Oren–Nayar answers with its closed form; integrated, it is the engine's test of azimuthal kinks
     # (the half-planes Δφ = ±90°) in a user's model.  Last, so that the cells before it stay as drawn.
     Family("oren_nayar_integrated", "oren_nayar", ("rho", "sigma"), model_class=OrenNayarIntegrated),
+    # The edges of issue 41, after the others so that their cells stay as drawn: a user's 2-D model next
+    # to the pole (the kink θ_V = θ_L 1e-6° from it), n = 0 (the declared end) at grazing, and the Smith
+    # models at the ends of their declared α
+    Family("oren_nayar_integrated_pole", "oren_nayar", ("rho", "sigma"), model_class=OrenNayarIntegrated,
+           n_params=4, n_random_angles=0, grazing=(1e-6, 1e-5, 1e-4, 1e-3)),
+    Family("phong_n0", "phong", ("n",), param_sets=({"n": 0.0},), n_random_angles=4),
+    Family("phong_original_n0", "phong_original", ("n",), param_sets=({"n": 0.0},), n_random_angles=4),
+    Family("ggx_alpha_ends", "ggx", ("alpha",), (("G2", "height_correlated"),),
+           param_sets=({"alpha": ALPHA_MIN}, {"alpha": ALPHA_MAX})),
+    Family("ggx_separable_alpha_ends", "ggx", ("alpha",), (("G2", "separable"),),
+           param_sets=({"alpha": ALPHA_MIN}, {"alpha": ALPHA_MAX})),
+    Family("beckmann_alpha_ends", "beckmann", ("alpha",), (("G2", "height_correlated"),),
+           param_sets=({"alpha": ALPHA_MIN}, {"alpha": ALPHA_MAX})),
 )
 #: Families declared but left out of the committed sweep: He–Torrance's density alone (term 'dd'),
 #: the same integral as ``he_torrance_total`` without the delta's closed form.
@@ -145,6 +161,8 @@ def _draw(rng, name, interval):
 def family_parameters(family: Family, rng) -> list[dict]:
     """The family's parameter sets: the class's examples first, then draws from its ranges."""
     cls = MODELS[family.model]
+    if family.param_sets:
+        return [dict(p) for p in family.param_sets]
     if family.model == cls.name and "weight" in family.swept:      # the mixture: its two example weights
         return [{"weight": w, "p_diffuse": p} for w in ("uniform", "falling") for p in (0.0, 0.5)]
     out = []

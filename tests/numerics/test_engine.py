@@ -139,7 +139,7 @@ def test_max_albedo_finds_an_interior_maximum():
 @pytest.mark.parametrize("call, match", [
     (lambda: model("phongg", n=1), "phongg"),
     (lambda: model("phong", n=-2), "-2"),
-    (lambda: model("ward", m=0.0), r"m = 0.0: must be > 0"),
+    (lambda: model("ward", m=0.0), r"m = 0.0: must be >= 0.005"),
     (lambda: model("cook_torrance", m=0.1, G="torrance"), "torrance"),
     (lambda: albedo(model("phong", n=1), [95.0]), "95"),
     # no lobe and no albedo route of its own, or not symmetric about the plane of incidence: the disk

@@ -168,3 +168,21 @@ def test_only_a_root_that_declares_it_takes_the_polar_azimuth_reduction(phong_ta
     pumping._engine(pumping.Pumped(model("phong", n=N_EXP), phong_table, "g1"), np.array([1.0]), 1e-8)
     pumping._engine(pumping.Pumped(model("phong_cosmin", n=N_EXP), phong_table, "g1"), np.array([1.0]), 1e-8)
     assert reduced == ["phong"]
+
+
+@pytest.mark.parametrize("name, n", [("blinn", 373.8)])
+def test_pump_builds_the_tables_of_narrow_lobes_in_pieces_graded_toward_grazing(name, n):
+    """At e0ba585 one piece of degree 256 missed 1e-9 for Blinn n = 373.8 (and 730.5), and Phong
+    n = 6210 ran past 120 s; pieces at multiples of the lobe's half-weight angle take ~1–2 s."""
+    from brdfs.numerics.tables import pump
+    base = model(name, n=n)
+    pumped = pump(base)
+    assert len(pumped.table.edges) > 2
+    assert pumped.table.error <= 1e-9 * float(np.max(pumped.table.values))
+
+
+def test_pump_refuses_an_exponent_beyond_its_tables_in_one_line_before_any_work():
+    from brdfs.numerics.arguments import ArgumentError
+    from brdfs.numerics.tables import pump
+    with pytest.raises(ArgumentError, match=r"^pump\(\): n = 30000.0: the albedo table of phong reaches n <= 10000"):
+        pump(model("phong", n=3e4))

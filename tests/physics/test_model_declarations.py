@@ -165,7 +165,31 @@ def test_evaluation_counters_nest_reenter_survive_a_raise_and_leave_nothing_behi
             brdf(light, views[:1])
             raise RuntimeError
     assert (outer[0], inner[0], failed[0]) == (6, 2, 1)
-    assert base._COUNTERS == []
+    assert base._COUNTERS.boxes == []
+
+
+def test_evaluation_counts_are_per_call_under_threads():
+    """Four He–Torrance albedo calls at once, in four threads, each report the serial count: every
+    thread counts in its own boxes (at e0ba585 the counters were shared, 605k–739k against 184,863)."""
+    import threading
+
+    from brdfs import albedo, model
+
+    he = model("he_torrance", sigma0_um=0.1, tau_um=1.7)
+    angles = [10.0, 50.0, 80.0]
+    serial = albedo(he, angles, rtol=1e-6).evaluations
+    start, counts = threading.Barrier(4), [None] * 4
+
+    def run(k):
+        start.wait()
+        counts[k] = albedo(he, angles, rtol=1e-6).evaluations
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert counts == [serial] * 4
 
 
 @pytest.mark.parametrize("name", sorted(MODELS))

@@ -146,6 +146,7 @@ def check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=Fals
         _fail(where, "model", model, f"a model name, not a model; build one with brdfs.model({model!r}, {hint})")
     if not isinstance(model, BRDF):
         _fail(where, "model", model, f"must be a model (brdfs.model(name, ...)), not {type(model).__name__}")
+    _check_declared_ranges(where, model)
     _check_angles(where, theta_deg)
     if not isinstance(method, str) or method not in ALBEDO_METHODS:
         _fail(where, "method", method, f"unknown method; choose one of {', '.join(ALBEDO_METHODS)}")
@@ -158,6 +159,16 @@ def check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=Fals
         if not isinstance(value, (bool, np.bool_)):
             _fail(where, argument, value, f"must be True or False, not {type(value).__name__}")
     _check_options(f"albedo(method={method!r})", ALBEDO_METHODS[method], options)
+
+
+def _check_declared_ranges(where, model):
+    """A model built past its declared ranges (its class called directly, which brdfs.model would
+    have refused): beyond them the model or the engine cannot cope, so no work starts."""
+    for key, interval in type(model).param_ranges.items():
+        value = getattr(model, key, None)
+        if _is_real(value) and not interval.contains(value):
+            _fail(where, f"model.{key}", value, f"outside the range {model.name} declares: must be "
+                  f"{_describe_interval(interval)}")
 
 
 @functools.cache

@@ -66,8 +66,21 @@ def _factorial(n):
 def _four_triangle_area(a, b, c):
     """4 × area of the triangle with sides a, b, c (Kahan's stable Heron formula); 0 if degenerate."""
     a, b, c = np.sort(np.stack(np.broadcast_arrays(a, b, c)), axis=0)[::-1]
-    prod = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c))
-    return np.sqrt(np.maximum(prod, 0.0))
+    factors = (a + (b + c)), (c - (a - b)), (c + (a - b)), (a + (b - c))
+    prod = factors[0] * factors[1] * factors[2] * factors[3]
+    out = np.sqrt(np.maximum(prod, 0.0))
+    tiny = prod < _UNDERFLOWING
+    if np.any(tiny):
+        # a sliver of a triangle (sides 1, 1, d < 1e-160: the lens of R = 1 next to the pole) whose
+        # product underflowed to 0, a lens area of 0 and an exact sampler's pdf of 0: the factors' roots
+        roots = np.sqrt(np.maximum(factors[0], 0.0)) * np.sqrt(np.maximum(factors[1], 0.0))
+        roots = roots * np.sqrt(np.maximum(factors[2], 0.0)) * np.sqrt(np.maximum(factors[3], 0.0))
+        out = np.where(tiny, roots, out)
+    return out
+
+
+#: Below this Heron's product is near or past underflow (:func:`_four_triangle_area`).
+_UNDERFLOWING = 1e-280
 
 
 def circle_intersection(d, R, cos_theta=None):
@@ -222,6 +235,12 @@ class ExponentialProfile:
         if not (np.isfinite(self.s) and self.s >= 0):
             raise ValueError(f"exponential profile: s must be finite and >= 0, got {self.s!r}")
 
+    @property
+    def negligible(self) -> bool:
+        """s so small that e^{−s m} rounds to 1 for every m ≤ 2 (s < 2⁻⁵⁶): the profile is s = 0's,
+        to the bit, and s² would underflow in C_max and the CDF (s = 1e-300 gave C = NaN)."""
+        return self.s < 2.0 ** -56
+
     def xi(self, m):
         """ξ(m) = e^{−s m}  (eq. 4.44)."""
         return np.exp(-self.s * np.asarray(m, float))
@@ -234,7 +253,7 @@ class ExponentialProfile:
     def c_max(self) -> float:
         """C_max = s² / (2π (1 − (1 + s) e^{−s}))  (eq. 4.45); 1 − (1+s)e^{−s} = P(2, s), the
         regularised incomplete gamma function, free of cancellation; its s → 0 limit is 1/π."""
-        if self.s == 0:
+        if self.negligible:
             return 1.0 / np.pi
         from scipy.special import gammainc   # scipy only where it is used: the diagrams import this module
 
@@ -249,7 +268,7 @@ class ExponentialProfile:
         """F(R) = ∫₀^R p  (eq. 4.27): P(3, sR)/P(2, s) for R ≤ 1, then + s²(e^{−s} − e^{−sR})/(2P(2, s));
         the jump p_Diffuse at R = 2 is not included (F(2⁻) = 1 − p_Diffuse)."""
         R = np.asarray(R, float)
-        if self.s == 0:
+        if self.negligible:
             return np.zeros_like(R)
         from scipy.special import gammainc
 

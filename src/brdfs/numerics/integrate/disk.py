@@ -441,10 +441,15 @@ def _other_kinks(model, mu, st, cos_psi, sin_psi, a, frame, scales=True):
     """Radii of the kinks other than N·V levels (:func:`_radial_kinks`; ``scales`` as there)."""
     out = []
     if frame is MIRROR:                 # R·V = 0: (a² + μ²) r² − 2 a r + sin²θ − μ² = 0, μ ν = a r − sin²θ ≥ 0
-        q2, q1, q0 = a * a + mu * mu, -2 * a, st * st - mu * mu
+        # the discriminant a² − (a² + μ²)(sin²θ − μ²) = μ² (sin²θ cos 2ψ + μ²) in closed form: by
+        # subtraction it cancelled to rounding near grazing (at 90° − 1e-7 the cut, the edge of the
+        # sliver of width μ that Phong n = 0 reflects beyond x = 0, was lost: (1 + cos θ)/2 came back 1/2)
+        q2 = a * a + mu * mu
         with np.errstate(invalid="ignore", divide="ignore"):
-            root = np.sqrt(q1 * q1 - 4 * q2 * q0)
-            out += [(-q1 - root) / (2 * q2), (-q1 + root) / (2 * q2)]
+            half_root = mu * np.sqrt(st * st * (2 * cos_psi * cos_psi - 1) + mu * mu)
+            far = np.where(a >= 0, a + half_root, a - half_root) / q2     # the root without cancellation
+            near = (st * st - mu * mu) / (q2 * far)                       # the other, from their product
+            out += [np.minimum(near, far), np.maximum(near, far)]
     if model.torrance_sparrow_switches:
         out += _torrance_sparrow_kinks(mu, a)
     lobe_scales = set() if scales or frame is not SCATTERING else {float(r) for r in model.lobe.radial_levels()}

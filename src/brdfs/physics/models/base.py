@@ -1,7 +1,13 @@
 """The BRDF protocol: the verbs every model of the package answers, with their defaults.
 
 A model is a small frozen value type.  Calling it, ``f(L, V)``, evaluates the BRDF on arrays of
-unit vectors (…, 3) with N = (0, 0, 1); directions below the horizon give 0.  A subclass
+unit vectors (…, 3) with N = (0, 0, 1); directions below the horizon give 0.  The horizon, one
+convention for L and V alike: a direction exactly on it (N·L = 0 or N·V = 0) gives f's limit as
+that direction rises to the horizon, finite or +inf (Ward's 1/√(N·L N·V), Cook–Torrance with G = 1),
+never NaN; with both on it, where the limit depends on the approach, f = 0 (the disk's rays start
+there at 90°).  A reciprocal model stays reciprocal there (at e0ba585 V on the horizon gave 0 and
+L on it the formula: 16 of 17 reciprocal models broke f(L, V) = f(V, L) at exactly 90°).  The
+integrators evaluate f with L on the horizon for the albedo at θ = 90°; the limit is what they need.  A subclass
 implements ``_eval`` and ``lobe`` and overrides whichever other verbs it knows more about:
 
 Shape of the integrand (read by the integration engine, :mod:`brdfs.numerics.integrate`):
@@ -81,6 +87,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import threading
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
 
@@ -171,7 +178,14 @@ def check_uniform_numbers(where: str, u) -> None:
 #: The strategy every model accepts besides its own: directions uniform in solid angle, pdf 1/(2π).
 UNIFORM = "uniform"
 
-_COUNTERS: list[list[int]] = []
+class _ThreadCounters(threading.local):
+    """The open counters of the current thread: a call in one thread counts none of another's."""
+
+    def __init__(self):
+        self.boxes: list[list[int]] = []
+
+
+_COUNTERS = _ThreadCounters()
 
 
 class counting_evaluations:
@@ -185,21 +199,23 @@ class counting_evaluations:
 
     A class rather than a generator-based context manager: a single-angle albedo call enters one,
     and the generator's machinery cost it a microsecond more.  One instance may be entered again
-    inside its own block: each entry counts in a box of its own."""
+    inside its own block: each entry counts in a box of its own.  Counters are per thread: calls in
+    other threads at the same time count in their own (four threads give the serial counts)."""
 
     def __init__(self):
         self._boxes = []
 
     def __enter__(self):
         box = [0]
-        _COUNTERS.append(box)
+        _COUNTERS.boxes.append(box)
         self._boxes.append(box)
         return box
 
     def __exit__(self, *exc):
         box = self._boxes.pop()
         # by identity: nested counters hold equal lists
-        del _COUNTERS[next(i for i, b in enumerate(_COUNTERS) if b is box)]
+        boxes = _COUNTERS.boxes
+        del boxes[next(i for i, b in enumerate(boxes) if b is box)]
         return False
 
 
@@ -298,8 +314,10 @@ class BRDF:
         nl, nv = L[..., 2], V[..., 2]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             f = self._eval(L, V, nl, nv)
-        f = np.where((nl >= 0) & (nv > 0), f, 0.0)
-        for box in _COUNTERS:
+        f = np.where((nl >= 0) & (nv >= 0), f, 0.0)       # the horizon convention (module docstring)
+        if np.any(nl == 0):                                # both on it: no limit (it depends on the approach)
+            f = np.where((nl == 0) & (nv == 0), 0.0, f)
+        for box in _COUNTERS.boxes:
             box[0] += f.size
         return f
 
@@ -521,6 +539,9 @@ class BRDF:
     #: name -> :class:`Interval`; an infinite bound means unbounded.  Sweeps, property tests and the
     #: config schema take the ranges from here.
     param_ranges: ClassVar[dict[str, "Interval"]] = {}
+    #: Ranges within which :func:`brdfs.numerics.tables.pump` tabulates the model's albedo at its default
+    #: target (it refuses beyond them in one line, before any work); none beyond :attr:`param_ranges` by default.
+    pumping_ranges: ClassVar[dict[str, "Interval"]] = {}
     #: The choices of the model's categorical parameters (e.g. Cook–Torrance's G), name -> values.
     param_choices: ClassVar[dict[str, tuple]] = {}
     #: Where the generic tests (properties, protocol, chi-square) draw each numeric parameter: name ->
@@ -666,6 +687,34 @@ def positive(hi: float = np.inf) -> Interval:
 def non_negative(hi: float = np.inf) -> Interval:
     """0 ≤ x ≤ hi (:func:`check_positive` with ``allow_zero``, up to ``hi``)."""
     return Interval(0.0, hi)
+
+
+#: The ends of the declared ranges (:attr:`BRDF.param_ranges`) where a parameter stops before the
+#: model or the engine stops coping (issue 41; beyond them brdfs.model and brdfs.albedo refuse in one line):
+#: cosine powers to n = 10⁵ (the limit checks of chapter 3 take n = 10⁵; engine and disk agree within
+#: their errors there, the sweep holds n ≤ 10⁴; the pumping tables reach n ≤ 10⁴, :data:`PUMP_N_MAX`); Beckmann's m of Ward and Cook–Torrance from 0.005 (Table 3.2's narrowest, the sweep's
+#: end; m = 1e-300 divided by zero); the Smith models' α in [0.01, 1], where the sweep's independent
+#: truths reach (α = 1e-9 came back 0.9961 for the mirror's 1 at 0°, α = 1e-12 took 110 s, α = 1e6 was off
+#: 35 errors at 90°; engine and disk agree within their errors down to α = 1e-8, but the long-double
+#: truths take minutes a cell below α = 1e-3, so the range stops where it is held); patch radii from
+#: 1e-8 (R, m_clip = 1e-300 made C infinite or NaN; the lens areas are held to 50 digits down to R = 1e-8),
+#: the ellipse's b from 1e-3 (b = 1e-30 gave an albedo of 0, b = 1e-12 ran out of budget).
+N_MAX = 1.0e5
+#: The largest n whose albedo table :func:`brdfs.numerics.tables.pump` builds at its default target
+#: (1e-9; beyond, pieces of degree 256 miss it: Blinn n = 3e4, Phong n = 3e4): ``pumping_ranges``.
+PUMP_N_MAX = 1.0e4
+M_MIN = 0.005
+ALPHA_MIN, ALPHA_MAX = 0.01, 1.0
+RADIUS_MIN, ELLIPSE_B_MIN = 1.0e-8, 1.0e-3
+
+
+def check_declared(model, *keys):
+    """Raise ValueError where a parameter of ``model`` lies outside its declared range (:data:`N_MAX` …)."""
+    for key in keys:
+        value, interval = getattr(model, key), model.param_ranges[key]
+        if value is not None and not interval.contains(value):
+            raise ValueError(f"{model.name}: {key} must lie in {'(' if interval.lo_open else '['}{interval.lo:g}, "
+                             f"{interval.hi:g}{')' if interval.hi_open else ']'}, got {value!r}")
 
 
 def table_field():

@@ -8,7 +8,7 @@ import numpy as np
 
 from brdfs.physics.geometry import n_dot_h
 from brdfs.physics.lobes import HALF, PowerCosine
-from brdfs.physics.models.base import BRDF, check_positive, log_range, non_negative, positive, positive_power, register
+from brdfs.physics.models.base import BRDF, N_MAX, PUMP_N_MAX, check_declared, check_positive, log_range, non_negative, positive, positive_power, register
 from brdfs.physics import sampling
 
 
@@ -18,9 +18,11 @@ class _BlinnFamily(BRDF):
     C: float = 1.0
     #: the generic tests draw n from 0 and 1e-2 … 1e4 (the thesis's narrowest lobe), C from 1e-3 … 1e3
     test_ranges = {"n": log_range(1e-2, 1e4, zero=True), "C": log_range(1e-3, 1e3)}
+    pumping_ranges = {"n": non_negative(PUMP_N_MAX)}
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)
+        check_declared(self, "n")
         check_positive("C", self.C)
 
     @cached_property                 # a frozen model's lobe: built once, not on every look-up
@@ -49,7 +51,7 @@ class Blinn(_BlinnFamily):
     name = "blinn"
     # --- what the model says about itself
     chapter = 1                  # eq. 1.34 (Table 1.1), again eqs. 2.6 and 3.33
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     # conserves_energy = False: the default C = 1 gives a(0) > 1 for small n (C must be scaled to
     # 1/max a, Table 3.1)
@@ -74,7 +76,7 @@ class BlinnOriginal(_BlinnFamily):
     name = "blinn_original"
     # reciprocal = False: f divides by cos θ_L alone (eq. 2.5)
     chapter = 2                  # eq. 2.5
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     # conserves_energy = False: divided by cos θ_L, its albedo diverges at grazing incidence (sec. 2.2.1)
     conserves_energy = False
@@ -92,7 +94,7 @@ class BlinnCosmin(_BlinnFamily):
 
     name = "blinn_cosmin"
     chapter = 3                  # eq. 3.34
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     # conserves_energy = False: with the default C = 1 the albedo exceeds 1 for small n (Table 3.1's
     # C_n = 1/max a is below 1 there)

@@ -12,7 +12,7 @@ from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.physics.lobes import HALF, MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
 from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
-from brdfs.physics.models.base import BRDF, GrazingLaw, check_positive, exact, log_range, positive, register
+from brdfs.physics.models.base import BRDF, M_MIN, GrazingLaw, Interval, check_declared, check_positive, exact, log_range, positive, register
 from brdfs.physics import sampling
 
 
@@ -26,11 +26,12 @@ def beckmann_exponential(L, V, m):
 class _BeckmannFamily(BRDF):
     m: float
     C: float = 1.0
-    #: the generic tests draw m from 1e-3 … 10 (Table 3.2's narrowest is 0.005), C from 1e-3 … 1e3
-    test_ranges = {"m": log_range(1e-3, 10.0), "C": log_range(1e-3, 1e3)}
+    #: the generic tests draw m from 0.005 … 10 (Table 3.2's narrowest is 0.005), C from 1e-3 … 1e3
+    test_ranges = {"m": log_range(M_MIN, 10.0), "C": log_range(1e-3, 1e3)}
 
     def __post_init__(self):
         check_positive("m", self.m)
+        check_declared(self, "m")
         check_positive("C", self.C)
 
     #: A metal of a microfacet model reads F at the facet's angle of incidence, L·H.
@@ -73,7 +74,7 @@ class Ward(_BeckmannFamily):
     name = "ward"
     # --- what the model says about itself
     chapter = 2                  # eq. 2.8 (and eq. 3.35)
-    param_ranges = {"m": positive(), "C": positive()}
+    param_ranges = {"m": Interval(M_MIN, np.inf), "C": positive()}
     examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}     # m = 0.005 … 0.4: Table 3.2
     # conserves_energy = False: a(θ) ~ K/√(cos θ) diverges at grazing incidence (sec. 2.2.1, :func:`ward_constant`)
     conserves_energy = False
@@ -84,7 +85,8 @@ class Ward(_BeckmannFamily):
 
     def _eval(self, L, V, nl, nv):
         e, _ = beckmann_exponential(L, V, self.m)
-        return self.C / (4 * np.pi * self.m ** 2) * e / np.sqrt(nl * nv)
+        f = self.C / (4 * np.pi * self.m ** 2) * e / np.sqrt(nl * nv)
+        return np.where((nl > 0) & (nv > 0), f, np.inf)        # the horizon: e > 0, 1/√(N·L N·V) → ∞
 
     def grazing_law(self):
         """Diverges: a(μ) √μ → K (:func:`ward_constant`)."""
@@ -98,7 +100,7 @@ class WardCosmin(_BeckmannFamily):
 
     name = "ward_cosmin"
     chapter = 3                  # eq. 3.36
-    param_ranges = {"m": positive(), "C": positive()}
+    param_ranges = {"m": Interval(M_MIN, np.inf), "C": positive()}
     examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}     # m = 0.005 … 0.4: Table 3.2
     conserves_energy = True      # Table 3.2: C_max = 1/max a ≥ 1, so max a ≤ 1 at the default C = 1
     accuracy_families = {"ward_cosmin": ("m", {})}
@@ -135,6 +137,10 @@ def ward_cosmin_normal_incidence(m) -> Estimate:
     return Estimate(val, err)
 
 
+#: The cosine at which Cook–Torrance evaluates the limit of G / (N·L N·V) on the horizon.
+_HORIZON_COS = 1e-150
+
+
 def g_torrance_sparrow(nh, nl, nv, lh):
     """G = min{1, 2 NH NV / VH, 2 NH NL / LH} (eq. 2.10; V·H = L·H)."""
     return np.minimum(1.0, np.minimum(2 * nh * nv / lh, 2 * nh * nl / lh))
@@ -163,7 +169,7 @@ class CookTorrance(_BeckmannFamily):
     name = "cook_torrance"
     # --- what the model says about itself
     chapter = 2                  # eqs. 2.9, 2.10
-    param_ranges = {"m": positive(), "C": positive()}
+    param_ranges = {"m": Interval(M_MIN, np.inf), "C": positive()}
     param_choices = {"G": GEOMETRY_FACTORS}
     examples = {"typical": {"m": 0.1}, "narrowest": {"m": 0.005}}
     # conserves_energy = False: with G = 1 the albedo diverges like 1/cos θ (sec. 2.2.1,
@@ -181,7 +187,15 @@ class CookTorrance(_BeckmannFamily):
     def _eval(self, L, V, nl, nv):
         tan2, nh, h_norm = half_vector_parts(L, V)
         d = self.C * self.distribution.slope_weight(tan2) / (4 * np.pi * self.m ** 2 * nh ** 4)
-        return d * self._geometry(nl, nv, nh, 0.5 * h_norm) / (nl * nv)
+        f = d * self._geometry(nl, nv, nh, 0.5 * h_norm) / (nl * nv)
+        horizon = (nl == 0) | (nv == 0)
+        if not horizon.any():
+            return f
+        # on the horizon G / (N·L N·V) is 0/0: its limit, with the zero cosine replaced by 1e-150 (G of
+        # eq. 2.10 and Smith's G* are linear in it there, to rounding; G = 1 diverges)
+        nl_h, nv_h = np.where(nl == 0, _HORIZON_COS, nl), np.where(nv == 0, _HORIZON_COS, nv)
+        limit = np.inf if self.G == "none" else d * self._geometry(nl_h, nv_h, nh, 0.5 * h_norm) / (nl_h * nv_h)
+        return np.where(horizon, limit, f)
 
     def _geometry(self, nl, nv, nh, lh):
         if self.G == "torrance_sparrow":

@@ -18,7 +18,7 @@ from brdfs.physics import patch_geometry as patch
 from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
 from brdfs.physics import fresnel, sampling
-from brdfs.physics.models.base import BRDF, Interval, check_positive, linear_range, log_range, non_negative, positive, register
+from brdfs.physics.models.base import BRDF, ELLIPSE_B_MIN, RADIUS_MIN, Interval, check_declared, check_positive, linear_range, log_range, non_negative, positive, register
 
 
 def projected_distance(L, V):
@@ -98,11 +98,13 @@ class PatchBasic(_OnTheBasePlane, BRDF):
     chapter = 4                  # eqs. 4.2, 4.7
     param_ranges = {"R": Interval(0.0, 2.0, lo_open=True), "C": positive()}
     test_ranges = {"R": log_range(1e-2, 2.0), "C": log_range(1e-3, 1e3)}     # R = 0.2 and below: Figure 4.3
+    param_ranges = {"R": Interval(RADIUS_MIN, 2.0), "C": positive()}
     examples = {"typical": {"R": 0.5}, "narrowest": {"R": 0.2}}     # R = 0.2: Figure 4.3
     conserves_energy = True      # c(R) = 1/(π min(1, R²)): a = lens area / patch area ≤ 1 (eq. 4.8)
 
     def __post_init__(self):
         _check_radius("R", self.R)
+        check_declared(self, "R")
         _default_constant(self, patch.basic_constant(self.R))
 
     # --- the integrand's shape: a jump at m = R; no lobe (the albedo is the lens area, eq. 4.8)
@@ -234,8 +236,8 @@ class PatchExponential(_MixtureSampling, BRDF):
         d, m = np.broadcast_arrays(np.asarray(d, float), np.asarray(m, float))
         s = float(self.s)
         profile = patch.ExponentialProfile(s)
-        p_diffuse = 1.0 - float(profile.cdf(2.0)) if s > 0 else 1.0
-        if s == 0:                                   # all the weight is the Dirac at R = 2: cosine
+        p_diffuse = 1.0 - float(profile.cdf(2.0)) if not profile.negligible else 1.0
+        if profile.negligible:                       # all the weight is the Dirac at R = 2: cosine
             return np.full(d.shape, 1.0 / np.pi)
         scale = s * s / (2.0 * gammainc(2.0, s))     # q(R) = s R̂² e^{−sR} · scale
         inside = np.where(m < 1.0 - d, scale * (np.exp(-s * m) - np.exp(-s * (1.0 - d))) / np.pi, 0.0)
@@ -296,7 +298,7 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
     name = "generalized_lambertian"
     # --- what the model says about itself
     chapter = 4                  # eqs. 4.58, 4.59 (Table 4.3)
-    param_ranges = {"d": Interval(0.0, 1.0), "m_clip": Interval(0.0, 2.0, lo_open=True, hi_open=True),
+    param_ranges = {"d": Interval(0.0, 1.0), "m_clip": Interval(RADIUS_MIN, 2.0, hi_open=True),
                     "C": positive()}
     test_ranges = {"m_clip": log_range(5e-2, 1.99), "C": log_range(1e-3, 1e3)}
     examples = {"typical": {"d": 0.5}, "narrowest": {"d": 1.0}}
@@ -304,6 +306,7 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
     accuracy_families = {"generalized_lambertian": ("d", {})}
 
     def __post_init__(self):
+        check_declared(self, "m_clip")
         profile = patch.GeneralizedLambertProfile(self.d, self.m_clip)
         if self.C is None:
             _default_constant(self, patch.generalized_lambert_c_max(profile).value)
@@ -503,7 +506,7 @@ class PatchElliptical(_OnTheBasePlane, BRDF):
     name = "patch_elliptical"
     # --- what the model says about itself
     chapter = 4                  # eqs. 4.32, 4.34, 4.36
-    param_ranges = {"b": Interval(0.0, 2.0, lo_open=True), "ratio": Interval(0.0, 1.0, lo_open=True),
+    param_ranges = {"b": Interval(ELLIPSE_B_MIN, 2.0), "ratio": Interval(0.0, 1.0, lo_open=True),
                     "u_angle_deg": Interval(-np.inf, np.inf), "C": positive()}
     #: Figure 4.10's first ellipse; narrowest: Figure 4.11's copper (b = 0.08, B/A = 0.2)
     test_ranges = {"b": log_range(2e-2, 2.0), "ratio": log_range(5e-2, 1.0),
@@ -513,6 +516,7 @@ class PatchElliptical(_OnTheBasePlane, BRDF):
 
     def __post_init__(self):
         _check_radius("b", self.b)
+        check_declared(self, "b")
         if not 0.0 < float(self.ratio) <= 1.0:
             raise ValueError(f"patch_elliptical: ratio B/A must lie in (0, 1], got {self.ratio!r}")
         _default_constant(self, patch.elliptical_constant(self.b, self.ratio))

@@ -13,8 +13,9 @@ from scipy.special import beta, gammaln
 
 from brdfs.core.estimate import Estimate
 
-from brdfs.physics.models.base import (BRDF, GrazingLaw, Interval, check_positive, exact, log_range, non_negative,
-                                       positive, positive_power, register)
+from brdfs.physics.models.base import (N_MAX, PUMP_N_MAX, BRDF, GrazingLaw, Interval, check_declared,
+                                       check_positive, exact, log_range, non_negative, positive, positive_power,
+                                       register)
 from brdfs.physics import sampling
 
 
@@ -58,9 +59,11 @@ class _PhongFamily(BRDF):
     C: float | None = None
     #: the generic tests draw n from 0 and 1e-2 … 1e4 (the thesis's narrowest lobe), C from 1e-3 … 1e3
     test_ranges = {"n": log_range(1e-2, 1e4, zero=True), "C": log_range(1e-3, 1e3)}
+    pumping_ranges = {"n": non_negative(PUMP_N_MAX)}
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)
+        check_declared(self, "n")
         if self.C is None:
             object.__setattr__(self, "C", float(phong_constant(self.n)))
         check_positive("C", self.C)
@@ -98,7 +101,7 @@ class Phong(_PhongFamily):
     name = "phong"
     # --- what the model says about itself
     chapter = 2                  # eq. 2.6 (and eq. 3.5)
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     half_angle_exponent_factor = 4.0     # (R·V)^n = cos^n 2δ ≈ cos^{4n} δ at normal incidence
     corrected_by = "phong_cosmin"        # eq. 3.10
@@ -139,7 +142,7 @@ class PhongOriginal(_PhongFamily):
     name = "phong_original"
     # reciprocal = False: f divides by cos θ_L alone, f(L, V) ≠ f(V, L) (eq. 2.5)
     chapter = 2                  # eq. 2.5
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     # conserves_energy = False: divided by cos θ_L, its albedo grows without bound toward grazing
     # incidence (sec. 2.2, Figure 2.1; a(89.9°) ≈ 51 for n = 20)
@@ -148,7 +151,8 @@ class PhongOriginal(_PhongFamily):
     diverges_at_grazing = True   # a(θ) cos θ → the reciprocal Phong's a(90°) = c B(3/2, (n+1)/2) > 0
 
     def _eval(self, L, V, nl, nv):
-        return self._lobe_value(L, V) / nl
+        lobe = self._lobe_value(L, V)
+        return np.where(lobe > 0, lobe / nl, 0.0)          # 0, not 0/0, beyond the lobe on the horizon
 
 
 @register
@@ -158,7 +162,7 @@ class PhongCosmin(_PhongFamily):
 
     name = "phong_cosmin"
     chapter = 3                  # eq. 3.10
-    param_ranges = {"n": non_negative(), "C": positive()}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive()}
     examples = {"typical": {"n": 20.0}, "narrowest": {"n": 1.0e4}}
     # conserves_energy = False: with c = (n+2)/2π the albedo overshoots 1 slightly at intermediate
     # angles (sec. 3.2.2; Figure 3.1)
@@ -169,7 +173,8 @@ class PhongCosmin(_PhongFamily):
     limit_albedo_90 = 0.5        # eq. 3.27: (n+2)/(2(n+1)) → 1/2
 
     def _eval(self, L, V, nl, nv):
-        return self._lobe_value(L, V) / np.maximum(nl, nv)
+        lobe = self._lobe_value(L, V)
+        return np.where(lobe > 0, lobe / np.maximum(nl, nv), 0.0)
 
     def nv_levels(self, nl):
         return (nl,)
@@ -192,7 +197,7 @@ class PModel(_PhongFamily):
     p: float = 1.0
     name = "p_model"
     chapter = 3                  # eq. 3.12
-    param_ranges = {"n": non_negative(), "C": positive(), "p": Interval(0.0, 1.0)}
+    param_ranges = {"n": non_negative(N_MAX), "C": positive(), "p": Interval(0.0, 1.0)}
     examples = {"typical": {"n": 20.0, "p": 0.5}, "narrowest": {"n": 1.0e4, "p": 0.5}}
     # conserves_energy = False: p = 1 is the new model (eq. 3.10), which overshoots (sec. 3.2.2)
     conserves_energy = False
@@ -204,7 +209,8 @@ class PModel(_PhongFamily):
             raise ValueError(f"p must lie in [0, 1], got {self.p!r}")
 
     def _eval(self, L, V, nl, nv):
-        return self._lobe_value(L, V) / np.maximum(nl, nv) ** self.p
+        lobe = self._lobe_value(L, V)
+        return np.where(lobe > 0, lobe / np.maximum(nl, nv) ** self.p, 0.0)
 
     def nv_levels(self, nl):
         return (nl,)

@@ -42,7 +42,7 @@ from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.sampling import REJECTED
 from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence
-from brdfs.physics.models.base import BRDF, check_positive, exact, log_range, non_negative, positive, table_field, register
+from brdfs.physics.models.base import ALPHA_MAX, ALPHA_MIN, BRDF, Interval, check_declared, check_positive, exact, log_range, non_negative, positive, register, table_field
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
 
 G2_FORMS = ("separable", "height_correlated")
@@ -116,12 +116,12 @@ class _SmithMicrofacet(BRDF):
 
     # --- what the model says about itself
     chapter = None               # today's practice, beyond the thesis (issue 18)
-    param_ranges = {"alpha": positive(), "ior_re": positive(), "ior_im": non_negative()}
+    param_ranges = {"alpha": Interval(ALPHA_MIN, ALPHA_MAX), "ior_re": positive(), "ior_im": non_negative()}
     param_choices = {"G2": G2_FORMS, "compensation": COMPENSATIONS}
     #: α = 0.3 ≈ the Blinn-matched roughness of n = 20; α = 0.01, the narrowest the engine is held to
     examples = {"typical": {"alpha": 0.3}, "narrowest": {"alpha": 0.01}}
-    #: the generic tests draw α from 0.01 … 3, F = 1 (None) or n_re in 0.1 … 10, k from 0 and 1e-3 … 10
-    test_ranges = {"alpha": log_range(1e-2, 3.0), "ior_re": log_range(0.1, 10.0, none=True),
+    #: the generic tests draw α from 0.01 … 1, F = 1 (None) or n_re in 0.1 … 10, k from 0 and 1e-3 … 10
+    test_ranges = {"alpha": log_range(1e-2, 1.0), "ior_re": log_range(0.1, 10.0, none=True),
                    "ior_im": log_range(1e-3, 10.0, zero=True)}
     #: energy property: n_re ≥ 1 (k ≥ 0); below 1 with k = 0 the Fresnel factor has the kink of total
     #: internal reflection inside the lobe, which costs the engine ~7e6 evaluations (3 s) per draw
@@ -148,6 +148,7 @@ class _SmithMicrofacet(BRDF):
 
     def __post_init__(self):
         check_positive("alpha", self.alpha)
+        check_declared(self, "alpha")
         if self.G2 not in G2_FORMS:
             raise ValueError(f"G2 must be one of {G2_FORMS}, got {self.G2!r}")
         if self.compensation not in COMPENSATIONS:
