@@ -171,3 +171,29 @@ def test_a_render_csv_records_the_caustics_setting_and_names_only_contract_colum
         assert {"variant", "preset", "passes", "caustics"} <= set(df.columns)
         unlisted = {c for c in df.columns if c not in listed and not c.endswith("_per_pixel")}
         assert not unlisted, f"render columns missing from docs/contract.md: {sorted(unlisted)}"
+
+
+def test_the_groove_lines_of_figure_4_11_fall_on_their_spheres(tiny_cfg):
+    """The meridians drawn on Fig. 4.11 (camera projection of rf.project) land on the pixels Mitsuba
+    rendered of their own sphere: each sphere's centre and most of its meridian points hit its ID."""
+    from brdfs.artifacts import fig_4_11_anisotropic_metals as fig_4_11
+
+    cfg = copy.deepcopy(tiny_cfg)
+    cfg["renders"]["preview"] = {"min_width": 160, "min_height": 100, "spp": 8, "passes": 8}
+    panel = fig_4_11.panels(cfg)[0]
+    width, height = rf.panel_size(rf.settings(cfg), panel.aspect)
+    rendered = rf.render_panel(panel, cfg, rf.settings(cfg), width, height)
+    spheres = [(label, parts[0]) for label, parts, _ in panel.objects if parts[0]["type"] == "sphere"]
+    assert len(spheres) == 4
+    for label, part in spheres:
+        k = next(i for i, name in rendered.labels.items() if name == label)
+        col, row = rf.project(panel.camera, width, height, [part["center"]])[0]
+        assert rendered.ids[int(row), int(col)] == k, label
+        points = np.concatenate([rf.project(panel.camera, width, height, m)
+                                 for m in rf.sphere_meridians(panel.camera, part["center"], part["radius"])])
+        inside = (points[:, 0] >= 0) & (points[:, 0] < width) & (points[:, 1] >= 0) & (points[:, 1] < height)
+        hits = rendered.ids[points[inside, 1].astype(int), points[inside, 0].astype(int)]
+        assert inside.all() and np.mean(np.isin(hits, [k, rf.MIXED_ID])) > 0.97, label
+    image = np.zeros((height, width, 3), np.uint8)
+    overlay = fig_4_11.groove_overlay(panel, image)
+    assert overlay.any() and overlay.shape[0] < height
