@@ -197,3 +197,20 @@ def test_the_groove_lines_of_figure_4_11_fall_on_their_spheres(tiny_cfg):
     image = np.zeros((height, width, 3), np.uint8)
     overlay = fig_4_11.groove_overlay(panel, image)
     assert overlay.any() and overlay.shape[0] < height
+
+
+def test_a_framed_camera_centres_its_points_and_fills_the_picture():
+    """rf.framed_camera: the projected points are centred and reach the fill fraction on one axis,
+    keeping the camera's viewing direction."""
+    rng = np.random.default_rng(1)
+    points = rng.uniform((-2.0, -0.5, 0.0), (2.0, 0.5, 0.8), size=(400, 3))
+    camera = {"eye": (0.0, -6.0, 2.5), "target": (0.0, 0.0, 0.4), "fov_deg": 36.0}
+    framed = rf.framed_camera(camera, points, 1.6, fill=0.9)
+    pixels = rf.project(framed, 1600, 1000, points)
+    half = np.array([800.0, 500.0])
+    reach = np.abs(pixels - half).max(axis=0) / half
+    assert np.isclose(reach.max(), 0.9, atol=2e-3)
+    assert np.allclose(0.5 * (pixels.min(axis=0) + pixels.max(axis=0)), half, atol=2.0)
+    before = np.subtract(camera["eye"], camera["target"])
+    after = np.subtract(framed["eye"], framed["target"])
+    assert np.allclose(before / np.linalg.norm(before), after / np.linalg.norm(after))
