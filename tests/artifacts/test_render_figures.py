@@ -214,3 +214,19 @@ def test_a_framed_camera_centres_its_points_and_fills_the_picture():
     before = np.subtract(camera["eye"], camera["target"])
     after = np.subtract(framed["eye"], framed["target"])
     assert np.allclose(before / np.linalg.norm(before), after / np.linalg.norm(after))
+
+
+def test_no_sphere_of_figure_4_18_shadows_a_neighbour(tiny_cfg):
+    """Fig. 4.18's two-light panel: each sphere has the luminance it has alone in the scene (direct
+    light from delta lights, the same jittered samples: equal but for float rounding)."""
+    cfg = copy.deepcopy(tiny_cfg)
+    cfg["renders"]["preview"] = {"min_width": 120, "min_height": 40, "spp": 8, "passes": 8}
+    setup = rf.settings(cfg)
+    panel = dataclasses.replace(fig_4_18.panels(cfg)[1], spp=8)
+    width, height = rf.panel_size(setup, panel.aspect)
+    together = rf.compute_panels(cfg, fig_4_18.NAME, [panel], shared_scale=False).set_index("object")
+    for label, parts, spec in panel.objects:
+        alone = dataclasses.replace(panel, objects=[(label, parts, spec)])
+        row = rf.compute_panels(cfg, fig_4_18.NAME, [alone]).set_index("object").loc[label]
+        assert row["pixels"] == together.loc[label, "pixels"] and width > 0
+        assert np.isclose(row["luminance"], together.loc[label, "luminance"], rtol=1e-4), label
