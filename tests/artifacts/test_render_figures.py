@@ -67,10 +67,10 @@ def test_pumping_brightens_every_object_of_figure_2_8(tiny_cfg):
                   - 5 * np.hypot(pumped.loc[metals, "luminance_err"], plain.loc[metals, "luminance_err"]))
     assert (pumped.loc[metals, "luminance"] > plain.loc[metals, "luminance"] * 1.01).any()
     assert len(df.attrs["images"]) == 4            # two panels, the silver pyramid's crops and profile
-    # the viewing-angle profile (Y per θ_V bin of the silver pyramid): pumped brighter on the side face
+    # the limb profile (Y per θ_V bin of a silver sphere under daylight): pumped brighter near the limb
     outer = profile.loc[profile.groupby("level")["theta_v_deg"].idxmax()].set_index("level")
-    assert set(outer.index) == {0, 1} and (profile["object"] == "silver pyramid").all()
-    assert outer["theta_v_deg"].min() > 50.0
+    assert set(outer.index) == {0, 1} and (profile["object"] == "silver sphere, daylight only").all()
+    assert outer["theta_v_deg"].min() > 70.0
     assert outer.loc[1, "luminance"] > outer.loc[0, "luminance"] + 2 * np.hypot(*outer["luminance_err"])
 
 
@@ -171,3 +171,62 @@ def test_a_render_csv_records_the_caustics_setting_and_names_only_contract_colum
         assert {"variant", "preset", "passes", "caustics"} <= set(df.columns)
         unlisted = {c for c in df.columns if c not in listed and not c.endswith("_per_pixel")}
         assert not unlisted, f"render columns missing from docs/contract.md: {sorted(unlisted)}"
+
+
+def test_the_groove_lines_of_figure_4_11_fall_on_their_spheres(tiny_cfg):
+    """The meridians drawn on Fig. 4.11 (camera projection of rf.project) land on the pixels Mitsuba
+    rendered of their own sphere: each sphere's centre and most of its meridian points hit its ID."""
+    from brdfs.artifacts import fig_4_11_anisotropic_metals as fig_4_11
+
+    cfg = copy.deepcopy(tiny_cfg)
+    cfg["renders"]["preview"] = {"min_width": 160, "min_height": 100, "spp": 8, "passes": 8}
+    panel = fig_4_11.panels(cfg)[0]
+    width, height = rf.panel_size(rf.settings(cfg), panel.aspect)
+    rendered = rf.render_panel(panel, cfg, rf.settings(cfg), width, height)
+    spheres = [(label, parts[0]) for label, parts, _ in panel.objects if parts[0]["type"] == "sphere"]
+    assert len(spheres) == 4
+    for label, part in spheres:
+        k = next(i for i, name in rendered.labels.items() if name == label)
+        col, row = rf.project(panel.camera, width, height, [part["center"]])[0]
+        assert rendered.ids[int(row), int(col)] == k, label
+        points = np.concatenate([rf.project(panel.camera, width, height, m)
+                                 for m in rf.sphere_meridians(panel.camera, part["center"], part["radius"])])
+        inside = (points[:, 0] >= 0) & (points[:, 0] < width) & (points[:, 1] >= 0) & (points[:, 1] < height)
+        hits = rendered.ids[points[inside, 1].astype(int), points[inside, 0].astype(int)]
+        assert inside.all() and np.mean(np.isin(hits, [k, rf.MIXED_ID])) > 0.97, label
+    image = np.zeros((height, width, 3), np.uint8)
+    overlay = fig_4_11.groove_overlay(panel, image)
+    assert overlay.any() and overlay.shape[0] < height
+
+
+def test_a_framed_camera_centres_its_points_and_fills_the_picture():
+    """rf.framed_camera: the projected points are centred and reach the fill fraction on one axis,
+    keeping the camera's viewing direction."""
+    rng = np.random.default_rng(1)
+    points = rng.uniform((-2.0, -0.5, 0.0), (2.0, 0.5, 0.8), size=(400, 3))
+    camera = {"eye": (0.0, -6.0, 2.5), "target": (0.0, 0.0, 0.4), "fov_deg": 36.0}
+    framed = rf.framed_camera(camera, points, 1.6, fill=0.9)
+    pixels = rf.project(framed, 1600, 1000, points)
+    half = np.array([800.0, 500.0])
+    reach = np.abs(pixels - half).max(axis=0) / half
+    assert np.isclose(reach.max(), 0.9, atol=2e-3)
+    assert np.allclose(0.5 * (pixels.min(axis=0) + pixels.max(axis=0)), half, atol=2.0)
+    before = np.subtract(camera["eye"], camera["target"])
+    after = np.subtract(framed["eye"], framed["target"])
+    assert np.allclose(before / np.linalg.norm(before), after / np.linalg.norm(after))
+
+
+def test_no_sphere_of_figure_4_18_shadows_a_neighbour(tiny_cfg):
+    """Fig. 4.18's two-light panel: each sphere has the luminance it has alone in the scene (direct
+    light from delta lights, the same jittered samples: equal but for float rounding)."""
+    cfg = copy.deepcopy(tiny_cfg)
+    cfg["renders"]["preview"] = {"min_width": 120, "min_height": 40, "spp": 8, "passes": 8}
+    setup = rf.settings(cfg)
+    panel = dataclasses.replace(fig_4_18.panels(cfg)[1], spp=8)
+    width, height = rf.panel_size(setup, panel.aspect)
+    together = rf.compute_panels(cfg, fig_4_18.NAME, [panel], shared_scale=False).set_index("object")
+    for label, parts, spec in panel.objects:
+        alone = dataclasses.replace(panel, objects=[(label, parts, spec)])
+        row = rf.compute_panels(cfg, fig_4_18.NAME, [alone]).set_index("object").loc[label]
+        assert row["pixels"] == together.loc[label, "pixels"] and width > 0
+        assert np.isclose(row["luminance"], together.loc[label, "luminance"], rtol=1e-4), label

@@ -481,6 +481,97 @@ def object_crop(image: np.ndarray, ids: np.ndarray, labels: dict, label: str, ma
     return image[r0:r1, c0:c1]
 
 
+def project(camera: dict, width: int, height: int, points) -> np.ndarray:
+    """Continuous (column, row) image coordinates of world ``points`` (N, 3) in a ``width`` × ``height``
+    panel seen by ``camera`` (eye, target, vertical ``fov_deg``, up +z: Mitsuba's ``look_at`` and
+    ``perspective`` with ``fov_axis = "y"``); pixel (i, j) covers [j, j + 1) × [i, i + 1)."""
+    eye, target = np.asarray(camera["eye"], float), np.asarray(camera["target"], float)
+    forward = (target - eye) / np.linalg.norm(target - eye)
+    right = np.cross(forward, (0.0, 0.0, 1.0))
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    rel = np.atleast_2d(np.asarray(points, float)) - eye
+    depth = rel @ forward
+    focal = 0.5 * height / np.tan(np.radians(camera.get("fov_deg", 30.0)) / 2.0)
+    return np.stack([0.5 * width + focal * (rel @ right) / depth, 0.5 * height - focal * (rel @ up) / depth], axis=-1)
+
+
+def framed_camera(camera: dict, points, aspect: float, fill: float = 0.92, rounds: int = 4) -> dict:
+    """``camera`` moved along its own viewing direction (its field of view kept) and shifted sideways,
+    so that the projections of ``points`` (N, 3: the objects to show) are centred and fill ``fill``
+    of the picture's width or height, whichever they reach first (``aspect`` = width / height)."""
+    points = np.asarray(points, float)
+    height = 1000.0
+    width = aspect * height
+    eye, target = np.asarray(camera["eye"], float), np.asarray(camera["target"], float)
+    back = (eye - target) / np.linalg.norm(eye - target)
+    target = 0.5 * (points.min(axis=0) + points.max(axis=0))
+    focal = 0.5 * height / np.tan(np.radians(camera.get("fov_deg", 30.0)) / 2.0)
+
+    def extent(distance, centre):
+        pixels = project({**camera, "eye": centre + distance * back, "target": centre}, width, height, points)
+        return max(np.abs(pixels[:, 0] - width / 2).max() / (width / 2), np.abs(pixels[:, 1] - height / 2).max() / (height / 2))
+
+    distance = float(np.linalg.norm(eye - np.asarray(camera["target"], float)))
+    for _ in range(rounds):
+        lo, hi = 1e-3 + np.linalg.norm(points - target, axis=1).max(), 1e3
+        for _ in range(60):                  # bisection: the extent shrinks as the camera backs off
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if extent(mid, target) > fill else (lo, mid)
+        distance = hi
+        cam = {**camera, "eye": target + distance * back, "target": target}
+        pixels = project(cam, width, height, points)
+        offset = 0.5 * (pixels.min(axis=0) + pixels.max(axis=0)) - (width / 2, height / 2)
+        forward = -back
+        right = np.cross(forward, (0.0, 0.0, 1.0))
+        right /= np.linalg.norm(right)
+        up = np.cross(right, forward)
+        target = target + (offset[0] * right - offset[1] * up) * distance / focal
+    return {**camera, "eye": tuple(float(v) for v in target + distance * back), "target": tuple(float(v) for v in target)}
+
+
+def object_points(objects, skip=("floor",)) -> np.ndarray:
+    """The vertices (and sphere centres ± radius) of ``objects`` (label, parts, spec) but those labelled ``skip``."""
+    out = []
+    for label, parts, _ in objects:
+        if label in skip:
+            continue
+        for part in parts:
+            if "vertices" in part:
+                out.append(np.asarray(part["vertices"], float))
+            elif part.get("type") == "sphere":
+                out.append(np.asarray(part["center"]) + part["radius"] * np.vstack([np.eye(3), -np.eye(3)]))
+    return np.concatenate(out)
+
+
+def draw_polylines(image: np.ndarray, lines, colour=(255, 255, 255), width: int = 1) -> np.ndarray:
+    """A copy of ``image`` (H, W, 3 uint8) with the polylines ``lines`` (each (N, 2) column, row) drawn."""
+    from PIL import Image, ImageDraw
+
+    out = Image.fromarray(np.ascontiguousarray(image[..., :3]))
+    draw = ImageDraw.Draw(out)
+    for line in lines:
+        if len(line) > 1:
+            draw.line([tuple(map(float, p)) for p in line], fill=tuple(colour), width=width)
+    return np.asarray(out)
+
+
+def sphere_meridians(camera: dict, center, radius: float, count: int = 12, steps: int = 48) -> list[np.ndarray]:
+    """World polylines of ``count`` meridians (great circles through the poles) of a sphere, each cut
+    to its stretches on the hemisphere facing ``camera``'s eye."""
+    center, eye = np.asarray(center, float), np.asarray(camera["eye"], float)
+    polar = np.linspace(0.0, np.pi, steps)
+    out = []
+    for phi in np.linspace(0.0, 2.0 * np.pi, count, endpoint=False):
+        normal = np.stack([np.cos(phi) * np.sin(polar), np.sin(phi) * np.sin(polar), np.cos(polar)], axis=-1)
+        points = center + radius * normal
+        facing = np.einsum("ij,ij->i", normal, eye - points) > 0.0
+        for run in np.split(np.arange(steps), np.flatnonzero(np.diff(facing.astype(int))) + 1):
+            if facing[run[0]] and run.size > 1:
+                out.append(points[run])
+    return out
+
+
 # --- the PNG at native resolution ---------------------------------------------------------------------
 
 TITLE_PX = 22

@@ -47,10 +47,11 @@ def row_of_objects(cfg, entries, title, shapes_of, model="phong_cosmin"):
 
 
 def three_teapots():
-    """Three teapots in a row, the middle one a little behind (it mirrors the other two);
-    :func:`brdfs.render.mitsuba.scenes.teapot` (Newell's teapot, tessellated)."""
-    return [("teapot", msc.teapot(-1.9, -0.6, 1.0)), ("teapot", msc.teapot(0.0, 0.4, 1.1)),
-            ("teapot", msc.teapot(1.9, -0.6, 1.0))]
+    """Three teapots, the middle one behind the other two (it mirrors them, as the thesis's does),
+    close together so that the framed camera (:func:`~brdfs.artifacts._render_figures.framed_camera`)
+    shows them large; :func:`brdfs.render.mitsuba.scenes.teapot` (Newell's teapot, tessellated)."""
+    return [("teapot", msc.teapot(-1.25, -0.45, 1.0)), ("teapot", msc.teapot(0.0, 0.6, 1.1)),
+            ("teapot", msc.teapot(1.25, -0.45, 1.0))]
 
 
 def mirror_scene(cfg, entries, title):

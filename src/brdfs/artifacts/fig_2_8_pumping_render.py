@@ -5,16 +5,21 @@ same divided once by its albedo (g1, eq. 2.20; albedo table of brdfs.numerics.pu
 lights plus homogeneous daylight, Monte Carlo paths. One display scale for the four panels. The
 thesis's scene: a golden tank with aluminium, silver, copper and golden pyramids.
 
+All four panels have the same samples per pixel, seeds and passes (common random numbers).
+
 The argument of the figure is where the angle of viewing is large (section 2.3: the unpumped
-n = 5000 surfaces stay dark there under daylight), so below the panels are (left) the silver
-pyramid of each panel cropped at native resolution, side by side, and (right) its *viewing-angle
-profile*: the mean luminance Y of the pyramid's pixels in bins of the viewing angle θ_V (the
-integrator's cos θ_V AOV), per panel, with its standard error over the independently seeded
-passes. A flat face is seen at one θ_V (within the perspective's few degrees), so the profile has
-a point per visible face: the front faces near 8° and 11°, the side faces near 75° and 87°; the
-pixels on the edges between faces, mixtures of two, fill no bin. The CSV carries the profile as rows with
+n = 5000 surfaces stay dark there under daylight). Below the panels: (left, top) the silver pyramid
+of each panel cropped at native resolution, each labelled with its panel; (left, bottom) the *limb
+render*: a silver sphere of each panel's material alone under the daylight S (no point lights, no
+floor, a black background), four spheres in one small scene; (right) the sphere's *limb profile*: the mean luminance Y
+of its pixels in bins of the viewing angle θ_V (the integrator's cos θ_V AOV) from the centre
+(θ_V = 0) across the limb (θ_V → 90°), per material, with its standard error over the independently
+seeded passes. A convex sphere under a constant sky shows S times its directional albedo at θ_V, so
+the profile is the albedo curve the pumping flattens. Only the pixels within ``LIMB_WEDGE_DEG`` of
+the vertical through each sphere's centre are binned, where the reflections look up or down into
+the sky rather than sideways at the neighbouring spheres. The CSV carries the profile as rows with
 ``theta_v_deg`` (the bin's mean θ_V), ``theta_v_lo_deg``, ``theta_v_hi_deg``, ``pixels``,
-``luminance``, ``luminance_err``.
+``luminance``, ``luminance_err``, their ``panel`` the panel whose material the sphere has.
 """
 from __future__ import annotations
 
@@ -22,6 +27,7 @@ import numpy as np
 import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
+from brdfs.render import spectrum
 from brdfs.render.mitsuba import scenes as msc
 from brdfs.pipeline.registry import figure
 
@@ -47,51 +53,105 @@ def panels(cfg: dict) -> list:
 
 #: Half the base and the height of the pyramids (scene units; the tank behind them stays in view).
 PYRAMID_HALF_BASE, PYRAMID_HEIGHT = 0.45, 0.95
-#: The object that is cropped and profiled beside the panels (the argument of the figure).
+#: The object that is cropped beside the panels.
 PROFILED_OBJECT = "silver pyramid"
+#: The metal of the limb spheres, and the label of their rows.
+LIMB_METAL = "silver"
+LIMB_OBJECT = "silver sphere, daylight only"
+#: The limb render: sphere radius and spacing (scene units), its aspect (its width: the preset's
+#: min_width, at least LIMB_MIN_WIDTH pixels), the camera.
+LIMB_RADIUS, LIMB_SPACING, LIMB_ASPECT, LIMB_MIN_WIDTH = 0.85, 2.3, 640 / 150, 192
+LIMB_CAMERA = {"eye": (0.0, -40.0, 0.0), "target": (0.0, 0.0, 0.0), "fov_deg": 2.95}
+#: Samples per pixel of the limb render: a profile bin averages hundreds of pixels, so few suffice.
+LIMB_SPP = 16
+#: Half-width of the wedge about each sphere's vertical whose pixels the limb profile bins (degrees).
+LIMB_WEDGE_DEG = 30.0
 #: Bins of the viewing angle θ_V of the profile (degrees).
-PROFILE_EDGES_DEG = tuple(float(x) for x in range(0, 95, 5))
-#: Fewest pixels a profile bin needs to be reported, as a share of the object's pixels: a face's
-#: bins pass, the edges between faces (pixels mixing two θ_V) do not.
-MIN_BIN_SHARE = 0.02
+PROFILE_EDGES_DEG = tuple(float(x) for x in range(0, 91, 3))
+#: Fewest pixels a profile bin needs to be reported.
+MIN_BIN_PIXELS = 8
 #: Size of the profile chart in the PNG (pixels).
 CHART_PX = (640, 400)
 
 
-def viewing_angle_profile(rendered, channels: int, label: str = PROFILED_OBJECT) -> list[dict]:
-    """Rows of the viewing-angle profile of ``label`` in one rendered panel: per θ_V bin holding at
-    least :data:`MIN_BIN_SHARE` of its pixels, the pixels, mean Y and its standard error over the passes."""
-    k = next(i for i, name in rendered.labels.items() if name == label)
-    mask = rendered.ids == k
+def limb_panel(cfg: dict, the_panels: list) -> rf.Panel:
+    """The silver sphere of each panel's material (Phong n, pumping) in a row, under the daylight only."""
+    objects = []
+    xs = [LIMB_SPACING * (k - (len(the_panels) - 1) / 2) for k in range(len(the_panels))]
+    for k, (x, panel) in enumerate(zip(xs, the_panels)):
+        spec = next(spec for label, _, spec in panel.objects if label == PROFILED_OBJECT)
+        objects.append((f"{LIMB_OBJECT} {k}", msc.sphere((x, 0.0, 0.0), LIMB_RADIUS), {**spec, "metal": LIMB_METAL}))
+    # camera rays that miss see black (the sky still lights the spheres): the silhouettes stand out
+    return rf.Panel("limb", objects, [], LIMB_CAMERA, aspect=LIMB_ASPECT, reference=(), background=0.0,
+                    spp=LIMB_SPP)
+
+
+def limb_profile(rendered, panel: rf.Panel, channels: int) -> list[dict]:
+    """Rows of the limb profile of each sphere of the limb render: per θ_V bin with at least
+    :data:`MIN_BIN_PIXELS` pure pixels inside the vertical wedge, the pixels, mean Y and its
+    standard error over the passes; ``panel`` the index of the sphere (its main panel)."""
+    height, width = rendered.ids.shape
     theta = np.degrees(np.arccos(np.clip(rendered.cos_v, 0.0, 1.0)))
-    y = rendered.luminance_passes(channels)                       # (passes, H, W)
-    rows = []
-    for lo, hi in zip(PROFILE_EDGES_DEG[:-1], PROFILE_EDGES_DEG[1:]):
-        sel = mask & (theta >= lo) & (theta < hi)
-        if sel.sum() < max(MIN_BIN_SHARE * mask.sum(), 4):
-            continue
-        per_pass = y[:, sel].mean(axis=1)
-        rows.append({"object": label, "theta_v_deg": float(np.mean(theta[sel])), "theta_v_lo_deg": lo,
-                     "theta_v_hi_deg": hi, "pixels": int(sel.sum()), "luminance": float(per_pass.mean()),
-                     "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size))})
-    return rows
+    y = rendered.luminance_passes(channels)
+    rows_px, cols_px = np.mgrid[0:height, 0:width] + 0.5
+    out = []
+    for k, (label, parts, _) in enumerate(panel.objects):
+        ident = next(i for i, name in rendered.labels.items() if name == label)
+        col, row = rf.project(panel.camera, width, height, [parts[0]["center"]])[0]
+        off_vertical = np.degrees(np.arctan2(np.abs(cols_px - col), np.abs(rows_px - row)))
+        mask = (rendered.ids == ident) & (off_vertical <= LIMB_WEDGE_DEG)
+        for lo, hi in zip(PROFILE_EDGES_DEG[:-1], PROFILE_EDGES_DEG[1:]):
+            sel = mask & (theta >= lo) & (theta < hi)
+            if sel.sum() < MIN_BIN_PIXELS:
+                continue
+            per_pass = y[:, sel].mean(axis=1)
+            out.append({"panel": k, "object": LIMB_OBJECT, "theta_v_deg": float(np.mean(theta[sel])),
+                        "theta_v_lo_deg": lo, "theta_v_hi_deg": hi, "pixels": int(sel.sum()),
+                        "luminance": float(per_pass.mean()),
+                        "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size))})
+    return out
 
 
-def profiled_crops(df: pd.DataFrame) -> np.ndarray:
-    """PROFILED_OBJECT in every panel, at native resolution, side by side (one image)."""
-    crops = [rf.object_crop(image, ids, labels, PROFILED_OBJECT)
-             for (_, image), (ids, labels) in zip(df.attrs["images"], df.attrs["ids"]) if PROFILED_OBJECT in labels.values()]
-    height, gap = max(c.shape[0] for c in crops), 6
-    out = np.full((height, sum(c.shape[1] for c in crops) + gap * (len(crops) - 1), 3), 255, np.uint8)
+def short_title(title: str) -> str:
+    """'reciprocal Phong, n = 20' -> 'Phong n=20'; 'pumped once (g1), n = 5000' -> 'g1 n=5000'."""
+    return title.replace("reciprocal Phong", "Phong").replace("pumped once (g1)", "g1").replace(", n = ", ", n = ")
+
+
+def labelled_strip(images: list[np.ndarray], labels: list[str], width: int, gap: int = 6) -> np.ndarray:
+    """``images`` side by side at native resolution on white, each under its label, ``width`` wide."""
+    from PIL import Image, ImageDraw, ImageFont
+
+    font = ImageFont.load_default(size=11)
+    label_px = 15
+    height = max(img.shape[0] for img in images) + label_px
+    out = Image.new("RGB", (max(width, sum(i.shape[1] for i in images) + gap * (len(images) - 1)), height), "white")
+    draw = ImageDraw.Draw(out)
     x = 0
-    for crop in crops:
-        out[:crop.shape[0], x:x + crop.shape[1]] = crop[..., :3]
-        x += crop.shape[1] + gap
+    for img, label in zip(images, labels):
+        out.paste(Image.fromarray(np.ascontiguousarray(img[..., :3])), (x, label_px))
+        draw.text((x + img.shape[1] / 2, 1), label, fill="black", font=font, anchor="ma")
+        x += img.shape[1] + gap
+    return np.asarray(out)
+
+
+def bottom_left_cell(crops_and_titles: list, limb_image: np.ndarray, limb_panel_: rf.Panel, titles: list[str]) -> np.ndarray:
+    """The pyramid crops (labelled) above the limb render (each sphere labelled), one image."""
+    width = limb_image.shape[1]
+    crops = labelled_strip([c for c, _ in crops_and_titles], [short_title(t) for _, t in crops_and_titles], width)
+    height, width = limb_image.shape[:2]
+    spheres = []
+    for label, parts, _ in limb_panel_.objects:
+        col, _ = rf.project(limb_panel_.camera, width, height, [parts[0]["center"]])[0]
+        spheres.append(limb_image[:, max(int(col) - width // 8, 0):int(col) + width // 8])
+    limb = labelled_strip(spheres, [short_title(t) for t in titles], width, gap=0)
+    out = np.full((crops.shape[0] + 10 + limb.shape[0], max(crops.shape[1], limb.shape[1]), 3), 255, np.uint8)
+    out[:crops.shape[0], :crops.shape[1]] = crops
+    out[crops.shape[0] + 10:, :limb.shape[1]] = limb
     return out
 
 
 def profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
-    """The viewing-angle profiles as an RGB image of CHART_PX pixels: Y against θ_V, one curve per panel, ±2 SE."""
+    """The limb profiles as an RGB image of CHART_PX pixels: Y against θ_V, one curve per panel's material, ±2 SE."""
     import matplotlib
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -100,16 +160,15 @@ def profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
     fig = Figure(figsize=(CHART_PX[0] / dpi, CHART_PX[1] / dpi), dpi=dpi)
     FigureCanvasAgg(fig)
     ax = fig.add_axes([0.11, 0.13, 0.86, 0.8])
-    # markers only: between the faces' viewing angles there is nothing to draw a line through
-    styles = ["C0o", "C0s", "C3o", "C3s"]
+    styles = ["C0o-", "C0s--", "C3o-", "C3s--"]
     for k, title in enumerate(titles):
         part = profile[profile["panel"] == k].sort_values("theta_v_deg")
         if part.empty:
             continue
         ax.errorbar(part["theta_v_deg"], part["luminance"], yerr=2 * part["luminance_err"],
-                    fmt=styles[k % len(styles)], ms=5, mfc="none" if k % 2 else None, capsize=2, lw=1.2,
+                    fmt=styles[k % len(styles)], ms=3, mfc="none" if k % 2 else None, capsize=2, lw=1.2,
                     label=title)
-    ax.set_xlabel("viewing angle θ_V on the silver pyramid's faces (deg)", fontsize=8)
+    ax.set_xlabel("viewing angle θ_V across the silver sphere's limb (deg)", fontsize=8)
     ax.set_ylabel("mean luminance Y (±2 SE)", fontsize=8)
     ax.set_xlim(0, 90)
     ax.tick_params(labelsize=7)
@@ -122,32 +181,37 @@ def profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    profiles = []
-
-    def keep_profile(panel, rendered):
-        profiles.append(viewing_angle_profile(rendered, rf.SPECTRAL))
-        return rendered
-
     the_panels = panels(cfg)
-    df = rf.compute_panels(cfg, NAME, the_panels, post=keep_profile)
-    # a profile row carries the silver pyramid's material and the panel's scene columns
+    df = rf.compute_panels(cfg, NAME, the_panels)
+    setup = rf.figure_setup(rf.settings(cfg), NAME)
+    limb = limb_panel(cfg, the_panels)
+    limb_width = max(setup["min_width"], LIMB_MIN_WIDTH)
+    limb_size = (limb_width, int(round(limb_width / LIMB_ASPECT)))
+    rendered = rf.render_panel(limb, cfg, setup, *limb_size)
+    profile_rows = limb_profile(rendered, limb, rf.SPECTRAL)
+    # a profile row carries its panel's silver pyramid's material and scene columns, the limb render's size
     per_panel = df[df["object"] == PROFILED_OBJECT].set_index("panel")
-    columns = [c for c in per_panel.columns if c not in ("object", "pixels", "luminance", "luminance_err")]
-    rows = [{**per_panel.loc[k, columns].to_dict(), "panel": k, **row}
-            for k, panel_rows in enumerate(profiles) for row in panel_rows]
+    columns = [c for c in per_panel.columns if c not in ("object", "pixels", "luminance", "luminance_err")
+               and not c.startswith(("object_", "p95", "fireflies"))]
+    rows = [{**per_panel.loc[row["panel"], columns].to_dict(), "width": limb_size[0], "height": limb_size[1], "spp": rendered.spp,
+             "point_lights": 0, "max_depth": limb.max_depth, **row} for row in profile_rows]
     profile = pd.DataFrame(rows)
     images, ids = df.attrs["images"], df.attrs["ids"]
     out = pd.concat([df, profile], ignore_index=True)
     out.attrs["ids"] = ids
     out.attrs[rf.RADIANCE] = df.attrs[rf.RADIANCE]
-    out.attrs["images"] = images
-    crops = profiled_crops(out)
-    out.attrs["images"] = images + [("the silver pyramid, native resolution", crops),
-                                    ("viewing-angle profile of the silver pyramid",
-                                     profile_chart(profile, [title for title, _ in images]))]
+    titles = [title for title, _ in images]
+    crops = [(rf.object_crop(image, panel_ids, labels, PROFILED_OBJECT), title)
+             for (title, image), (panel_ids, labels) in zip(images, ids)]
+    scale = df["display_scale"].iloc[0]
+    limb_image = spectrum.to_display(spectrum.linear_rgb(rendered.radiance), scale)
+    out.attrs["images"] = images + [("the silver pyramid (native resolution); a silver sphere under daylight",
+                                     bottom_left_cell(crops, limb_image, limb, titles)),
+                                    ("limb profile of the silver sphere under daylight",
+                                     profile_chart(profile, titles))]
     return out
 
 
 def plot(df: pd.DataFrame, path) -> None:
     rf.plot_panels(df, path, "Fig. 2.8: metals, reciprocal Phong (top) and pumped once (bottom); "
-                   "the silver pyramid below", columns=len(set(df["n"].dropna())))
+                   "the silver pyramid and a sphere's limb below", columns=len(set(df["n"].dropna())))

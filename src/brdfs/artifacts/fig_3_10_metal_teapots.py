@@ -1,9 +1,9 @@
 """Fig. 3.10: gold, silver and copper teapots (Newell's, tessellated: :mod:`brdfs.render.mitsuba.geometry`) with
 the new model on a diffuse plane; the caption (workflow/report/captions/fig_3_10_metal_teapots.rst) states the choices.
 
-The middle teapot stands a little behind the others, so that with its high n it mirrors them (as
-the thesis's does); the camera is closer than the street camera of the sphere scenes and the
-panel wider (aspect 1.6), so that the teapots fill the frame with every spout and handle in it.
+The middle teapot stands behind the others, so that with its high n it mirrors them (as the
+thesis's does); the camera keeps CAMERA's direction and field of view and is moved so that the
+teapots fill the frame, every spout and handle in it (:func:`~brdfs.artifacts._render_figures.framed_camera`).
 """
 from __future__ import annotations
 
@@ -16,13 +16,15 @@ from brdfs.artifacts import _render_metal_scenes as ms
 from brdfs.pipeline.registry import figure
 
 NAME = "fig_3_10_metal_teapots"
-CAMERA = {"eye": (0.0, -6.2, 2.5), "target": (0.0, 0.0, 0.4), "fov_deg": 36.0}
+#: The camera's direction and field of view (its distance and target: framed on the teapots).
+CAMERA = {"eye": (0.0, -6.2, 2.8), "target": (0.0, 0.0, 0.4), "fov_deg": 36.0}
+ASPECT = 1.6
 
 
 def panels(cfg: dict) -> list:
     s = cfg[rf.SECTION]
     entries = s["new_model_metals"]["fig_3_10"]
-    return [dataclasses.replace(p, camera=CAMERA, aspect=1.6)
+    return [dataclasses.replace(p, camera=rf.framed_camera(CAMERA, rf.object_points(p.objects), ASPECT), aspect=ASPECT)
             for p in ms.row_of_objects(cfg, entries, "teapots: " + ms.describe(entries), ms.three_teapots())]
 
 

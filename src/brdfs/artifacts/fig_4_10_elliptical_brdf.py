@@ -39,13 +39,16 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    """One panel per ellipse: f over the projected disk."""
+    """One panel per ellipse: f over the projected disk; the y axis is shared and labelled once, so
+    that no label stands over a neighbouring panel."""
     groups = list(df.groupby(["b", "ratio", "u_angle_deg"], sort=False))
-    fig = plotting.plt.figure(figsize=(3.4 * len(groups), 3.6))
-    for ax, ((b, ratio, angle), group) in zip(np.atleast_1d(fig.subplots(1, len(groups))), groups):
+    fig = plotting.plt.figure(figsize=(3.6 * len(groups), 3.8))
+    axes = np.atleast_1d(fig.subplots(1, len(groups), sharey=True))
+    for ax, ((b, ratio, angle), group) in zip(axes, groups):
         ax.scatter(group["x"], group["y"], c=group["brdf"], s=2, marker="s", cmap="viridis")
         ax.add_patch(plotting.plt.Circle((0, 0), 1.0, fill=False, color="k", lw=0.8))
-        ax.set(aspect="equal", xlim=(-1.05, 1.05), ylim=(-1.05, 1.05),
-               title=f"b = {b:g}, B/A = {ratio:g}, u at {angle:g} deg", xlabel="x = V_P,x", ylabel="y = V_P,y")
+        ax.set(aspect="equal", xlim=(-1.05, 1.05), ylim=(-1.05, 1.05), xlabel="x = V_P,x")
+        ax.set_title(f"b = {b:g}, B/A = {ratio:g}, u at {angle:g} deg", fontsize=8)
+    axes[0].set_ylabel("y = V_P,y")
     fig.suptitle(f"Fig. 4.10: elliptical basic BRDFs, theta_L = {df['theta_deg'].iloc[0]:g} deg (all: open choices)")
     plotting.savefig(fig, path)

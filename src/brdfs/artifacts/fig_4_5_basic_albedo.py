@@ -44,17 +44,21 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def plot(df: pd.DataFrame, path) -> None:
-    """Left: a_R(θ) per R with the bound; right: a_R(90°) against R."""
-    fig = plotting.plt.figure(figsize=(9.6, 4.0))
+    """Left: a_R(θ) per R with the bound; right: a_R(90°) against R. The legends stand outside the
+    axes (below them), where no curve or bound line crosses them."""
+    fig = plotting.plt.figure(figsize=(9.6, 4.6))
     left, right = fig.subplots(1, 2)
     for R, group in df[df["series"] == "curve"].groupby("R"):
         left.plot(group["theta_deg"], group["albedo"], label=f"R = {R:g}")
-    left.axhline(BOUND, color="k", ls=":", label="2/3 - sqrt(3)/(2 pi)")
-    left.set(xlabel="theta [deg]", ylabel="albedo a_R", title="Fig. 4.5: basic BRDF albedo (R: open choice)", ylim=(0, 1.05))
+    left.axhline(BOUND, color="k", ls=":", label="bound 2/3 - sqrt(3)/(2 pi)")
+    left.set(xlabel="theta [deg]", ylabel="albedo a_R", title="a_R(theta) per R (R: open choice)", ylim=(0, 1.05))
     scan = df[df["series"] == "grazing_scan"]
     right.plot(scan["R"], scan["albedo"], label="a_R(90 deg)")
     right.axhline(BOUND, color="k", ls=":", label="bound")
     right.set(xlabel="R", ylabel="albedo at 90 deg", title="minimum over R at horizontal illumination")
+    for ax, columns in ((left, 4), (right, 2)):
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=columns, fontsize=7)
+    fig.suptitle("Fig. 4.5: basic BRDF albedo")
     plotting.savefig(fig, path)
 
 

@@ -19,6 +19,9 @@ from brdfs.pipeline.registry import figure
 
 NAME = "fig_4_9_sampling_efficiency"
 CAMERA = {"eye": (0.0, -9.0, 2.2), "target": (0.0, 0.0, 0.7), "fov_deg": 25.0}    # all three spheres in frame
+#: The thesis's render times per strategy (its caption: 50 samples per pixel, 51, 46 and 54 min).
+THESIS_MINUTES = {"cosine": 51.0, "accept_reject": 46.0, "normal": 54.0}
+THESIS_SPP = 50
 
 
 def panels(cfg: dict) -> list:
@@ -32,7 +35,8 @@ def panels(cfg: dict) -> list:
                             {"model": "patch_exponential", "metal": entry["metal"], "s": entry["s"],
                              "strategy": strategy, "mis_density": spec["mis_density"], "count": 1}))
         out.append(rf.Panel(f"{strategy.replace('_', '/')} sampling", objects, rf.TWO_LIGHTS, CAMERA,
-                            aspect=1.6, extra={"strategy": strategy}))
+                            aspect=1.6, extra={"strategy": strategy,
+                                                  "thesis_minutes": THESIS_MINUTES.get(strategy, float("nan"))}))
     return out
 
 
@@ -50,5 +54,22 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     return _costs(rf.compute_panels(cfg, NAME, panels(cfg), count=True))
 
 
+def panel_costs(df: pd.DataFrame) -> list[str]:
+    """Per panel, its cost line: samples per pixel, rays and the spheres' plugin evaluations per
+    pixel (counts, identical run to run), beside the thesis's minutes at its 50 spp."""
+    out = []
+    for _, rows in df.groupby("panel", sort=True):
+        first = rows.iloc[0]
+        minutes = first["thesis_minutes"]
+        thesis = f"thesis {THESIS_SPP} spp, {minutes:g} min" if minutes == minutes else "not in the thesis"
+        out.append(f"{int(first['spp'])} spp, {first['rays_per_pixel']:.0f} rays/px, "
+                   f"{rows['plugin_evaluations_per_pixel'].sum():.1f} plugin evals/px; {thesis}")
+    return out
+
+
 def plot(df: pd.DataFrame, path) -> None:
-    rf.plot_panels(df, path, "Fig. 4.9: three samplers at equal samples per pixel", columns=1)
+    """The panels, each titled with its sampler and its costs (:func:`panel_costs`)."""
+    shown = df.copy()
+    shown.attrs = {**df.attrs, "images": [(f"{title.replace(' sampling', '')}: {costs}", image) for (title, image), costs
+                                          in zip(df.attrs["images"], panel_costs(df))]}
+    rf.plot_panels(shown, path, "Fig. 4.9: three samplers at equal samples per pixel", columns=1)
