@@ -12,7 +12,7 @@ with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
         tmp.write_text(report.comparison_html(io.read_csv(snakemake.output.csv, dtype=str, keep_default_na=False)),  # noqa: F821
                        encoding="utf-8")
     counts = readings.verdict_counts(merged)
-    io.write_csv(counts, snakemake.output.counts_csv)  # noqa: F821
-    with io.atomic_output(snakemake.output.counts_png) as tmp:  # noqa: F821
+    io.write_csv(counts, snakemake.output.counts_csv, record=True)  # noqa: F821
+    with io.atomic_output(snakemake.output.counts_png, record=True) as tmp:  # noqa: F821
         readings.plot_verdict_counts(counts, tmp)
     log.info("%d rows from %d fragments", len(merged), len(snakemake.input.fragments))  # noqa: F821
