@@ -85,7 +85,7 @@ MEANING = [
     ("renders.preview.spp", 100, "renders.preview.spp = 100", "multiple of passes"),
     ("renders.final.spp", 1530, "renders.final.spp = 1530", "multiple of passes"),
     ("renders.preview.figure_spp.fig_4_16_patch_metals", 250, "renders.preview.figure_spp.fig_4_16_patch_metals = 250", "multiple of passes"),
-    ("renders.preview.figure_spp.fig_2_8_pumping_render.1", 36, "renders.preview.figure_spp.fig_2_8_pumping_render[1] = 36", "multiple of passes"),
+    ("renders.preview.figure_spp.fig_2_8_pumping_render", [48, 36, 48, 48], "renders.preview.figure_spp.fig_2_8_pumping_render[1] = 36", "multiple of passes"),
     # an integer is an int
     ("patch.fig_4_10_grid", 121.0, "patch.fig_4_10_grid = 121.0", "integer"),
     ("grazing.per_decade", 10.0, "grazing.per_decade = 10.0", "integer"),
