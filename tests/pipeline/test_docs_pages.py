@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import pandas as pd
 import pytest
 
-from brdfs.pipeline import docs_pages, recomputed
+from brdfs.pipeline import report, docs_pages, recomputed
 
 COLUMNS = ["artifact", "source", "model", "param", "param_value", "quantity", "published", "computed",
            "computed_err", "verdict", "reason", "reading", "value_under_reading", "evidence"]
@@ -59,8 +59,12 @@ def test_each_chapter_page_counts_its_printed_numbers_and_the_index_adds_them_up
     index = (out / "index.rst").read_text()
     assert "**5**" in index and "**2**" in index and "**3**" in index    # all chapters: 5 printed, 2 reproduce, 3 differ
     tallies = recomputed.chapter_tallies(tree.comparison, tree.sources, tree.chapters)
-    assert sum(t.printed for t in tallies.values()) == len(tree.comparison)
+    assert recomputed.overall(tree.comparison).printed == len(tree.comparison)
     assert tallies[recomputed.CATEGORIES[2]] == recomputed.Tally(2, 1)
+    for category, tally in tallies.items():       # each chapter's count is that of the rows it lists
+        listed = set().union(*[recomputed.rows_of(name, tree.comparison, tree.sources).index
+                               for name, chapter in tree.chapters.items() if report.category(chapter) == category])
+        assert tally.printed == len(listed), category
 
 
 def test_a_tables_differing_cells_are_highlighted_and_the_printed_digits_kept(tree, tmp_path):
@@ -97,3 +101,16 @@ def test_the_reports_table_page_and_landing_page_mark_what_differs(tree):
     assert [(r.tally.printed, r.tally.differ) for r in landing] == [(2, 1), (0, 0), (3, 2), (0, 0)]
     frame = recomputed.landing_frame(landing)
     assert frame["differ"].tolist() == [1, 0, 2, 0] and frame.loc[0, "thesis"] == "Table 3.2"
+
+
+def test_a_chapters_count_is_that_of_the_rows_it_lists_and_the_total_counts_each_print_once():
+    """Table 1.1's numbers are Table 3.1's Blinn column (source 'Table 3.1 (= Table 1.1)'): listed
+    under chapter 1 and chapter 3, they count in both chapters and once in the total."""
+    comparison = pd.DataFrame({"artifact": ["blinn_cn", "metal_a0"], "source": ["Table 3.1 (= Table 1.1)", "Table 1.2"],
+                               "verdict": ["reproduces", "differs"]})
+    sources = {"blinn_cn": ("table_3_1_blinn_constants",), "metal_a0": ("table_1_2_metal_reflectance",)}
+    chapters = {"table_1_1_blinn_constants": 1, "table_1_2_metal_reflectance": 1, "table_3_1_blinn_constants": 3}
+    tallies = recomputed.chapter_tallies(comparison, sources, chapters)
+    assert tallies[report.category(1)] == recomputed.Tally(2, 1)
+    assert tallies[report.category(3)] == recomputed.Tally(1, 1)
+    assert recomputed.overall(comparison) == recomputed.Tally(2, 1)

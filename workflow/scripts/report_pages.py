@@ -13,7 +13,7 @@ with io.logged(snakemake.log[0]) as log:  # noqa: F821 (injected by Snakemake)
     io.write_csv(recomputed.landing_frame(rows), snakemake.output.landing_csv)  # noqa: F821
     tallies = recomputed.chapter_tallies(comparison, sources, {name: a.chapter for name, a in artifacts.items()})
     io.write_csv(recomputed.chapters_frame(tallies), snakemake.output.chapters_csv)  # noqa: F821
-    page = recomputed.landing_page_html(rows, tallies)
+    page = recomputed.landing_page_html(rows, tallies, recomputed.overall(comparison))
     with io.atomic_output(snakemake.output.landing) as tmp:  # noqa: F821
         tmp.write_text(page, encoding="utf-8")
     for name, path in zip(snakemake.params.tables, snakemake.output.tables):  # noqa: F821

@@ -164,7 +164,7 @@ def chapter_rst(category: str, names: Iterable[str], tree: ResultsTree, page_dir
 def summary_rst(tallies: Mapping[str, recomputed.Tally], tree: ResultsTree, pages: str) -> str:
     """Each chapter's count (a table linking the chapter pages, in the directory ``pages`` relative to
     the page that shows it; ``""``: the same directory) and the total."""
-    total = sum(tallies.values(), recomputed.Tally(0, 0))
+    total = recomputed.overall(tree.comparison) if tree.comparison is not None else recomputed.Tally(0, 0)
     lines = []
     if tree.comparison is None:
         lines.append(f"*Not built yet:* ``results/{COMPARISON.as_posix()}`` (run ``make all``).\n")

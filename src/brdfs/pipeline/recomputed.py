@@ -6,8 +6,8 @@ One home for what the HTML report (``workflow/rules/report.smk``) and the docume
 * which rows of ``results/checks/published_comparison.csv`` belong to an artifact
   (:func:`rows_of`: the comparisons that read its CSV, or whose ``source`` names its thesis number);
 * the count of printed numbers that reproduce and differ, per artifact (:func:`landing`) and per
-  chapter (:func:`chapter_tallies`: each printed number once, under the chapter of the tables its
-  comparison reads);
+  chapter (:func:`chapter_tallies`: from the rows the chapter's artifacts list, each printed number
+  once in the chapter) and overall (:func:`overall`);
 * the printed number beside ours as an HTML table whose differing cells are marked
   (:func:`comparison_table_html`), and an artifact's tidy CSV as an HTML table (:func:`data_table_html`).
 
@@ -111,23 +111,24 @@ def rows_of(name: str, comparison: pd.DataFrame, sources: Mapping[str, Iterable[
     return comparison[reads | names]
 
 
-def comparison_chapter(tables: Iterable[str], chapters: Mapping[str, int | None]) -> int | None:
-    """The chapter of a comparison: that of the first artifact it reads (None if it reads none)."""
-    for table in tables:
-        return chapters.get(table)
-    return None
-
-
 def chapter_tallies(comparison: pd.DataFrame, sources: Mapping[str, Iterable[str]],
                     chapters: Mapping[str, int | None]) -> dict[str, Tally]:
-    """Each category's :class:`Tally`, every printed number counted once.
+    """Each category's :class:`Tally`, computed from the rows its artifacts list: the union of
+    :func:`rows_of` over the category's artifacts, each printed number once within the category.
 
-    A printed number belongs to the chapter of the tables its comparison reads
-    (:func:`comparison_chapter`); every category of :data:`CATEGORIES` is present, in order.
-    The tallies add up to the whole comparison.
+    A printed number listed under artifacts of two chapters (Table 1.1's, which the thesis prints
+    again as Table 3.1's Blinn column) counts in both, so the chapters need not add up to the whole
+    comparison: :func:`overall` is that. Every category of :data:`CATEGORIES` is present, in order.
     """
-    of_row = comparison["artifact"].map(lambda a: category(comparison_chapter(sources.get(a, ()), chapters)))
-    return {c: Tally.of(comparison[of_row == c]) for c in CATEGORIES}
+    members: dict[str, set] = {c: set() for c in CATEGORIES}
+    for name, chapter in chapters.items():
+        members.setdefault(category(chapter), set()).update(rows_of(name, comparison, sources).index)
+    return {c: Tally.of(comparison.loc[sorted(members[c])]) for c in CATEGORIES}
+
+
+def overall(comparison: pd.DataFrame) -> Tally:
+    """The whole comparison's :class:`Tally`, each printed number once."""
+    return Tally.of(comparison)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -304,9 +305,9 @@ def chapters_frame(tallies: Mapping[str, Tally]) -> pd.DataFrame:
                         columns=["category", "printed", "reproduce", "explained", "differ"])
 
 
-def chapter_table_html(tallies: Mapping[str, Tally]) -> str:
-    """Each category's count of printed numbers that reproduce and differ, with the total."""
-    total = sum(tallies.values(), Tally(0, 0))
+def chapter_table_html(tallies: Mapping[str, Tally], total: Tally) -> str:
+    """Each category's count of printed numbers that reproduce and differ, with the total (each
+    printed number once: :func:`overall`)."""
     body = [f"<tr>{_cell(c)}{_cell(t.printed, 'num')}{_cell(t.reproduce, 'num')}{_cell(t.explained, 'num')}"
             f"{_cell(t.differ, 'num differs' if t.differ else 'num')}</tr>"
             for c, t in (*tallies.items(), ("All chapters", total))]
@@ -314,13 +315,13 @@ def chapter_table_html(tallies: Mapping[str, Tally]) -> str:
             "<th>reproduce</th><th>explained by a reading</th><th>differ</th></tr></thead>\n<tbody>\n" + "\n".join(body) + "\n</tbody>\n</table>")
 
 
-def landing_page_html(rows: Iterable[LandingRow], tallies: Mapping[str, Tally]) -> str:
+def landing_page_html(rows: Iterable[LandingRow], tallies: Mapping[str, Tally], total: Tally) -> str:
     """``results/report/landing.html``: the chapter counts, then every artifact's."""
     return page_html(
         "The thesis recomputed: printed numbers against ours",
         "<p>Every number the thesis prints is compared with the recomputation "
         "(<code>results/checks/published_comparison.csv</code>). Per chapter, each printed number once:</p>\n"
-        + chapter_table_html(tallies)
+        + chapter_table_html(tallies, total)
         + "\n<p>Per artifact (Table 1.1's numbers are compared under Table 3.1 and counted for both):</p>\n"
         + landing_table_html(rows),
     )
