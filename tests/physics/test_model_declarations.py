@@ -226,7 +226,7 @@ def test_a_bounded_declared_range_is_its_own_test_range_and_an_unbounded_one_nee
 
 def test_the_base_class_refuses_a_parameter_outside_its_declared_range_or_choices():
     """The recipe's model declares its ranges and writes no check: the constructor refuses for it,
-    naming the model, the parameter and the value; a subclass's own ``__post_init__`` runs first."""
+    naming the model, the parameter and the value; the check runs before a subclass's own ``__post_init__``, which still runs."""
     from dataclasses import dataclass
 
     @dataclass(frozen=True)

@@ -223,9 +223,9 @@ class counting_evaluations:
 class BRDF:
     """Base class: subclasses implement ``_eval(L, V, nl, nv)`` and ``lobe``.
 
-    Every subclass's constructor ends with :meth:`check_declared_parameters` (its own
-    ``__post_init__`` first, if it has one): a parameter outside its declared range or choices is
-    refused with one line naming it, whether or not the subclass checks it itself."""
+    Every subclass's constructor starts with :meth:`check_declared_parameters` (then runs its own
+    ``__post_init__``, if it has one): a parameter outside its declared range or choices is refused
+    with one line naming it before any work, whether or not the subclass checks it itself."""
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -234,9 +234,9 @@ class BRDF:
             return
 
         def __post_init__(self):
-            own(self)
             if type(self).__post_init__ is __post_init__:     # the outermost wrapper checks once
                 self.check_declared_parameters()
+            own(self)
 
         __post_init__._checks_declared = True
         __post_init__.__doc__ = own.__doc__
@@ -706,15 +706,6 @@ PUMP_N_MAX = 1.0e4
 M_MIN = 0.005
 ALPHA_MIN, ALPHA_MAX = 0.01, 1.0
 RADIUS_MIN, ELLIPSE_B_MIN = 1.0e-8, 1.0e-3
-
-
-def check_declared(model, *keys):
-    """Raise ValueError where a parameter of ``model`` lies outside its declared range (:data:`N_MAX` …)."""
-    for key in keys:
-        value, interval = getattr(model, key), model.param_ranges[key]
-        if value is not None and not interval.contains(value):
-            raise ValueError(f"{model.name}: {key} must lie in {'(' if interval.lo_open else '['}{interval.lo:g}, "
-                             f"{interval.hi:g}{')' if interval.hi_open else ']'}, got {value!r}")
 
 
 def table_field():

@@ -8,7 +8,7 @@ import numpy as np
 
 from brdfs.physics.geometry import n_dot_h
 from brdfs.physics.lobes import HALF, PowerCosine
-from brdfs.physics.models.base import BRDF, N_MAX, PUMP_N_MAX, check_declared, check_positive, log_range, non_negative, positive, positive_power, register
+from brdfs.physics.models.base import BRDF, N_MAX, PUMP_N_MAX, check_positive, log_range, non_negative, positive, positive_power, register
 from brdfs.physics import sampling
 
 
@@ -22,7 +22,6 @@ class _BlinnFamily(BRDF):
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)
-        check_declared(self, "n")
         check_positive("C", self.C)
 
     @cached_property                 # a frozen model's lobe: built once, not on every look-up

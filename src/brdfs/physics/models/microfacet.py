@@ -12,7 +12,7 @@ from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.physics.lobes import HALF, MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
 from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
-from brdfs.physics.models.base import BRDF, M_MIN, GrazingLaw, Interval, check_declared, check_positive, exact, log_range, positive, register
+from brdfs.physics.models.base import BRDF, M_MIN, GrazingLaw, Interval, check_positive, exact, log_range, positive, register
 from brdfs.physics import sampling
 
 
@@ -31,7 +31,6 @@ class _BeckmannFamily(BRDF):
 
     def __post_init__(self):
         check_positive("m", self.m)
-        check_declared(self, "m")
         check_positive("C", self.C)
 
     #: A metal of a microfacet model reads F at the facet's angle of incidence, L·H.

@@ -18,7 +18,7 @@ from brdfs.physics import patch_geometry as patch
 from brdfs.core.gauss_kronrod import Estimate, integrate
 from brdfs.core.gauss_kronrod import KRONROD_WEIGHTS, nodes_on
 from brdfs.physics import fresnel, sampling
-from brdfs.physics.models.base import BRDF, ELLIPSE_B_MIN, RADIUS_MIN, Interval, check_declared, check_positive, linear_range, log_range, non_negative, positive, register
+from brdfs.physics.models.base import BRDF, ELLIPSE_B_MIN, RADIUS_MIN, Interval, check_positive, linear_range, log_range, non_negative, positive, register
 
 
 def projected_distance(L, V):
@@ -104,7 +104,6 @@ class PatchBasic(_OnTheBasePlane, BRDF):
 
     def __post_init__(self):
         _check_radius("R", self.R)
-        check_declared(self, "R")
         _default_constant(self, patch.basic_constant(self.R))
 
     # --- the integrand's shape: a jump at m = R; no lobe (the albedo is the lens area, eq. 4.8)
@@ -306,7 +305,6 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
     accuracy_families = {"generalized_lambertian": ("d", {})}
 
     def __post_init__(self):
-        check_declared(self, "m_clip")
         profile = patch.GeneralizedLambertProfile(self.d, self.m_clip)
         if self.C is None:
             _default_constant(self, patch.generalized_lambert_c_max(profile).value)
@@ -516,7 +514,6 @@ class PatchElliptical(_OnTheBasePlane, BRDF):
 
     def __post_init__(self):
         _check_radius("b", self.b)
-        check_declared(self, "b")
         if not 0.0 < float(self.ratio) <= 1.0:
             raise ValueError(f"patch_elliptical: ratio B/A must lie in (0, 1], got {self.ratio!r}")
         _default_constant(self, patch.elliptical_constant(self.b, self.ratio))

@@ -13,7 +13,7 @@ from scipy.special import beta, gammaln
 
 from brdfs.core.estimate import Estimate
 
-from brdfs.physics.models.base import (N_MAX, PUMP_N_MAX, BRDF, GrazingLaw, Interval, check_declared,
+from brdfs.physics.models.base import (N_MAX, PUMP_N_MAX, BRDF, GrazingLaw, Interval,
                                        check_positive, exact, log_range, non_negative, positive, positive_power,
                                        register)
 from brdfs.physics import sampling
@@ -63,7 +63,6 @@ class _PhongFamily(BRDF):
 
     def __post_init__(self):
         check_positive("n", self.n, allow_zero=True)
-        check_declared(self, "n")
         if self.C is None:
             object.__setattr__(self, "C", float(phong_constant(self.n)))
         check_positive("C", self.C)

@@ -42,7 +42,7 @@ from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.sampling import REJECTED
 from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence
-from brdfs.physics.models.base import ALPHA_MAX, ALPHA_MIN, BRDF, Interval, check_declared, check_positive, exact, log_range, non_negative, positive, register, table_field
+from brdfs.physics.models.base import ALPHA_MAX, ALPHA_MIN, BRDF, Interval, check_positive, exact, log_range, non_negative, positive, register, table_field
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
 
 G2_FORMS = ("separable", "height_correlated")
@@ -148,7 +148,6 @@ class _SmithMicrofacet(BRDF):
 
     def __post_init__(self):
         check_positive("alpha", self.alpha)
-        check_declared(self, "alpha")
         if self.G2 not in G2_FORMS:
             raise ValueError(f"G2 must be one of {G2_FORMS}, got {self.G2!r}")
         if self.compensation not in COMPENSATIONS:
