@@ -92,32 +92,29 @@ def constant_search(cfg: dict, artifact: str, constants: pd.DataFrame) -> readin
     family = cfg["readings"]["chapter_3"]
     entries = _entries(artifact)
     models = [_build(e.model, e.param, e.param_value, C=1.0) for e in entries.itertuples()]
-    steps = [s for s in family["grid_steps_deg"]]
+    steps = family["grid_steps_deg"]
     grid = np.unique(np.concatenate([np.arange(0.0, 90.0 + 1e-9, s) for s in steps if s > 0] + [[0.0]]))
     curve = _curves(models, grid)
+    computed = []                       # (row without its printing rule, value): each computed once
+    for step in steps:
+        if step == 0:
+            value, label = [_true_constant(constants, e) for e in entries.itertuples()], "1/max a(theta)"
+        else:
+            on = np.isclose(np.mod(grid + 1e-9, step), 0.0, atol=1e-6)
+            value, label = 1.0 / curve[:, on].max(axis=1), f"1/max a over a {step:g} deg grid of theta"
+        computed.append(({"reading": label, "method": "theta_grid", "rule": "",
+                          "steps": step if step > 0 else np.nan}, value))
+    for rule in RULES:
+        for n in family["a0_steps"]:
+            computed.append(({"reading": f"1/a(0), a(0) by the {rule} rule with {n} steps in theta_V",
+                              "method": "a0_rule", "rule": rule, "steps": n},
+                             [1.0 / _a0_by_rule(m, rule, n) for m in models]))
     rows, values, rules = [], [], []
     for printing in PRINTING:
-        for step in steps:
-            if step == 0:
-                value = [_true_constant(constants, e) for e in entries.itertuples()]
-                label = "1/max a(theta)"
-            else:
-                on = np.isclose(np.mod(grid + 1e-9, step), 0.0, atol=1e-6)
-                value = 1.0 / curve[:, on].max(axis=1)
-                label = f"1/max a over a {step:g} deg grid of theta"
-            rows.append({"reading": f"{label}, {printing}ed".replace("rounded", "rounded").replace("truncateed", "truncated"),
-                         "method": "theta_grid", "rule": "", "steps": step if step > 0 else np.nan,
-                         "printing": printing})
+        for row, value in computed:
+            rows.append(row | {"reading": f"{row['reading']}, {readings.PRINTED_AS[printing]}", "printing": printing})
             values.append(value)
             rules.append(printing)
-        for rule in RULES:
-            for n in family["a0_steps"]:
-                value = [1.0 / _a0_by_rule(m, rule, n) for m in models]
-                rows.append({"reading": f"1/a(0), a(0) by the {rule} rule with {n} steps in theta_V, "
-                                        f"{printing}ed".replace("truncateed", "truncated"),
-                             "method": "a0_rule", "rule": rule, "steps": n, "printing": printing})
-                values.append(value)
-                rules.append(printing)
     group = GROUPS[artifact]
     return readings.search(group, entries, pd.DataFrame(rows), np.array(values, float), rules=rules,
                            seed=cfg["seed"], draws=cfg["readings"]["placebo_draws"],
@@ -180,7 +177,7 @@ def near_grazing_search(cfg: dict, constants: pd.DataFrame) -> readings.Search:
     for source in ("computed", "printed"):
         models = []
         for e in entries.itertuples():
-            c = blinn_c = _true_constant(constants, e) if source == "computed" else float(
+            blinn_c = _true_constant(constants, e) if source == "computed" else float(
                 printed_c(e.param_value, "C_max", e.model))
             models.append(_build(e.model, "n", e.param_value, C=blinn_c))
         curve = _curves(models, np.array([90.0 - d for d in deltas]))

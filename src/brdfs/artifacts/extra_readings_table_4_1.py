@@ -44,8 +44,7 @@ def c_max_search(cfg: dict, table_df: pd.DataFrame) -> readings.Search:
     entries = group_entries("C_max")
     rules = [("round", np.nan, np.nan), ("truncate", np.nan, np.nan)] + [
         (f"fixed{n}_width{w}", n, w) for n in family["decimals"] for w in family["widths"]]
-    names = {"round": "rounded", "truncate": "truncated"}
-    readings_df = pd.DataFrame([{"reading": names.get(r, f"'%.{n}f' cut to {w} characters"), "rule": r,
+    readings_df = pd.DataFrame([{"reading": readings.PRINTED_AS.get(r, f"'%.{n}f' cut to {w} characters"), "rule": r,
                                  "decimals": n, "width": w} for r, n, w in rules])
     values = np.tile(_column(table_df, entries, "C_max"), (len(rules), 1))
     return readings.search(GROUPS["C_max"], entries, readings_df, values, rules=[r for r, _, _ in rules],
@@ -62,8 +61,8 @@ def i12_search(cfg: dict, table_df: pd.DataFrame) -> readings.Search:
     for rule in ("round", "truncate"):
         for label in family["factors"]:
             factor = _FACTORS[label]
-            rows.append({"reading": f"I_12 = {label} int_1^2 p(R) dR, {rule}ed".replace("rounded", "rounded")
-                         .replace("truncateed", "truncated"), "rule": rule, "factor": factor, "factor_label": label})
+            rows.append({"reading": f"I_12 = {label} int_1^2 p(R) dR, {readings.PRINTED_AS[rule]}", "rule": rule,
+                         "factor": factor, "factor_label": label})
             values.append(factor * weight)
             rules.append(rule)
     return readings.search(GROUPS["I_12"], entries, pd.DataFrame(rows), np.array(values), rules=rules,

@@ -148,5 +148,5 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 def plot(df: pd.DataFrame, path) -> None:
     """Entries reproduced against the step, one line per rule and edge treatment, with the placebo."""
-    readings.plot_scores(df, path, x="step", lines=("rule", "end", "clip_node"),
-                         title="Table 4.3: eq. 4.22 as a sum", xlabel="step h in R", log_x=True)
+    readings.plot_groups(df, path, [dict(group=GROUP, x="step", lines=("rule", "end", "clip_node"),
+                                         title="Table 4.3: eq. 4.22 as a sum", xlabel="step h in R", log_x=True)])

@@ -1,9 +1,9 @@
 """Table 3.1 (and its Blinn half, Table 1.1): maximal constants C_n = 1 / max_θ a(θ) of the
 reciprocal Blinn model (eq. 1.34) and the corrected Blinn model (eq. 3.34), computed with C = 1.
 
-Besides the true maximum (located by :func:`brdfs.numerics.quantities.max_albedo`), the table carries
-the readings fixed in advance for prints that do not reproduce: the constant obtained from the
-albedo at normal incidence only, and from maxima over coarse θ grids (1°, 5°, 10°, 15°, 30°).
+The true maximum is located by :func:`brdfs.numerics.quantities.max_albedo`; how the thesis may
+have computed its prints (maxima over θ grids, a(0) as sums) is searched in
+:mod:`brdfs.artifacts.extra_readings_chapter_3`.
 """
 from __future__ import annotations
 
@@ -20,8 +20,7 @@ from brdfs.numerics.quantities import maximal_constant
 
 NAME = "table_3_1_blinn_constants"
 MODELS = ("blinn", "blinn_cosmin")
-GRID_STEPS_DEG = (1, 5, 10, 15, 30)
-READINGS_RTOL = 1e-7     # the grid readings are compared with 4–6 printed digits
+GRID_RTOL = 1e-7         # the 1° grid only brackets the maximum
 
 
 def blinn_normal_incidence_albedo(n):
@@ -37,14 +36,10 @@ def compute(cfg: dict, deps: dict) -> pd.DataFrame:
     ns = [float(n) for n in cfg["blinn_cn"]["n"]]
     models = [model(name, n=n) for name in MODELS for n in ns]
     grid = np.arange(0.0, 90.0 + 1e-9, 1.0)
-    on_grid = albedo_table(models, grid, rtol=READINGS_RTOL).value        # brackets the maximum too
+    on_grid = albedo_table(models, grid, rtol=GRID_RTOL).value
     C, theta = maximal_constant(models, cfg["tolerance"]["rtol"], grid_deg=1.0, grid_values=on_grid)
-    df = pd.DataFrame({"model": np.repeat(MODELS, len(ns)), "n": np.tile(ns, len(MODELS)),
-                       "C": C.value, "C_err": C.error, "theta_max_deg": theta,
-                       "C_normal_incidence": 1 / on_grid[:, 0]})
-    for step in GRID_STEPS_DEG:
-        df[f"C_grid_{step}deg"] = 1 / on_grid[:, ::step].max(axis=1)
-    return df
+    return pd.DataFrame({"model": np.repeat(MODELS, len(ns)), "n": np.tile(ns, len(MODELS)),
+                         "C": C.value, "C_err": C.error, "theta_max_deg": theta})
 
 
 def plot(df: pd.DataFrame, path) -> None:

@@ -33,7 +33,7 @@ The verdicts a row of the comparison can carry (``docs/contract.md``):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from decimal import ROUND_DOWN, ROUND_HALF_EVEN, Context, Decimal, localcontext
 
 import numpy as np
@@ -52,6 +52,8 @@ SMALL_GROUP = 2
 MC_Z_MAX = 3.0
 
 _CONTEXT = Context(prec=1200)
+#: The printing rules rounding and truncation, as a reading's name says them.
+PRINTED_AS = {"round": "rounded", "truncate": "truncated"}
 #: Printed digits of a value that has no printed form under a reading (NaN, inf, another exponent).
 NO_DIGITS = np.iinfo(np.int64).min
 
@@ -133,7 +135,8 @@ class Search:
     placebo_p99: float
     procedure: str = ""
     axes: tuple[str, ...] = ()
-    notes: dict = field(default_factory=dict)
+    #: The chosen reading, where it was recorded (a search read back from its CSV); else the best score.
+    chosen: int | None = None
 
     @property
     def family_size(self) -> int:
@@ -146,8 +149,8 @@ class Search:
     @property
     def best(self) -> int:
         """Index of the best reading: the highest score, the first declared among ties."""
-        if getattr(self, "_best", None) is not None:
-            return self._best
+        if self.chosen is not None:
+            return self.chosen
         return int(np.argmax(self.readings["score"].to_numpy()))
 
     @property
@@ -180,11 +183,10 @@ class Search:
         size = len(entries)
         values = df["value"].to_numpy(float).reshape(len(per_reading), size)
         hits = df["reproduces"].to_numpy(bool).reshape(len(per_reading), size)
-        readings = per_reading.drop(columns=keys + ["published", "value", "reproduces"]).reset_index(drop=True)
-        s = cls(str(df["group"].iloc[0]), entries, readings, values, hits, np.empty(0),
-                float(per_reading["placebo_p99"].iloc[0]), axes=axes)
-        s._best = int(np.flatnonzero(per_reading["best"].to_numpy(bool))[0])
-        return s
+        readings = per_reading.drop(columns=keys + ["published", "value", "reproduces", "procedure"]).reset_index(drop=True)
+        return cls(str(df["group"].iloc[0]), entries, readings, values, hits, np.empty(0),
+                   float(per_reading["placebo_p99"].iloc[0]), str(per_reading["procedure"].iloc[0]), axes,
+                   int(np.flatnonzero(per_reading["best"].to_numpy(bool))[0]))
 
     def specificity(self) -> pd.DataFrame:
         """The score of the best reading's neighbours: one grid step either way along each axis."""
@@ -216,6 +218,7 @@ class Search:
         out["value"] = self.values[r_idx, e_idx]
         out["reproduces"] = self.hits[r_idx, e_idx]
         out.insert(0, "group", self.group)
+        out.insert(1, "procedure", self.procedure)
         out["family_size"] = self.family_size
         out["group_size"] = self.size
         out["best"] = r_idx == self.best
@@ -292,7 +295,7 @@ def planted(values: np.ndarray, reading: int, prints: list[str], rules="round") 
     return [str(Decimal(int(d)).scaleb(print_exponent(p))) for d, p in zip(digits, prints)]
 
 
-def entry_verdicts(s: Search, as_printed: list[str], name_of=None) -> pd.DataFrame:
+def entry_verdicts(s: Search, as_printed: list[str]) -> pd.DataFrame:
     """The reading columns of the comparison for every entry of a searched group.
 
     ``as_printed[e]`` is the entry's verdict from the formula (``reproduces`` or ``differs``);
@@ -300,7 +303,9 @@ def entry_verdicts(s: Search, as_printed: list[str], name_of=None) -> pd.DataFra
     and reproduces it, ``consistent with a reading`` when the group is small and the best reading
     reproduces every entry; otherwise it stays ``differs`` and names its closest reading.
     """
-    name_of = name_of or (lambda r: s.readings["reading"].iloc[r])
+    def name_of(r: int) -> str:
+        return s.readings["reading"].iloc[r]
+
     best, rows = s.best, []
     whole_small_group = s.small and bool(s.hits[best].all())
     for e, verdict in enumerate(as_printed):
@@ -320,21 +325,6 @@ def entry_verdicts(s: Search, as_printed: list[str], name_of=None) -> pd.DataFra
                     "closest_hits": bool(s.hits[closest, e])}
         rows.append(row)
     return pd.DataFrame(rows)
-
-
-def describe(s: Search) -> str:
-    """One sentence on a group's search: family, best reading, score, placebo."""
-    best = s.readings.iloc[s.best]
-    status = ("accepted" if s.accepted else
-              "a group too small for the placebo" if s.small else "not above the placebo")
-    return (f"{s.group}: best of {s.family_size} readings '{best['reading']}' reproduces {s.best_score}/{s.size} "
-            f"(placebo 99th percentile {s.placebo_p99:g}; {status})")
-
-
-def plot_scores(df: pd.DataFrame, path, x: str, lines: tuple[str, ...], title: str, xlabel: str,
-                log_x: bool = False) -> None:
-    """One group's search as :func:`plot_groups` draws it, alone."""
-    plot_groups(df, path, [dict(group=df["group"].iloc[0], x=x, lines=lines, title=title, xlabel=xlabel, log_x=log_x)])
 
 
 def plot_groups(df: pd.DataFrame, path, panels: list[dict]) -> None:
