@@ -178,4 +178,4 @@ checks: check-reproducible check-crash check-cluster check-slurm-plan check-whee
 
 # Under the build lock (not while a build runs), and keeping the lock file itself.
 clean:
-	@$(call locked,set -x; rm -rf results .cluster-jobs docs/_build docs/recomputed docs/api docs/models; find .snakemake -mindepth 1 -maxdepth 1 ! -name $(notdir $(BUILD_LOCK)) -exec rm -rf {} +)
+	@$(call locked,set -x; rm -rf results .cluster-jobs docs/_build docs/recomputed docs/api docs/models docs/data_dictionary.rst; find .snakemake -mindepth 1 -maxdepth 1 ! -name $(notdir $(BUILD_LOCK)) -exec rm -rf {} +)

@@ -27,6 +27,7 @@ extensions = [
     "numpydoc",
     "thesis_pages",
     "model_pages",
+    "data_dictionary_page",
 ]
 
 root_doc = "index"

@@ -3,6 +3,7 @@ with a unit and a meaning, no entry is unused, and the dictionary shipped in the
 contract generates (brdfs.pipeline.data_dictionary)."""
 
 import gzip
+import io
 from pathlib import Path
 
 import pandas as pd
@@ -132,3 +133,20 @@ def test_the_check_fails_when_the_shipped_dictionary_differs_from_the_contract(t
     changed = CONTRACT.replace("the incidence angle", "the angle of incidence")
     (tmp_path / "contract.md").write_text(changed, encoding="utf-8")
     assert dd.main(["--check", str(results)]) == 1
+
+
+def test_the_documentation_page_has_one_table_per_csv_and_is_valid_restructuredtext(generated):
+    import docutils.core
+    import docutils.nodes
+
+    page = dd.rst_page(generated)
+    assert page.count("\n.. list-table::") == generated["file"].nunique() + 1   # and the units
+    sample = generated[generated["file"].isin(["results/checks/published_comparison.csv",
+                                               "results/figures/extra_accuracy_map.csv"])]
+    doctree = docutils.core.publish_doctree(
+        dd.rst_page(sample).replace(":doc:", ""), settings_overrides={"report_level": 2, "halt_level": 5, "warning_stream": io.StringIO()})
+    problems = [n.astext() for n in doctree.findall(docutils.nodes.system_message)]
+    assert not problems, problems
+    text = doctree.astext()
+    assert "|engine − reference| / the engine's reported error" in text and "`" not in text
+    assert dd.rst_text("a *b, `c_d` and e_ |f|") == r"a \*b, ``c_d`` and e\_ \|f\|"

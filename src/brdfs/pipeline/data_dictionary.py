@@ -13,8 +13,15 @@ is kept by hand beside the artifacts that write them.
 :func:`generate` resolves every (file, column) to exactly one entry and refuses, naming each, a column
 without an entry, a column two entries claim, an entry no column uses and a unit the units table does not
 define. The result, one row per (file, column) with ``file, column, dtype, unit, meaning``, is shipped in
-the wheel (``brdfs/pipeline/data/data_dictionary.csv``; :func:`load`) and shown in the documentation;
+the wheel (``brdfs/pipeline/data/data_dictionary.csv``; :func:`load`) and shown in the documentation
+(:func:`rst_page`, the page "Data dictionary" that ``docs/_ext/data_dictionary_page.py`` writes);
 ``tests/pipeline/test_data_dictionary.py`` holds it equal to what the contract generates.
+
+Why a file in the package and not a pipeline artifact: the dictionary depends on the contract and on the
+CSVs' columns, not on any computed number, so it needs no job of its own (a rule would have to list all
+87 CSVs as inputs and rerun whenever any number moves); users who never build ``results/`` (the wheel,
+the documentation) get it all the same; and a build cannot drift from it, since its columns are held to
+the baseline the dictionary is generated from.
 
 ``python -m brdfs.pipeline.data_dictionary`` writes it; ``--check`` only compares.
 """
@@ -259,6 +266,65 @@ def generate(contract: str | Path = CONTRACT, results: str | Path = RESULTS_BASE
 def load() -> pd.DataFrame:
     """The data dictionary shipped with the package: ``file, column, dtype, unit, meaning``."""
     return io.read_csv(PACKAGED, keep_default_na=False)
+
+
+# --- the documentation's page --------------------------------------------------------------------
+
+_RST_SPECIAL = re.compile(r"([\\*_|`<>\[\]])")
+
+_INTRO = """\
+Data dictionary
+===============
+
+Every column of every CSV the pipeline writes under ``results/tables``, ``results/figures`` and
+``results/checks``, with its type, unit and meaning: {columns} columns of {files} CSVs. The source is one
+table written by hand, the section "Data dictionary" of :doc:`the output contract <contract>`; the package
+ships what it generates, so that your scripts can read it::
+
+    from brdfs.pipeline import data_dictionary
+    df = data_dictionary.load()        # file, column, dtype, unit, meaning
+    df[df.file == "results/tables/table_3_2_ward_cmax.csv"]
+
+``dtype`` is the type the column reads back with pandas (``empty``: every value of that CSV is missing;
+an integer column with missing values reads as ``float``). An ``<x>_err`` column is the absolute error
+estimate of ``<x>``, in its unit.
+
+Units
+-----
+
+"""
+
+
+def rst_text(markdown: str) -> str:
+    """A contract cell as reStructuredText: code spans become literals, the rest is escaped."""
+    parts = markdown.split("`")
+    return "".join(f"``{part}``" if i % 2 else _RST_SPECIAL.sub(r"\\\1", part) for i, part in enumerate(parts) if part)
+
+
+def _table(header: tuple[str, ...], rows, widths: str) -> list[str]:
+    lines = [".. list-table::", "   :header-rows: 1", f"   :widths: {widths}", ""]
+    for row in (header, *rows):
+        lines += [f"   * - {row[0]}"] + [f"     - {cell}" for cell in row[1:]]
+    return lines + [""]
+
+
+def rst_page(dictionary: pd.DataFrame | None = None, units: dict[str, str] | None = None) -> str:
+    """The documentation's page (reStructuredText): the units, then one table per CSV, grouped by directory
+    (default: the shipped dictionary, :func:`load`, and the contract's units)."""
+    dictionary = load() if dictionary is None else dictionary
+    units = parse(CONTRACT.read_text(encoding="utf-8"))[0] if units is None else units
+    lines = [_INTRO.format(columns=len(dictionary), files=dictionary["file"].nunique())]
+    lines += _table(("unit", "meaning"), ((f"``{u}``", rst_text(m)) for u, m in units.items()), "15 85")
+    for directory, files in dictionary.groupby(dictionary["file"].str.rsplit("/", n=1).str[0], sort=True):
+        directory = rst_text(directory)
+        lines += [directory, "-" * len(directory), ""]
+        for file, rows in files.groupby("file", sort=True):
+            name = rst_text(Path(file).name)
+            lines += [name, "~" * len(name), ""]
+            lines += _table(("column", "dtype", "unit", "meaning"),
+                            ((f"``{r.column}``", r.dtype, f"``{r.unit}``", rst_text(r.meaning))
+                             for r in rows.itertuples()), "22 9 10 59")
+    return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
