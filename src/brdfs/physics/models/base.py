@@ -37,6 +37,9 @@ What is known in closed form (``None`` where nothing is):
 * ``exact_mean_albedo()``: the mean albedo A (eq. 1.20 / 3.37).
 * ``truncation_error(L, V)``: a bound of the error of an evaluation of f beyond its rounding
   (a series' truncation); zero by default.
+* ``scattering_azimuth_kernel()``: for a lobe in the scattering frame, ∫ f cos θ_V sin θ_V dφ_V at
+  polar angles (θ_L, θ_V) with a bound of its error (He–Torrance with F ≡ 1), which makes the albedo
+  a 1-D integral over θ_V.
 
 * ``grazing_law()``: the law of a(θ) as cos θ → 0 (:class:`GrazingLaw`); ``diverges_at_grazing``:
   a(θ) → ∞ there; ``grazing_limit_model()``: the integrand whose albedo is a(90°), which every
