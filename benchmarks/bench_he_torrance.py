@@ -37,8 +37,8 @@ THESIS_SURFACE = {"sigma0_um": 0.1, "tau_um": 1.7, "lambda_um": 0.55}
 ANGLES = (10.0, 45.0, 80.0)
 RTOLS = (1e-10, 1e-6)
 HONESTY_ANGLES = (0.0, 1e-6, 10.0, 45.0, 80.0, 89.9999)
-#: The examples (typical, narrowest) and corners of the generic tests' draws (σ0 0.01 … 1, τ 0.5 … 10,
-#: λ 0.38 … 0.78 µm).
+#: The examples (typical, narrowest), corners of the generic tests' draws (σ0 0.01 … 1, τ 0.5 … 10,
+#: λ 0.38 … 0.78 µm) and two surfaces far outside them (the declared ranges are (0, ∞)).
 HONESTY_SURFACES = (
     {"sigma0_um": 0.1, "tau_um": 1.7, "lambda_um": 0.55},
     {"sigma0_um": 0.1, "tau_um": 4.0, "lambda_um": 0.55},
@@ -46,6 +46,8 @@ HONESTY_SURFACES = (
     {"sigma0_um": 0.01, "tau_um": 0.5, "lambda_um": 0.38},
     {"sigma0_um": 1.0, "tau_um": 10.0, "lambda_um": 0.38},
     {"sigma0_um": 1.0, "tau_um": 0.5, "lambda_um": 0.78},
+    {"sigma0_um": 1e-4, "tau_um": 100.0, "lambda_um": 0.38},        # far outside them: a needle lobe
+    {"sigma0_um": 1e-3, "tau_um": 0.01, "lambda_um": 0.55},         # and a lobe wider than the hemisphere
 )
 
 

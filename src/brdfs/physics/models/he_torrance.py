@@ -154,7 +154,9 @@ def kirchhoff_series(g, h, factor=None):
         log_last = log_t[:, -1].copy()
         terms = np.exp(log_t, out=log_t)
         if factor is not None:
-            terms *= factor(m, active)
+            live = terms.any(axis=-1)           # blocks that underflow whole (m ≪ g) need no factor
+            if live.any():
+                terms[live] *= factor(m, active[live])
         total[active] += terms.sum(axis=-1)
         last = int(m[-1])
         log_q = lg - np.log(last + 1.0) + ha / (last * (last + 1.0))
