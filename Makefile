@@ -98,6 +98,7 @@ benchmark: llvm $(STAMP)
 	$(BIN)/python benchmarks/render_old_vs_new.py
 	$(BIN)/python benchmarks/bench_tables.py
 	$(BIN)/python benchmarks/bench_model_cost.py
+	$(BIN)/python benchmarks/bench_he_torrance.py
 	$(BIN)/python benchmarks/bench_albedo_curves.py
 	$(BIN)/python benchmarks/bench_work_precision.py
 	$(BIN)/python benchmarks/bench_sampling.py

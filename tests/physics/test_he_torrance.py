@@ -295,3 +295,54 @@ def test_figure_3_3_calibration_and_lobes():
     rho = df[df["quantity"] == "specular_albedo"]
     assert float(rho["value"].iloc[0]) == pytest.approx(scales["he_torrance"] * 0.051247, rel=1e-5)
     assert np.all(df["value_err"].dropna() <= 1e-11 * np.abs(df["value"].dropna()) + 1e-300)
+
+
+# --- the azimuthal integral in closed form (issue 41: the albedo as a 1-D integral) ----------------
+
+def azimuth_integral_by_gauss_legendre(f, theta_l, theta_v, order):
+    """∫₀^{2π} f cos θ_V sin θ_V dφ of the BRDF's own values, composite Gauss–Legendre in φ ∈ [0, π]
+    (doubled) on panels graded geometrically towards the mirror azimuth φ = π (the lobe)."""
+    cuts = np.concatenate([[0.0], np.pi - np.pi * 2.0 ** -np.arange(1.0, 30.0), [np.pi]])
+    x, w = np.polynomial.legendre.leggauss(order)
+    a, b = cuts[:-1, None], cuts[1:, None]
+    phi = 0.5 * (a + b) + 0.5 * (b - a) * x
+    tl, tv = np.asarray(theta_l, float)[:, None, None], np.asarray(theta_v, float)[:, None, None]
+    L = np.stack(np.broadcast_arrays(np.sin(tl), 0.0 * phi, np.cos(tl)), -1)
+    V = np.stack(np.broadcast_arrays(np.sin(tv) * np.cos(phi), np.sin(tv) * np.sin(phi), np.cos(tv)), -1)
+    values = f.unchecked(L, V) @ w
+    return 2.0 * np.sin(tv[:, 0, 0]) * np.cos(tv[:, 0, 0]) * np.sum(0.5 * (b - a)[None, :, 0] * values, -1)
+
+
+@pytest.mark.parametrize("params", [ALBEDO_HT, dict(sigma0_um=0.1, tau_um=4.0),
+                                    dict(sigma0_um=0.01, tau_um=10.0, lambda_um=0.38),
+                                    dict(sigma0_um=1.0, tau_um=0.5, lambda_um=0.78)])
+def test_closed_form_azimuthal_integral_equals_the_brdfs_own_values_integrated(params):
+    """The kernel the engine integrates in θ_V (Kummer functions, term by term) against the BRDF's own
+    values integrated over φ, from the pole to the horizon and incidence to 90° − 1e-4°, within its bound."""
+    f = HeTorrance(**params, term="dd")
+    theta_l, theta_v = (rad(x).ravel() for x in np.meshgrid([0.0, 1e-6, 10.0, 45.0, 80.0, 89.9999],
+                                                            [1e-6, 5.0, 30.0, 44.0, 45.0, 60.0, 79.0, 85.0, 89.0,
+                                                             89.9999, 90.0]))
+    kernel = f.scattering_azimuth_kernel()
+    value, bound = kernel(np.cos(theta_l), np.sin(theta_l), np.cos(theta_v), np.sin(theta_v))
+    reference = azimuth_integral_by_gauss_legendre(f, theta_l, theta_v, 40)
+    reference_err = np.abs(reference - azimuth_integral_by_gauss_legendre(f, theta_l, theta_v, 30))
+    assert np.all(np.abs(value - reference) <= bound + reference_err + 1e-14 * np.abs(reference))
+    assert np.all(bound <= 1e-12 * np.abs(value) + 1e-300)         # far below the engine's 1e-10
+    assert np.all(value[np.cos(theta_v) == np.cos(rad(90.0))] >= 0)
+
+
+def test_albedo_by_the_closed_form_azimuth_agrees_with_the_two_dimensional_route(monkeypatch):
+    """F = 1 takes the 1-D route (its kernel nodes counted); the 2-D route of the same lobe (the model
+    without its kernel, as with a Fresnel term) agrees within the two errors, at rtol 1e-10 and 1e-6."""
+    f = HeTorrance(sigma0_um=0.1, tau_um=4.0)                # the narrowest example, delta included
+    theta = np.array([0.0, 1e-6, 45.0, 89.9999])
+    one_d = {rtol: albedo(f, theta, rtol=rtol) for rtol in (1e-10, 1e-6)}
+    monkeypatch.setattr(HeTorrance, "scattering_azimuth_kernel", lambda self: None)
+    two_d = albedo(f, theta, rtol=1e-10)
+    assert np.all(two_d.evaluations > 20 * one_d[1e-10].evaluations)
+    for rtol, est in one_d.items():
+        assert est.evaluations > 0 and est.evaluations % 21 == 0       # one count per Kronrod node
+        assert np.all(est.route == "engine/scattering") and np.all(est.status == "converged")
+        assert np.all(np.abs(est.value - two_d.value) <= est.error + two_d.error)
+        assert np.all(est.error <= rtol * est.value)

@@ -15,6 +15,11 @@ near the horizon (the shadowing and effective roughness, on the scale N·V ~ 2σ
 end at N·V = 0) and where a circle first meets one of the radial scales (sin θ_V = sin θ ± r_k):
 these are the breakpoints of the adaptive outer integration.  The integrand is symmetric in φ:
 φ ∈ [0, π], doubled.
+
+A model that declares ``scattering_azimuth_kernel()`` (He–Torrance with F ≡ 1: its Kirchhoff series
+integrated over φ term by term in Kummer functions) gives the inner integral in closed form, with a bound
+of its error: the albedo is then the 1-D integral over θ_V of that kernel, on the same breakpoints, each
+kernel value counted as one evaluation (as the other closed-form routes count their nodes).
 """
 from __future__ import annotations
 
@@ -22,7 +27,8 @@ import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.numerics.integrate.grouping import first_of_model
-from brdfs.core.gauss_kronrod import NodeValues, integrate
+from brdfs.core.gauss_kronrod import FILL_CHEAP, NodeValues, integrate
+from brdfs.physics.models.base import count_evaluations
 
 INNER_RTOL = 0.25          # inner integrals to a quarter of the target, so that the outer can meet it
 
@@ -42,16 +48,25 @@ def albedo_scattering(models, theta_deg, rtol=1e-10, atol=1e-14):
     index = first_of_model(models)
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     bp = _breakpoints([m.lobe for m in models], st)
+    kernels = {k: models[k].scattering_azimuth_kernel() for k in np.unique(index)}
 
     def integrand(theta_v, elem):
         high, low, extra = (np.empty_like(theta_v) for _ in range(3))
         for k in np.unique(index[elem]):
             rows = index[elem] == k
             e = elem[rows]
-            high[rows], low[rows], extra[rows] = _azimuthal(models[k], theta_v[rows], mu[e, None], st[e, None],
-                                                             INNER_RTOL * rtol, atol)
+            if kernels[k] is None:
+                high[rows], low[rows], extra[rows] = _azimuthal(models[k], theta_v[rows], mu[e, None],
+                                                                 st[e, None], INNER_RTOL * rtol, atol)
+                continue
+            t = theta_v[rows]
+            high[rows], extra[rows] = kernels[k](mu[e, None], st[e, None], np.cos(t), np.sin(t))
+            low[rows] = high[rows]
+            count_evaluations(t.size)
         return NodeValues(high, low, extra)
 
+    if all(kernel is not None for kernel in kernels.values()):
+        return integrate(integrand, bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)
     return integrate(integrand, bp, rtol=rtol, atol=atol, chunk=64)
 
 

@@ -37,6 +37,9 @@ What is known in closed form (``None`` where nothing is):
 * ``exact_mean_albedo()``: the mean albedo A (eq. 1.20 / 3.37).
 * ``truncation_error(L, V)``: a bound of the error of an evaluation of f beyond its rounding
   (a series' truncation); zero by default.
+* ``scattering_azimuth_kernel()``: for a lobe in the scattering frame, ∫ f cos θ_V sin θ_V dφ_V at
+  polar angles (θ_L, θ_V) with a bound of its error (He–Torrance with F ≡ 1), which makes the albedo
+  a 1-D integral over θ_V.
 
 * ``grazing_law()``: the law of a(θ) as cos θ → 0 (:class:`GrazingLaw`); ``diverges_at_grazing``:
   a(θ) → ∞ there; ``grazing_limit_model()``: the integrand whose albedo is a(90°), which every
@@ -219,6 +222,13 @@ class counting_evaluations:
         return False
 
 
+def count_evaluations(n: int) -> None:
+    """Add ``n`` to the open :class:`counting_evaluations` counters of this thread: the nodes of a
+    closed-form kernel that a route evaluates in place of the BRDF (each node counts as one value)."""
+    for box in _COUNTERS.boxes:
+        box[0] += n
+
+
 @dataclass(frozen=True)
 class BRDF:
     """Base class: subclasses implement ``_eval(L, V, nl, nv)`` and ``lobe``.
@@ -352,6 +362,12 @@ class BRDF:
         one array (of the shape of ``cos_psi``) per kink: by default the constant radii of
         :meth:`scattering_radius_levels`."""
         return [np.full(np.shape(cos_psi), r) for r in self.scattering_radius_levels()]
+
+    def scattering_azimuth_kernel(self):
+        """``kernel(cos θ_L, sin θ_L, cos θ_V, sin θ_V) -> (value, error)``: ∫₀^{2π} f cos θ_V sin θ_V dφ_V
+        in closed form (with a bound of its error), for a lobe in the scattering frame, so that the
+        albedo is a 1-D integral over θ_V (:mod:`brdfs.numerics.integrate.scattering`).  None by default."""
+        return None
 
     def half_vector_factors(self):
         """``(distribution, S)`` where f(L, V) = D(H) S(N·L, N·V): D the distribution's density of
