@@ -4,6 +4,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import importlib
+import json
 import re
 
 import numpy as np
@@ -139,7 +140,11 @@ def test_each_panel_is_written_as_32_bit_float_openexr_of_its_linear_radiance(ti
     df = registry.get_artifact("fig_4_18_generalized_lambert").compute(cfg, {})
     (tmp_path / rf.exr_name(99)).write_bytes(b"stale")
     paths = rf.write_renders(df, tmp_path)
-    assert [p.name for p in sorted(tmp_path.iterdir())] == sorted(rf.exr_name(k) for k in df["panel"].unique())
+    assert [p.name for p in sorted(tmp_path.glob("*.exr"))] == sorted(rf.exr_name(k) for k in df["panel"].unique())
+    timing = json.loads((tmp_path / rf.TIMING_FILE).read_text())      # measured seconds: beside, not in the CSV
+    assert [p["panel"] for p in timing["panels"]] == sorted(df["panel"].unique())
+    assert all(p["wall_s"] > 0 and p["cpu_s"] > 0 for p in timing["panels"])
+    assert not {"wall_s", "cpu_s"} & set(df.columns)
     for k, path in enumerate(paths):
         bitmap = mi.Bitmap(str(path))
         assert bitmap.component_format() == mi.Struct.Type.Float32

@@ -40,7 +40,9 @@ section 3.6) unless a figure asks otherwise, and the same seeds (common random n
 from __future__ import annotations
 
 import contextlib
+import json
 import textwrap
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -398,10 +400,13 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``plugin_evaluations`` (per object whose plugin counts), over all passes.
     """
     setups = panel_setups(figure_setup(settings(cfg), name), name, len(panels))
-    rows, images, id_buffers, radiance, scale = [], [], [], [], None
+    rows, images, id_buffers, radiance, scale, seconds = [], [], [], [], None, []
     for k, (panel, setup) in enumerate(zip(panels, setups)):
         width, height = panel_size(setup, panel.aspect)
+        wall, cpu = time.perf_counter(), time.process_time()
         rendered = render_panel(panel, cfg, setup, width, height, count)
+        seconds.append({"panel": k, "title": panel.title, "wall_s": round(time.perf_counter() - wall, 3),
+                        "cpu_s": round(time.process_time() - cpu, 3)})
         if post is not None:
             rendered = post(panel, rendered)
         channels = SPECTRAL if panel.channels == "spectral" else 3
@@ -430,11 +435,19 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     df.attrs["images"] = images
     df.attrs["ids"] = id_buffers
     df.attrs[RADIANCE] = radiance
+    df.attrs[TIMING] = seconds
     return df
 
 
 #: ``df.attrs`` key of the panels' linear radiance: a list of (H, W, 3) float32 linear sRGB, panel by panel.
 RADIANCE = "radiance"
+#: ``df.attrs`` key of the panels' measured render seconds (wall and process CPU, a list of dicts:
+#: panel, title, wall_s, cpu_s); written by :func:`write_renders` to :data:`TIMING_FILE`, never to
+#: the CSV or PNG (which stay byte-identical).
+TIMING = "timing"
+#: The JSON file of a figure's measured render seconds per panel, beside its EXR files (the report's
+#: and the docs' figure pages show it: :func:`brdfs.pipeline.report.render_seconds`).
+TIMING_FILE = "timing.json"
 
 
 def exr_name(panel: int) -> str:
@@ -446,7 +459,8 @@ def write_renders(df: pd.DataFrame, directory) -> list:
     """Write each panel's linear radiance (``df.attrs["radiance"]``) as a 32-bit float RGB OpenEXR
     file :func:`exr_name` in ``directory`` (created; other ``panel_*.exr`` files there removed), by
     Mitsuba's own writer (``mi.Bitmap(...).write``), each atomically; the same image gives the same
-    bytes for one variant and machine.  Returns the paths."""
+    bytes for one variant and machine; the panels' measured seconds (``df.attrs["timing"]``, if
+    any) go to :data:`TIMING_FILE` beside them.  Returns the EXR paths."""
     import os
     from pathlib import Path
 
@@ -465,6 +479,12 @@ def write_renders(df: pd.DataFrame, directory) -> list:
         paths.append(path)
     for stale in set(directory.glob("panel_*.exr")) - set(paths):
         stale.unlink()
+    if df.attrs.get(TIMING):
+        path = directory / TIMING_FILE
+        tmp = path.with_name(f".{path.name}.tmp")
+        tmp.write_text(json.dumps({"figure": str(df["figure"].iloc[0]), "panels": df.attrs[TIMING]}, indent=1),
+                       encoding="utf-8")
+        os.replace(tmp, path)
     return paths
 
 
