@@ -84,7 +84,7 @@ def settings(cfg: dict) -> dict:
     if preset not in PRESETS:
         raise ValueError(f"renders.preset = {preset!r}: must be one of {PRESETS}")
     setup = {"preset": preset, "variant": section["variant"], "sampler": section["sampler"],
-             "caustics": section["caustics"], "figure_spp": {}, **section[preset]}
+             "caustics": section["caustics"], "figure_spp": {}, "figure_clamp": section.get("clamp", {}), **section[preset]}
     if setup["passes"] < metrics.MIN_PASSES or setup["spp"] % setup["passes"]:
         raise ValueError(f"renders.{preset}: spp = {setup['spp']} must be a multiple of passes = "
                          f"{setup['passes']} >= {metrics.MIN_PASSES}")
@@ -98,7 +98,7 @@ def settings(cfg: dict) -> dict:
 def figure_setup(setup: dict, name: str) -> dict:
     """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp`` (an
     integer, or a list with one entry per panel, :func:`panel_setups`)."""
-    return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"])}
+    return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"]), "clamp": float(setup["figure_clamp"].get(name, 0.0))}
 
 
 def panel_setups(setup: dict, name: str, count: int) -> list[dict]:
@@ -178,9 +178,10 @@ def _scene(panel: Panel, cfg: dict, groups):
                      point_lights=panel.point_lights)
 
 
-def _integrator(panel: Panel, count: bool = False, caustics: bool = True, colour_groups: int = 1) -> dict:
+def _integrator(panel: Panel, count: bool = False, caustics: bool = True, colour_groups: int = 1,
+                clamp: float = 0.0) -> dict:
     out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count), "caustics": bool(caustics),
-           "colour_groups": int(colour_groups)}
+           "colour_groups": int(colour_groups), "clamp": float(clamp)}
     if panel.background is not None:
         out.update(hide_emitters=True, background=float(panel.background))
     return out
@@ -198,6 +199,7 @@ class RenderedPanel:
     costs: dict = field(default_factory=dict)
     rays: int | None = None
     cos_v: np.ndarray | None = None
+    lost: np.ndarray | None = None       # (P, H, W, C): the light the clamp took, per pass (clamp > 0)
 
     @property
     def radiance(self):
@@ -260,7 +262,9 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     # ID is an object's only where all its samples hit that object
     ids, ids_sq, cos_v = np.zeros((height, width)), np.zeros((height, width)), np.zeros((height, width))
     labels, first = None, True
-    integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1)
+    clamp = float(setup.get("clamp", 0.0))
+    integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1, clamp)
+    lost = np.zeros_like(out) if clamp > 0 else None
     # point lights: one scene per light (an emitter sample then picks no light at random)
     light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
     with one_thread():   # the same bytes in every run (one_thread)
@@ -271,6 +275,8 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                 for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
                     image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
                     out[p] += chunk / spp * panel_channels(image, groups)
+                    if lost is not None:
+                        lost[p] += chunk / spp * clamped_channels(image, groups)
                     if first:
                         ids += chunk / (spp * passes) * image[..., 3]
                         cos_v += chunk / (spp * passes) * image[..., 4]
@@ -280,7 +286,7 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                 ids = pure_ids(ids, ids_sq, spp * passes)
     costs = _plugin_costs(scene) if count else {}
     rays = int(np.asarray(scene.integrator().rays)[0]) if count else None
-    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v)
+    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v, lost)
 
 
 @contextlib.contextmanager
@@ -311,6 +317,18 @@ def panel_channels(image: np.ndarray, groups) -> np.ndarray:
         first = 0 if g == 0 else 5 + 3 * (g - 1)
         for k, wavelength in enumerate(pass_channels(group)):
             out[..., wavelength] = image[..., first + k]
+    return out
+
+
+def clamped_channels(image: np.ndarray, groups) -> np.ndarray:
+    """The light the integrator's clamp took (AOVs ``k<g>_*``, after the ``c<g>_*``), in the panel's channels."""
+    first = 5 + 3 * (len(groups) - 1 if groups else 0)
+    if groups is None:
+        return image[..., first:first + 3]
+    out = np.zeros(image.shape[:-1] + (SPECTRAL,))
+    for g, group in enumerate(groups):
+        for k, wavelength in enumerate(pass_channels(group)):
+            out[..., wavelength] = image[..., first + 3 * g + k]
     return out
 
 
@@ -374,10 +392,23 @@ def _object_noise_columns(noise) -> dict:
             "object_sparkles": noise.sparkles, "object_noise_pixels": noise.object_pixels}
 
 
-def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict) -> list[dict]:
+def _clamp_columns(lost: np.ndarray | None, y: np.ndarray, sel: np.ndarray) -> dict:
+    """``clamp_bias``: the object's relative bias from the clamp, −(light taken) / (light kept + taken)
+    over its pixels (measured in the same passes: the integrator's ``k<g>_*`` AOVs), and its standard
+    error over the passes; 0 without a clamp."""
+    if lost is None:
+        return {"clamp_bias": 0.0, "clamp_bias_err": 0.0}
+    taken, kept = lost[:, sel].mean(axis=1), y[:, sel].mean(axis=1)
+    bias = -taken / (kept + taken)
+    return {"clamp_bias": float(-taken.mean() / (kept + taken).mean()),
+            "clamp_bias_err": float(bias.std(ddof=1) / np.sqrt(bias.size))}
+
+
+def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict, lost: np.ndarray | None = None) -> list[dict]:
     """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes
-    (``y``: the (P, H, W) luminance passes), and the object's own noise figures (``noise``:
-    :func:`~brdfs.render.mitsuba.metrics.panel_noise`'s per object)."""
+    (``y``: the (P, H, W) luminance passes), the object's own noise figures (``noise``:
+    :func:`~brdfs.render.mitsuba.metrics.panel_noise`'s per object) and the clamp's bias (``lost``: the
+    (P, H, W) luminance the clamp took, :func:`_clamp_columns`)."""
     rows = []
     for k, label in sorted(rendered.labels.items()):
         sel = rendered.ids == k
@@ -386,7 +417,7 @@ def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict) -> list[dic
         per_pass = y[:, sel].mean(axis=1)
         rows.append({"object": label, "pixels": int(sel.sum()), "luminance": float(per_pass.mean()),
                      "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size)),
-                     **_object_noise_columns(noise.get(k))})
+                     **_object_noise_columns(noise.get(k)), **_clamp_columns(lost, y, sel)})
     return rows
 
 
@@ -420,12 +451,13 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
         y = rendered.luminance_passes(channels)
         noise, per_object = metrics.panel_noise(y, rendered.ids)
         specs = {label: spec for label, _, spec in panel.objects}
-        for row in object_rows(rendered, y, per_object):
+        lost = None if rendered.lost is None else rendered.lost @ spectrum.luminance_weights(channels)
+        for row in object_rows(rendered, y, per_object, lost):
             rows.append({"figure": name, "panel": k, "panel_title": panel.title, **row,
                          **_describe(specs.get(row["object"], {})),
                          "width": width, "height": height, "spp": rendered.spp, "passes": setup["passes"],
                          "max_depth": panel.max_depth, "preset": setup["preset"], "variant": setup["variant"],
-                         "caustics": bool(setup["caustics"]),
+                         "caustics": bool(setup["caustics"]), "clamp": float(setup.get("clamp", 0.0)),
                          "point_lights": len(panel.lights),
                          "sky_radiance": cfg[SECTION]["sky_radiance"] if panel.sky else 0.0,
                          "p95_relative_se": noise.p95_relative_se, "fireflies": noise.fireflies,
