@@ -172,6 +172,41 @@ def caustic_choice(figures, cfg: dict, clamps, factor: int, out_csv: str) -> Non
     print(f"wrote {out_csv}")
 
 
+#: Panels whose noise is their figure's point (Fig. 4.9's cosine and accept/reject samplers): no target.
+EXCEPTED = {("fig_4_9_sampling_efficiency", 0), ("fig_4_9_sampling_efficiency", 1)}
+
+
+def exact_spp(spp: float, passes: int, sampler: str = "multijitter") -> int:
+    """The fewest samples per pixel >= ``spp`` whose per-pass count the sampler takes exactly."""
+    from brdfs.artifacts._render_figures import sampler_takes
+
+    per_pass = max(int(np.ceil(spp / passes)), 1)
+    while not sampler_takes(sampler, per_pass):
+        per_pass += 1
+    return per_pass * passes
+
+
+def plan(preview_csv: str, target: float, budget_cpu_s: float, passes: int = 8) -> "pd.DataFrame":
+    """Per figure, the samples per pixel that bring its worst object (of the panels not in
+    :data:`EXCEPTED`) from its measured p95 to ``target`` (noise as 1/sqrt(spp), validated by
+    --validate), or, if all of them together would take more than ``budget_cpu_s``, to the common p95
+    t that the budget reaches (sum_i cpu_i (p_i / t)^2 = budget); with the predicted p95 of every object
+    and the predicted CPU seconds (the preview's scaled by the samples: an upper bound, the figure's
+    fixed costs scale too)."""
+    import pandas as pd
+
+    rows = pd.read_csv(preview_csv)
+    rows = rows[[(f, p) not in EXCEPTED for f, p in zip(rows["figure"], rows["panel"])]]
+    figures = rows.groupby("figure").agg(p95=("p95_relative_se", "max"), spp=("spp", "max"), cpu_s=("cpu_s", "first"))
+    reach = float(np.sqrt((figures["cpu_s"] * figures["p95"] ** 2).sum() / budget_cpu_s))
+    goal = max(target, reach)
+    figures["final_spp"] = [exact_spp(max(spp, spp * (p / goal) ** 2), passes) for p, spp in zip(figures["p95"], figures["spp"])]
+    figures["predicted_p95"] = figures["p95"] * np.sqrt(figures["spp"] / figures["final_spp"])
+    figures["predicted_cpu_s"] = figures["cpu_s"] * figures["final_spp"] / figures["spp"]
+    figures.attrs["goal"] = goal
+    return figures
+
+
 def _render(module, cfg: dict, store: list):
     store.clear()
     start = time.process_time()
@@ -220,10 +255,18 @@ def main(argv=None) -> None:
     parser.add_argument("--caustics", default=None, metavar="CSV",
                         help="compare caustic treatments (clamps, --clamps) with an unbiased reference")
     parser.add_argument("--clamps", default="4,16,64", help="the clamps --caustics tries (comma separated)")
+    parser.add_argument("--csv", default=None, help="per (figure, panel, object): p95, fireflies, spp, CPU-s")
+    parser.add_argument("--plan", default=None, metavar="PREVIEW_CSV",
+                        help="plan the final preset's spp from a --csv of the preview (to 1 %% within 30 min on 2 cores)")
     args = parser.parse_args(argv)
     cfg = load_config()
     for assignment in args.set:
         _set(cfg, assignment)
+    if args.plan:
+        figures = plan(args.plan, 0.0095, 2 * 30 * 60.0)
+        print(figures.to_string(float_format=lambda v: f"{v:.4g}"))
+        print(f"worst-object goal {figures.attrs['goal']:.4f}; predicted {figures['predicted_cpu_s'].sum():.0f} CPU-s")
+        return None
     if args.caustics:
         return caustic_choice(args.figures if args.figures != FIGURES else CAUSTIC, cfg,
                               [float(c) for c in args.clamps.split(",")], args.factor, args.caustics)
@@ -231,7 +274,7 @@ def main(argv=None) -> None:
         return validate(args.figures if args.figures != FIGURES else VALIDATED, cfg, args.factor, args.validate)
     store: list = []
     metrics.panel_noise = _capture_maps(store)
-    total = 0.0
+    total, table = 0.0, []
     for name in args.figures:
         module = importlib.import_module(f"brdfs.artifacts.{name}")
         store.clear()
@@ -240,6 +283,10 @@ def main(argv=None) -> None:
         cpu = time.process_time() - start
         total += cpu
         print(f"{name:32s} cpu {cpu:6.1f} s", flush=True)
+        table += [{"figure": name, "panel": r.panel, "object": r.object, "spp": r.spp, "cpu_s": cpu,
+                   "p95_relative_se": r.object_p95_relative_se, "fireflies": r.object_fireflies,
+                   "sparkles": r.object_sparkles, "clamp": getattr(r, "clamp", 0.0),
+                   "clamp_bias": getattr(r, "clamp_bias", 0.0)} for r in df.itertuples()]
         for r in df.itertuples():
             print(f"    panel {r.panel} {r.object:14s} p95 {r.object_p95_relative_se:.4f} fireflies "
                   f"{r.object_fireflies:4.0f} sparkles {r.object_sparkles:4.0f} @ {r.spp:.0f} spp", flush=True)
@@ -251,6 +298,10 @@ def main(argv=None) -> None:
                                     mask=metrics.object_pixels(ids, passes.mean(axis=0)))
             df.to_csv(f"{args.maps}/{name}.csv", index=False)
     print(f"{'total':32s} cpu {total:6.1f} s")
+    if args.csv:
+        import pandas as pd
+
+        pd.DataFrame(table).to_csv(args.csv, index=False)
 
 
 if __name__ == "__main__":
