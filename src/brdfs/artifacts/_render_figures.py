@@ -18,7 +18,10 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   integrator per launch (0.14 CPU-s) and compiles its kernel once. A launch holds at most
   :data:`MAX_LANES` samples and a count the sampler takes exactly (:func:`launches`).
 * **Caustics** (``renders.caustics``): off, the paths diffuse → metal → light are not traced
-  (:mod:`brdfs.render.mitsuba.integrator`).
+  (:mod:`brdfs.render.mitsuba.integrator`); a figure listed in ``renders.clamp`` has its indirect
+  light clamped (Figs. 3.10, 3.11: their sparkles), the bias reported per object.
+* **Timing**: each panel's measured wall and CPU seconds ride in ``df.attrs["timing"]`` to
+  :func:`write_renders` (``timing.json`` beside the EXR files; the report's and docs' pages show them).
 * **Colour** (section 3.8, :mod:`brdfs.render.mitsuba.spectral`): a spectral panel carries eight
   wavelengths as three colour groups along each path (a metal's ``eta``/``k`` and ``eta_g``/``k_g``,
   the integrator's ``colour_groups``); the eight channels go to XYZ and sRGB through colour-science.
@@ -27,8 +30,10 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
   ``fireflies``, ``object_pixels``, the object's own ``object_p95_relative_se``,
   ``object_fireflies``, ``object_sparkles``, ``object_noise_pixels`` (:func:`~brdfs.render.mitsuba.metrics.object_noise`),
-  with ``spp``, ``passes``, ``preset``, ``variant`` and
-  ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1). The
+  with ``spp``, ``passes``, ``preset``, ``variant``,
+  ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1) and
+  ``clamp`` with each object's ``clamp_bias`` and ``clamp_bias_err`` (``renders.clamp.<figure>``:
+  the integrator's clamp of indirect light; the bias is the light it took, measured in the same passes). The
   display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
 * **Linear radiance** (``df.attrs["radiance"]``): each panel's mean over its passes in linear sRGB
   (float32, the values the PNG is scaled and encoded from), written by :func:`write_renders` as
