@@ -4,6 +4,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import importlib
+import json
 import re
 
 import numpy as np
@@ -139,7 +140,11 @@ def test_each_panel_is_written_as_32_bit_float_openexr_of_its_linear_radiance(ti
     df = registry.get_artifact("fig_4_18_generalized_lambert").compute(cfg, {})
     (tmp_path / rf.exr_name(99)).write_bytes(b"stale")
     paths = rf.write_renders(df, tmp_path)
-    assert [p.name for p in sorted(tmp_path.iterdir())] == sorted(rf.exr_name(k) for k in df["panel"].unique())
+    assert [p.name for p in sorted(tmp_path.glob("*.exr"))] == sorted(rf.exr_name(k) for k in df["panel"].unique())
+    timing = json.loads((tmp_path / rf.TIMING_FILE).read_text())      # measured seconds: beside, not in the CSV
+    assert [p["panel"] for p in timing["panels"]] == sorted(df["panel"].unique())
+    assert all(p["wall_s"] > 0 and p["cpu_s"] > 0 for p in timing["panels"])
+    assert not {"wall_s", "cpu_s"} & set(df.columns)
     for k, path in enumerate(paths):
         bitmap = mi.Bitmap(str(path))
         assert bitmap.component_format() == mi.Struct.Type.Float32
@@ -230,3 +235,28 @@ def test_no_sphere_of_figure_4_18_shadows_a_neighbour(tiny_cfg):
         row = rf.compute_panels(cfg, fig_4_18.NAME, [alone]).set_index("object").loc[label]
         assert row["pixels"] == together.loc[label, "pixels"] and width > 0
         assert np.isclose(row["luminance"], together.loc[label, "luminance"], rtol=1e-4), label
+
+
+
+def test_a_figures_clamp_reaches_its_integrator_and_its_taken_light_maps_to_the_panels_channels():
+    """``renders.clamp.<figure>`` (issue 42's caustic treatment) is that figure's integrator ``clamp``
+    (0 for the others); the light the clamp took (AOVs ``k<g>_*`` after the ``c<g>_*``) maps to the
+    eight wavelengths as the image's groups do; each object's ``clamp_bias`` is −taken / (kept + taken)."""
+    cfg = yaml.safe_load(CONFIG_YAML.read_text())
+    cfg["renders"]["clamp"] = {"fig_3_11_silver_mirror": 4.0}
+    setup = rf.settings(cfg)
+    assert rf.figure_setup(setup, "fig_3_11_silver_mirror")["clamp"] == 4.0
+    assert rf.figure_setup(setup, "fig_3_9_metals_new_model")["clamp"] == 0.0
+    assert rf._integrator(rf.Panel("p", [], [], {}), clamp=4.0)["clamp"] == 4.0
+    groups = rf.WAVELENGTH_PASSES
+    colour = 3 * len(groups)
+    image = np.zeros((2, 3, 3 + 2 + (colour - 3) + colour + 1))
+    image[..., :3] = [1.0, 2.0, 3.0]
+    image[..., 5:5 + colour - 3] = np.arange(4.0, colour + 1)          # c1_*, c2_*, ...
+    image[..., 5 + colour - 3:-1] = 10.0 * np.arange(1.0, colour + 1)  # k0_*, k1_*, ...: 10 x the same order
+    assert np.array_equal(rf.clamped_channels(image, groups), 10.0 * rf.panel_channels(image, groups))
+    assert np.array_equal(rf.clamped_channels(image[..., :9], None), image[..., 5:8])
+    kept, taken = np.ones((8, 2, 2)), np.full((8, 2, 2), 0.25)
+    columns = rf._clamp_columns(taken, kept, np.ones((2, 2), bool))
+    assert columns["clamp_bias"] == -0.2 and columns["clamp_bias_err"] == 0.0
+    assert rf._clamp_columns(None, kept, np.ones((2, 2), bool)) == {"clamp_bias": 0.0, "clamp_bias_err": 0.0}

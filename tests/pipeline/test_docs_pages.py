@@ -1,6 +1,7 @@
 """The "thesis recomputed" pages and the report's tables, from a small fake results tree
 (brdfs.pipeline.docs_pages, brdfs.pipeline.recomputed)."""
 
+import json
 import re
 from types import SimpleNamespace
 
@@ -114,3 +115,39 @@ def test_a_chapters_count_is_that_of_the_rows_it_lists_and_the_total_counts_each
     assert tallies[report.category(1)] == recomputed.Tally(2, 1)
     assert tallies[report.category(3)] == recomputed.Tally(1, 1)
     assert recomputed.overall(comparison) == recomputed.Tally(2, 1)
+
+
+# --- measured render seconds per panel (issue 42): on the report's and the docs' figure page, from
+# results/renders/<name>/timing.json (beside the EXR files), never in the CSV or PNG
+
+PANELS = [{"panel": 0, "title": "cosine sampling", "wall_s": 12.25, "cpu_s": 11.5},
+          {"panel": 1, "title": "accept/reject sampling", "wall_s": 3.0, "cpu_s": 2.75}]
+
+
+def _timing(root, name):
+    path = root / report.RENDER_TIMING.format(name=name)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps({"figure": name, "panels": PANELS}))
+
+
+def test_the_report_caption_gives_each_panels_measured_seconds_where_the_build_has_them(tmp_path):
+    captions = tmp_path / "captions"
+    captions.mkdir()
+    (captions / "fig_4_9_x.rst").write_text("**Caption.**\n")
+    texts = report.ReportTexts(sources={}, comparison_csv=str(tmp_path / "none.csv"), captions_dir=str(captions),
+                               root=str(tmp_path))
+    assert texts.caption("fig_4_9_x") == "**Caption.**"          # not built: the caption alone
+    _timing(tmp_path, "fig_4_9_x")
+    text = texts.caption("fig_4_9_x")
+    assert text.startswith("**Caption.**\n\n*Measured in this build*")
+    assert "panel 0 (cosine sampling) 12.2 s wall, 11.5 CPU-s" in text
+    assert "panel 1 (accept/reject sampling) 3.0 s wall, 2.8 CPU-s" in text
+
+
+def test_the_docs_figure_page_gives_each_panels_measured_seconds(tree, tmp_path):
+    out = tmp_path / "docs"
+    assert "Measured in this build" not in docs_pages.artifact_rst("fig_3_1_albedo", tree, out)
+    _timing(tree.root.parent, "fig_3_1_albedo")
+    page = docs_pages.artifact_rst("fig_3_1_albedo", tree, out)
+    assert "panel 0 (cosine sampling) 12.2 s wall" in page and "panel 1 (accept/reject" in page
+    assert "Measured in this build" not in docs_pages.artifact_rst("table_3_2_ward_cmax", tree, out)

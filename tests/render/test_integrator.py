@@ -358,17 +358,23 @@ def _caustic_scene(mi, caustics: bool):
     """A small Lambert plate (z = 0) that only a glossy metal mirror above it lights: a black ball
     hides the low light from the plate, the mirror (phong_cosmin, n = 20, at z = 2, facing down)
     reflects it onto the plate."""
+    return mi.load_dict({**_caustic_scene_dict(mi), "integrator": {"type": "brdfs_path", "caustics": caustics,
+                                                                    "hide_emitters": True}})
+
+
+def _caustic_scene_dict(mi):
+    """:func:`_caustic_scene`'s scene dictionary (its integrator to be set)."""
     lambert = {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [0.8] * 3}}
     black = {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.0] * 3}}
     T = mi.ScalarTransform4f
     mirror = T().translate([0.0, 0.0, 2.0]) @ T().rotate([1, 0, 0], 180) @ T().scale([3.0, 3.0, 1.0])
-    return mi.load_dict({
-        "type": "scene", "integrator": {"type": "brdfs_path", "caustics": caustics, "hide_emitters": True},
+    return {
+        "type": "scene",
         "sensor": _ortho(mi, (0.0, 0.0, 0.5), (0.0, 0.0, 0.0), 0.2, 4, up=(0.0, 1.0, 0.0)),
         "plate": _plate(lambert, half=0.25),
         "mirror": {"type": "rectangle", "to_world": mirror, "bsdf": {"type": "brdfs_phong_cosmin", "n": 20.0}},
         "light": {**_light((1.5, 0.0, 0.5), 0.15, 500.0), "bsdf": black},
-        "blocker": {"type": "sphere", "center": [0.9, 0.0, 0.3], "radius": 0.25, "bsdf": black}})
+        "blocker": {"type": "sphere", "center": [0.9, 0.0, 0.3], "radius": 0.25, "bsdf": black}}
 
 
 def test_without_caustics_a_plate_lit_only_through_a_metal_mirror_is_black(mi):
@@ -417,3 +423,35 @@ def test_each_colour_group_of_a_spectral_path_is_the_render_of_that_group_alone(
         assert alone[..., channels].max() > 1.0                  # lit, and the groups differ in colour
         assert np.allclose(together[..., channels], alone[..., channels], rtol=2e-6, atol=1e-6), g
     assert not np.allclose(together[..., 0], together[..., 6], rtol=0.05)
+
+
+def _clamp_scene(mi, caustics_plate: bool, clamp: float):
+    """The caustic scene (a plate lit through a metal mirror) or a plate lit directly by a near light,
+    rendered by ``brdfs_path`` with ``clamp``."""
+    if caustics_plate:
+        scene = mi.load_dict({**_caustic_scene_dict(mi), "integrator": {"type": "brdfs_path", "hide_emitters": True,
+                                                                         "clamp": clamp}})
+    else:
+        lambert = {"type": "brdfs_lambert", "reflectance": {"type": "rgb", "value": [0.8] * 3}}
+        scene = mi.load_dict({"type": "scene", "integrator": {"type": "brdfs_path", "hide_emitters": True, "clamp": clamp},
+                              "sensor": _ortho(mi, (0.0, 0.0, 5.0), (0.0, 0.0, 0.0), 0.2, 4, up=(0.0, 1.0, 0.0)),
+                              "plate": _plate(lambert), "light": _light((0.3, 0.2, 1.5), 0.5, 500.0)})
+    return [np.asarray(mi.render(scene, spp=16, seed=5 + k)) for k in range(4)]
+
+
+def test_the_clamp_keeps_what_it_takes_in_its_aov_and_never_touches_direct_light(mi):
+    """``clamp`` (the stated caustic treatment, issue 42): with the same seeds the clamped image plus
+    the light the clamp took (AOVs ``k0_*``) is the unclamped image to float precision, the clamp
+    bites where light arrives indirectly (a plate lit only through a mirror), and a plate lit only
+    directly is untouched by even a tiny clamp (nothing taken, the same image)."""
+    free = _clamp_scene(mi, True, 0.0)
+    clamped = _clamp_scene(mi, True, 0.5)
+    for image, unclamped in zip(clamped, free):
+        kept, taken = image[..., :3], image[..., 5:8]
+        assert np.allclose(kept + taken, unclamped[..., :3], rtol=1e-5, atol=1e-6)
+    taken = np.mean([image[..., 5:8].mean() for image in clamped])
+    assert taken > 0.05 * np.mean([image[..., :3].mean() for image in free]), taken
+    direct_free, direct_clamped = _clamp_scene(mi, False, 0.0), _clamp_scene(mi, False, 1e-3)
+    for image, unclamped in zip(direct_clamped, direct_free):
+        assert image[..., :3].max() > 1e-3 and np.array_equal(image[..., :3], unclamped[..., :3])
+        assert not image[..., 5:8].any()

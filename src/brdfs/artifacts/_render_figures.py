@@ -18,7 +18,10 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   integrator per launch (0.14 CPU-s) and compiles its kernel once. A launch holds at most
   :data:`MAX_LANES` samples and a count the sampler takes exactly (:func:`launches`).
 * **Caustics** (``renders.caustics``): off, the paths diffuse → metal → light are not traced
-  (:mod:`brdfs.render.mitsuba.integrator`).
+  (:mod:`brdfs.render.mitsuba.integrator`); a figure listed in ``renders.clamp`` has its indirect
+  light clamped (Figs. 3.10, 3.11: their sparkles), the bias reported per object.
+* **Timing**: each panel's measured wall and CPU seconds ride in ``df.attrs["timing"]`` to
+  :func:`write_renders` (``timing.json`` beside the EXR files; the report's and docs' pages show them).
 * **Colour** (section 3.8, :mod:`brdfs.render.mitsuba.spectral`): a spectral panel carries eight
   wavelengths as three colour groups along each path (a metal's ``eta``/``k`` and ``eta_g``/``k_g``,
   the integrator's ``colour_groups``); the eight channels go to XYZ and sRGB through colour-science.
@@ -27,8 +30,10 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
   ``fireflies``, ``object_pixels``, the object's own ``object_p95_relative_se``,
   ``object_fireflies``, ``object_sparkles``, ``object_noise_pixels`` (:func:`~brdfs.render.mitsuba.metrics.object_noise`),
-  with ``spp``, ``passes``, ``preset``, ``variant`` and
-  ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1). The
+  with ``spp``, ``passes``, ``preset``, ``variant``,
+  ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1) and
+  ``clamp`` with each object's ``clamp_bias`` and ``clamp_bias_err`` (``renders.clamp.<figure>``:
+  the integrator's clamp of indirect light; the bias is the light it took, measured in the same passes). The
   display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
 * **Linear radiance** (``df.attrs["radiance"]``): each panel's mean over its passes in linear sRGB
   (float32, the values the PNG is scaled and encoded from), written by :func:`write_renders` as
@@ -40,7 +45,9 @@ section 3.6) unless a figure asks otherwise, and the same seeds (common random n
 from __future__ import annotations
 
 import contextlib
+import json
 import textwrap
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -82,7 +89,7 @@ def settings(cfg: dict) -> dict:
     if preset not in PRESETS:
         raise ValueError(f"renders.preset = {preset!r}: must be one of {PRESETS}")
     setup = {"preset": preset, "variant": section["variant"], "sampler": section["sampler"],
-             "caustics": section["caustics"], "figure_spp": {}, **section[preset]}
+             "caustics": section["caustics"], "figure_spp": {}, "figure_clamp": section.get("clamp", {}), **section[preset]}
     if setup["passes"] < metrics.MIN_PASSES or setup["spp"] % setup["passes"]:
         raise ValueError(f"renders.{preset}: spp = {setup['spp']} must be a multiple of passes = "
                          f"{setup['passes']} >= {metrics.MIN_PASSES}")
@@ -96,7 +103,7 @@ def settings(cfg: dict) -> dict:
 def figure_setup(setup: dict, name: str) -> dict:
     """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp`` (an
     integer, or a list with one entry per panel, :func:`panel_setups`)."""
-    return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"])}
+    return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"]), "clamp": float(setup["figure_clamp"].get(name, 0.0))}
 
 
 def panel_setups(setup: dict, name: str, count: int) -> list[dict]:
@@ -176,9 +183,10 @@ def _scene(panel: Panel, cfg: dict, groups):
                      point_lights=panel.point_lights)
 
 
-def _integrator(panel: Panel, count: bool = False, caustics: bool = True, colour_groups: int = 1) -> dict:
+def _integrator(panel: Panel, count: bool = False, caustics: bool = True, colour_groups: int = 1,
+                clamp: float = 0.0) -> dict:
     out = {"type": "brdfs_path", "max_depth": panel.max_depth, "count_rays": bool(count), "caustics": bool(caustics),
-           "colour_groups": int(colour_groups)}
+           "colour_groups": int(colour_groups), "clamp": float(clamp)}
     if panel.background is not None:
         out.update(hide_emitters=True, background=float(panel.background))
     return out
@@ -196,6 +204,7 @@ class RenderedPanel:
     costs: dict = field(default_factory=dict)
     rays: int | None = None
     cos_v: np.ndarray | None = None
+    lost: np.ndarray | None = None       # (P, H, W, C): the light the clamp took, per pass (clamp > 0)
 
     @property
     def radiance(self):
@@ -258,7 +267,9 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     # ID is an object's only where all its samples hit that object
     ids, ids_sq, cos_v = np.zeros((height, width)), np.zeros((height, width)), np.zeros((height, width))
     labels, first = None, True
-    integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1)
+    clamp = float(setup.get("clamp", 0.0))
+    integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1, clamp)
+    lost = np.zeros_like(out) if clamp > 0 else None
     # point lights: one scene per light (an emitter sample then picks no light at random)
     light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
     with one_thread():   # the same bytes in every run (one_thread)
@@ -269,6 +280,8 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                 for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
                     image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
                     out[p] += chunk / spp * panel_channels(image, groups)
+                    if lost is not None:
+                        lost[p] += chunk / spp * clamped_channels(image, groups)
                     if first:
                         ids += chunk / (spp * passes) * image[..., 3]
                         cos_v += chunk / (spp * passes) * image[..., 4]
@@ -278,7 +291,7 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                 ids = pure_ids(ids, ids_sq, spp * passes)
     costs = _plugin_costs(scene) if count else {}
     rays = int(np.asarray(scene.integrator().rays)[0]) if count else None
-    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v)
+    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v, lost)
 
 
 @contextlib.contextmanager
@@ -309,6 +322,18 @@ def panel_channels(image: np.ndarray, groups) -> np.ndarray:
         first = 0 if g == 0 else 5 + 3 * (g - 1)
         for k, wavelength in enumerate(pass_channels(group)):
             out[..., wavelength] = image[..., first + k]
+    return out
+
+
+def clamped_channels(image: np.ndarray, groups) -> np.ndarray:
+    """The light the integrator's clamp took (AOVs ``k<g>_*``, after the ``c<g>_*``), in the panel's channels."""
+    first = 5 + 3 * (len(groups) - 1 if groups else 0)
+    if groups is None:
+        return image[..., first:first + 3]
+    out = np.zeros(image.shape[:-1] + (SPECTRAL,))
+    for g, group in enumerate(groups):
+        for k, wavelength in enumerate(pass_channels(group)):
+            out[..., wavelength] = image[..., first + 3 * g + k]
     return out
 
 
@@ -372,10 +397,23 @@ def _object_noise_columns(noise) -> dict:
             "object_sparkles": noise.sparkles, "object_noise_pixels": noise.object_pixels}
 
 
-def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict) -> list[dict]:
+def _clamp_columns(lost: np.ndarray | None, y: np.ndarray, sel: np.ndarray) -> dict:
+    """``clamp_bias``: the object's relative bias from the clamp, −(light taken) / (light kept + taken)
+    over its pixels (measured in the same passes: the integrator's ``k<g>_*`` AOVs), and its standard
+    error over the passes; 0 without a clamp."""
+    if lost is None:
+        return {"clamp_bias": 0.0, "clamp_bias_err": 0.0}
+    taken, kept = lost[:, sel].mean(axis=1), y[:, sel].mean(axis=1)
+    bias = -taken / (kept + taken)
+    return {"clamp_bias": float(-taken.mean() / (kept + taken).mean()),
+            "clamp_bias_err": float(bias.std(ddof=1) / np.sqrt(bias.size))}
+
+
+def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict, lost: np.ndarray | None = None) -> list[dict]:
     """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes
-    (``y``: the (P, H, W) luminance passes), and the object's own noise figures (``noise``:
-    :func:`~brdfs.render.mitsuba.metrics.panel_noise`'s per object)."""
+    (``y``: the (P, H, W) luminance passes), the object's own noise figures (``noise``:
+    :func:`~brdfs.render.mitsuba.metrics.panel_noise`'s per object) and the clamp's bias (``lost``: the
+    (P, H, W) luminance the clamp took, :func:`_clamp_columns`)."""
     rows = []
     for k, label in sorted(rendered.labels.items()):
         sel = rendered.ids == k
@@ -384,7 +422,7 @@ def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict) -> list[dic
         per_pass = y[:, sel].mean(axis=1)
         rows.append({"object": label, "pixels": int(sel.sum()), "luminance": float(per_pass.mean()),
                      "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size)),
-                     **_object_noise_columns(noise.get(k))})
+                     **_object_noise_columns(noise.get(k)), **_clamp_columns(lost, y, sel)})
     return rows
 
 
@@ -398,10 +436,13 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``plugin_evaluations`` (per object whose plugin counts), over all passes.
     """
     setups = panel_setups(figure_setup(settings(cfg), name), name, len(panels))
-    rows, images, id_buffers, radiance, scale = [], [], [], [], None
+    rows, images, id_buffers, radiance, scale, seconds = [], [], [], [], None, []
     for k, (panel, setup) in enumerate(zip(panels, setups)):
         width, height = panel_size(setup, panel.aspect)
+        wall, cpu = time.perf_counter(), time.process_time()
         rendered = render_panel(panel, cfg, setup, width, height, count)
+        seconds.append({"panel": k, "title": panel.title, "wall_s": round(time.perf_counter() - wall, 3),
+                        "cpu_s": round(time.process_time() - cpu, 3)})
         if post is not None:
             rendered = post(panel, rendered)
         channels = SPECTRAL if panel.channels == "spectral" else 3
@@ -415,12 +456,13 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
         y = rendered.luminance_passes(channels)
         noise, per_object = metrics.panel_noise(y, rendered.ids)
         specs = {label: spec for label, _, spec in panel.objects}
-        for row in object_rows(rendered, y, per_object):
+        lost = None if rendered.lost is None else rendered.lost @ spectrum.luminance_weights(channels)
+        for row in object_rows(rendered, y, per_object, lost):
             rows.append({"figure": name, "panel": k, "panel_title": panel.title, **row,
                          **_describe(specs.get(row["object"], {})),
                          "width": width, "height": height, "spp": rendered.spp, "passes": setup["passes"],
                          "max_depth": panel.max_depth, "preset": setup["preset"], "variant": setup["variant"],
-                         "caustics": bool(setup["caustics"]),
+                         "caustics": bool(setup["caustics"]), "clamp": float(setup.get("clamp", 0.0)),
                          "point_lights": len(panel.lights),
                          "sky_radiance": cfg[SECTION]["sky_radiance"] if panel.sky else 0.0,
                          "p95_relative_se": noise.p95_relative_se, "fireflies": noise.fireflies,
@@ -430,11 +472,19 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     df.attrs["images"] = images
     df.attrs["ids"] = id_buffers
     df.attrs[RADIANCE] = radiance
+    df.attrs[TIMING] = seconds
     return df
 
 
 #: ``df.attrs`` key of the panels' linear radiance: a list of (H, W, 3) float32 linear sRGB, panel by panel.
 RADIANCE = "radiance"
+#: ``df.attrs`` key of the panels' measured render seconds (wall and process CPU, a list of dicts:
+#: panel, title, wall_s, cpu_s); written by :func:`write_renders` to :data:`TIMING_FILE`, never to
+#: the CSV or PNG (which stay byte-identical).
+TIMING = "timing"
+#: The JSON file of a figure's measured render seconds per panel, beside its EXR files (the report's
+#: and the docs' figure pages show it: :func:`brdfs.pipeline.report.render_seconds`).
+TIMING_FILE = "timing.json"
 
 
 def exr_name(panel: int) -> str:
@@ -446,7 +496,8 @@ def write_renders(df: pd.DataFrame, directory) -> list:
     """Write each panel's linear radiance (``df.attrs["radiance"]``) as a 32-bit float RGB OpenEXR
     file :func:`exr_name` in ``directory`` (created; other ``panel_*.exr`` files there removed), by
     Mitsuba's own writer (``mi.Bitmap(...).write``), each atomically; the same image gives the same
-    bytes for one variant and machine.  Returns the paths."""
+    bytes for one variant and machine; the panels' measured seconds (``df.attrs["timing"]``, if
+    any) go to :data:`TIMING_FILE` beside them.  Returns the EXR paths."""
     import os
     from pathlib import Path
 
@@ -465,6 +516,12 @@ def write_renders(df: pd.DataFrame, directory) -> list:
         paths.append(path)
     for stale in set(directory.glob("panel_*.exr")) - set(paths):
         stale.unlink()
+    if df.attrs.get(TIMING):
+        path = directory / TIMING_FILE
+        tmp = path.with_name(f".{path.name}.tmp")
+        tmp.write_text(json.dumps({"figure": str(df["figure"].iloc[0]), "panels": df.attrs[TIMING]}, indent=1),
+                       encoding="utf-8")
+        os.replace(tmp, path)
     return paths
 
 

@@ -6,8 +6,9 @@ One panel per strategy (the plugins' ``strategy``: ``cosine``, ``accept_reject``
 same scene, seeds and samples per pixel in each; the CSV holds per panel the samples, BRDF
 evaluations and rays per pixel (the patch plugins' and the integrator's counters; the evaluations
 include next-event estimation's, one per light sample that reaches a sphere) and the measured
-noise (p95 of the relative standard error, fireflies). Wall times go to ``results/benchmarks/``
-only (the rule's benchmark file). The efficiency chart of the strategies (variance × cost per
+noise (p95 of the relative standard error, fireflies). Measured seconds per panel go to
+``results/renders/<name>/timing.json`` (beside the EXR files; the report's and the docs' page show
+them, :func:`brdfs.pipeline.report.render_seconds`), never into the CSV or PNG. The efficiency chart of the strategies (variance × cost per
 sample) is the extra ``extra_sampling_efficiency``.
 """
 from __future__ import annotations

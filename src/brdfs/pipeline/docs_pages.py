@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from brdfs.pipeline import recomputed, registry
-from brdfs.pipeline.report import CAPTIONS_DIR, caption, thesis_number, verdict
+from brdfs.pipeline.report import CAPTIONS_DIR, caption, render_seconds, thesis_number, verdict
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -134,6 +134,9 @@ def artifact_rst(name: str, tree: ResultsTree, page_dir: Path, level: str | None
     else:
         against = verdict(name, comparison, tree.sources) + "\n"
     text = caption(name, tree.captions_dir) + "\n"
+    seconds = render_seconds(name, tree.root.parent)
+    if seconds:
+        text += "\n" + seconds + "\n"
     # A table reads best as its numbers beside the print, its PNG after; a figure is its image first.
     parts += [text, against, image] if artifact.kind == "table" else [image, text, against]
     if csv.is_file():

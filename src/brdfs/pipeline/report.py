@@ -95,6 +95,26 @@ def caption(name: str, directory: str | os.PathLike = CAPTIONS_DIR) -> str:
     return f"*{name}: no caption written yet (add* ``workflow/report/captions/{name}.rst`` *).*"
 
 
+#: Where a rendered figure's measured seconds per panel are (``results/renders/<name>/timing.json``,
+#: written beside its EXR files by the renders writer; never in the CSV or PNG, which stay byte-identical).
+RENDER_TIMING = "results/renders/{name}/timing.json"
+
+
+def render_seconds(name: str, root: str | os.PathLike = REPO_ROOT) -> str:
+    """RST: the measured render seconds of each panel of ``name`` in this build (``root`` /
+    :data:`RENDER_TIMING`), or "" where the figure renders nothing or is not built."""
+    import json
+
+    path = Path(root) / RENDER_TIMING.format(name=name)
+    if not path.is_file():
+        return ""
+    panels = json.loads(path.read_text(encoding="utf-8"))["panels"]
+    cells = "; ".join(f"panel {p['panel']} ({_clean(p['title'], 60)}) {p['wall_s']:.1f} s wall, {p['cpu_s']:.1f} CPU-s"
+                      for p in panels)
+    return (f"*Measured in this build* (one thread per render; the first panel also compiles the kernels; "
+            f"from ``{RENDER_TIMING.format(name=name)}``): {cells}.")
+
+
 def _expand(text: str, directory: Path, seen: tuple = ()) -> str:
     """``text`` with every ``.. include::`` line replaced by the (expanded) text of its file."""
     def include(match):
@@ -242,6 +262,8 @@ class ReportTexts:
     landing_csv, chapters_csv : str
         ``results/report/landing.csv`` and ``chapters.csv``, the landing table the rule
         ``report_pages`` writes (per artifact, per chapter).
+    root : str
+        The directory holding ``results/`` (the rendered figures' measured seconds, :func:`render_seconds`).
     """
 
     sources: dict
@@ -249,10 +271,12 @@ class ReportTexts:
     captions_dir: str = str(CAPTIONS_DIR)
     landing_csv: str = "results/report/landing.csv"
     chapters_csv: str = "results/report/chapters.csv"
+    root: str = "."
 
     def caption(self, name: str) -> str:
-        """:func:`caption` of ``name`` (the committed file)."""
-        return caption(name, self.captions_dir)
+        """:func:`caption` of ``name`` (the committed file), then its measured render seconds if any
+        (:func:`render_seconds`)."""
+        return "\n\n".join(filter(None, (caption(name, self.captions_dir), render_seconds(name, self.root))))
 
     def verdict(self, name: str) -> str:
         """:func:`verdict` of ``name`` against the comparison as it is now."""

@@ -23,6 +23,13 @@ Per camera ray the estimator is the usual one of pbrt-v4's ``PathIntegrator`` an
   a metal reflecting such a floor by up to 2.8 % (3.9's tank), the metal spheres by 0.5-0.7 %, the
   plastics not at all; Fig. 3.9's p95 of the relative standard error falls from 0.070 to 0.049 and
   its time by 18 %;
+* **clamping** (property ``clamp``, default 0: off; issue 42's caustic treatment): every contribution
+  of light that arrives after the first scattering event (next-event estimation and emitters met by
+  BSDF sampling from the second vertex on: indirect light, the paths rough metal → near-mirror →
+  light of Fig. 3.11) is scaled down so that its largest channel (over all colour groups, so its
+  hue is kept) is at most ``clamp``; the light it loses goes to the AOVs ``k<g>_<channel>`` (one
+  per colour group, after the ``c<g>_*``), so the bias of the clamp is measured in the same render
+  (it is exactly minus the mean of those AOVs) and direct light is never clamped;
 * **colour groups** (property ``colour_groups``, default 1): with G > 1 a path carries G throughputs,
   one per group of three wavelengths (:mod:`brdfs.render.mitsuba.spectral`); the samplers do not
   read the colour, so group g's throughput is group 0's times f_g / f_0 at every vertex (the
@@ -143,6 +150,7 @@ class _BrdfsPathMethods:
     that miss see ``background`` instead of the sky or a light), ``background`` (float, default 0) and
     ``count_rays`` (bool, default False: count camera, shadow and continuation rays in ``rays``),
     ``caustics`` (bool, default True: False drops the paths diffuse → metal → light, module docstring),
+    ``clamp`` (float, default 0: off; else the largest channel of an indirect contribution, module docstring),
     ``colour_groups`` (int, default 1: the throughputs a path carries, module docstring) and
     ``passes`` (int, default 1: with P > 1, AOVs ``p<k>_<c>`` carry each sample's radiance in the
     AOV of its pass k = P·(i mod spp)/spp, i the sample's lane; see :func:`pass_index`).
@@ -158,6 +166,9 @@ class _BrdfsPathMethods:
         self.passes = int(props.get("passes", 1))
         self.caustics = bool(props.get("caustics", True))
         self.colour_groups = int(props.get("colour_groups", 1))
+        self.clamp = float(props.get("clamp", 0.0))
+        if not self.clamp >= 0.0:
+            raise ValueError(f"brdfs_path: clamp = {self.clamp}: must be >= 0 (0: off)")
         if self.passes < 1:
             raise ValueError(f"brdfs_path: passes = {self.passes}: must be >= 1")
         if self.colour_groups < 1 or (self.colour_groups > 1 and self.passes > 1):
@@ -173,7 +184,8 @@ class _BrdfsPathMethods:
         self.bounce_limit = self.bounce_limit  # MUTATION:depth3 self.bounce_limit = min(self.bounce_limit, 3)
 
     def aov_names(self):
-        return ["id", "cos_v"] + colour_group_aov_names(self.colour_groups) + pass_aov_names(self.passes) + ["id_sq"]
+        return (["id", "cos_v"] + colour_group_aov_names(self.colour_groups) + clamp_aov_names(self.colour_groups, self.clamp)
+                + pass_aov_names(self.passes) + ["id_sq"])
 
     def _count(self, active):
         if self.count_rays:
@@ -195,6 +207,7 @@ class _BrdfsPathMethods:
         L = dr.select(active & ~si.is_valid() & mi.Bool(self.hide_emitters), L + self.background, L)
         # one radiance and throughput per colour group (the emitters are white: the same in every group)
         Ls = (L,) * self.colour_groups
+        lost = (mi.Spectrum(0.0),) * self.colour_groups       # what the clamp took (clamp > 0)
         betas = (mi.Spectrum(1.0),) * self.colour_groups
         depth = mi.UInt32(0)
         after_diffuse = mi.Bool(False)
@@ -211,7 +224,7 @@ class _BrdfsPathMethods:
             nee &= ~caustic
             for emitter in lights:
                 value, ratios = self._light_sample(scene, emitter, bsdf, bsdf_ctx, si, sampler, nee)
-                Ls = _add_each(Ls, nee, betas, value, ratios)
+                Ls, lost = self._add(Ls, lost, nee, betas, value, ratios, depth)
 
             # BSDF sampling: the next direction, and what it meets.
             bs, bsdf_weight, ratios = self._bsdf_sample(bsdf, bsdf_ctx, si, sampler, active)
@@ -234,7 +247,7 @@ class _BrdfsPathMethods:
             em_pdf = emitter.pdf_direction(prev_si, ds, hit_light)
             w_bsdf = dr.select(hit_light, power_heuristic(bs.pdf, em_pdf), 1.0)
             radiance = w_bsdf * emitter.eval(si, hit_emitter)
-            Ls = _add_each(Ls, hit_emitter, betas, radiance, _ONE * len(betas))
+            Ls, lost = self._add(Ls, lost, hit_emitter, betas, radiance, _ONE * len(betas), depth)
 
             depth[active] += 1
             active &= si.is_valid() & (depth < self.bounce_limit)
@@ -245,7 +258,24 @@ class _BrdfsPathMethods:
             survive = sampler.next_1d(roulette) < q
             betas = _scale_each(betas, roulette, 1.0 / dr.maximum(q, 1e-30), _ONE * len(betas))
             active &= ~roulette | survive
-        return Ls[0], mi.Bool(True), [object_id, cos_v] + _group_channels(Ls) + self._pass_aovs(sampler, Ls[0]) + [dr.square(object_id)]
+        lost_aovs = [channel for Lg in lost for channel in _channels(Lg)] if self.clamp > 0 else []
+        return (Ls[0], mi.Bool(True), [object_id, cos_v] + _group_channels(Ls) + lost_aovs
+                + self._pass_aovs(sampler, Ls[0]) + [dr.square(object_id)])
+
+    def _add(self, Ls, lost, mask, betas, value, ratios, depth):
+        """L_g + β_g · value · r_g per colour group where ``mask``; with ``clamp`` > 0 a contribution at
+        ``depth`` ≥ 1 (indirect light) is scaled so that its largest channel over the groups is at most
+        ``clamp``, and what it loses is added to ``lost``."""
+        if self.clamp <= 0:
+            return _add_each(Ls, mask, betas, value, ratios), lost
+        terms = [beta * value * r for beta, r in zip(betas, ratios)]
+        largest = dr.max(terms[0])
+        for term in terms[1:]:
+            largest = dr.maximum(largest, dr.max(term))
+        keep = dr.select((depth >= 1) & (largest > self.clamp), self.clamp / largest, 1.0)
+        Ls = tuple(dr.select(mask, Lg + keep * t, Lg) for Lg, t in zip(Ls, terms))
+        lost = tuple(dr.select(mask, Kg + (1.0 - keep) * t, Kg) for Kg, t in zip(lost, terms))
+        return Ls, lost
 
     def _bsdf_sample(self, bsdf, bsdf_ctx, si, sampler, active):
         """``bsdf.sample`` and the colour ratios f_g / f_0 at the sampled direction (one call per vertex)."""
@@ -335,6 +365,14 @@ def colour_group_aov_names(groups: int) -> list[str]:
     """AOV names of the radiance of colour groups 1 … G − 1: ``c<g>_<channel>`` (group 0 is the image)."""
     channels = "RGB" if mi.is_rgb else "Y"
     return [f"c{g}_{c}" for g in range(1, groups) for c in channels]
+
+
+def clamp_aov_names(groups: int, clamp: float) -> list[str]:
+    """AOV names of the light the clamp took, per colour group: ``k<g>_<channel>`` (none without a clamp)."""
+    if clamp <= 0:
+        return []
+    channels = "RGB" if mi.is_rgb else "Y"
+    return [f"k{g}_{c}" for g in range(groups) for c in channels]
 
 
 def pass_index(lanes: int, spp: int, passes: int):

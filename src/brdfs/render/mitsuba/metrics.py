@@ -18,6 +18,16 @@ Per object (issue 42; each object ID of the panel on its own object pixels, :fun
   pixel's own P passes and the median of the mean Y of its 5 × 5 neighbourhood — an outlier both in
   its own passes (not a steady highlight) and among its neighbours (not an edge);
 * **fireflies**: the object's pixels with at least one sparkle.
+
+**Validation** (issue 42, ``benchmarks/render_preview_noise.py --validate``): each object's 8-pass
+p95 against the p95 of the error measured against an independent reference at 4× the samples (in
+4× the passes; the prediction of |error| is the mixture of the pixels' normals with the preview's
+and the reference's own standard errors). On the preview of Figs. 3.9, 3.11 (clamped) and 4.17 the
+measured error is 0.97–1.11× what the estimate predicts (the bound: 1/0.85 = 1.18), so the plain
+8-pass standard deviation is used, not rescaled. Where sparkles dominate an object, it understates:
+Fig. 3.11 without its clamp, 1.14× on the bust and 1.50× on the copper sphere (hundreds of
+``object_fireflies``): there the estimate is a lower bound, and a figure treats its caustics
+(``renders.clamp``) rather than trust it.
 """
 from __future__ import annotations
 
