@@ -44,6 +44,9 @@ endef
 # Inside $(call locked,...) only: the results whose bytes are not those their job wrote (truncated, edited by
 # hand, or from a build that recorded no digests; brdfs.pipeline.io), for `--forcerun`: `make all` rebuilds them.
 FORCE_DAMAGED = damaged=$$($(BIN)/python -m brdfs.pipeline.io damaged)
+# Inside $(call locked,...) only: remove the results no rule writes any more (of an artifact, a rule or a batch
+# that is gone, a killed job's hidden temporary; brdfs.pipeline.registry.stale_results), saying so in one line.
+REMOVE_STALE = $(BIN)/python -m brdfs.pipeline.registry remove-stale
 # Inside $(call locked,...) only: clear the lock a killed Snakemake run left behind.
 UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
@@ -85,7 +88,7 @@ check-wheel: $(STAMP)
 
 # The whole build: one job per artifact, as a plain `snakemake` plans it (the default profile).
 all: llvm $(STAMP)
-	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); $(FORCE_DAMAGED); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS) $${damaged:+--forcerun $$damaged})
+	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); $(REMOVE_STALE); $(FORCE_DAMAGED); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS) $${damaged:+--forcerun $$damaged})
 
 # Lint first (a few seconds), then the tests (the explorer's run in headless Chromium: `make chromium`).
 test: llvm chromium $(STAMP) lint

@@ -191,3 +191,32 @@ def test_thesis_artifacts_default_to_their_numbers_chapter_and_an_extra_must_dec
     assert artifacts.get_artifact("fig_4_99_toy").chapter == 4
     with pytest.raises(artifacts.DeclarationError, match="extra_toy_chapter: declare the report chapter"):
         artifacts.table("extra_toy_chapter")(extra)
+
+
+def test_make_all_removes_exactly_the_results_no_rule_writes_any_more_and_says_so_in_one_line(tmp_path, capsys):
+    from brdfs.pipeline import io
+
+    table = artifacts.get_artifact("table_3_2_ward_cmax")
+    render = next(a for a in artifacts.artifacts().values() if a.renders)
+    kept = [table.csv, table.png, artifacts.log_of(table.step), artifacts.benchmark_of(table.step),
+            f"{render.renders}/panel.exr", f"{render.renders}/.snakemake_timestamp", artifacts.COMPARISON,
+            artifacts.log_of("merge_comparison"), artifacts.REPORT_TABLE.format(name=table.name),
+            "results/report.html", "results/benchmarks/sweep_summary.csv"]      # not the rules': left alone
+    stale = ["results/benchmarks/rules/batches/batch_chapter_3.tsv", "results/logs/batches/batch_chapter_3.log",
+             "results/tables/table_9_9_gone.csv", "results/tables/.table_3_2_ward_cmax.1f2e.csv"]  # a killed job's
+    for relative in kept + stale:
+        (tmp_path / relative).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / relative).write_text("x")
+    for relative, record in [(table.csv, kept), ("results/tables/table_9_9_gone.csv", stale)]:
+        record.append(io.digest_path(relative).as_posix())
+        (tmp_path / record[-1]).parent.mkdir(exist_ok=True)
+        (tmp_path / record[-1]).write_text("0" * 64)
+
+    assert artifacts.stale_results(tmp_path) == sorted(stale)
+    assert artifacts.main(["remove-stale", str(tmp_path)]) == 0
+    (line,) = capsys.readouterr().out.splitlines()
+    assert line == f"removed {len(stale)} results no rule writes any more: {' '.join(sorted(stale))}"
+    assert [r for r in kept + stale if (tmp_path / r).exists()] == kept
+    assert not (tmp_path / "results/benchmarks/rules/batches").exists()    # the directories they leave empty
+    assert artifacts.stale_results(tmp_path) == [] and artifacts.main(["remove-stale", str(tmp_path)]) == 0
+    assert capsys.readouterr().out == ""

@@ -16,7 +16,7 @@ import pandas as pd
 import pytest
 import yaml
 
-from brdfs.pipeline import registry
+from brdfs.pipeline import io, registry
 from brdfs.pipeline.io import REPO_ROOT
 
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
@@ -82,7 +82,7 @@ def test_planning_the_whole_workflow_writes_nothing_and_reads_no_output(pristine
     assert jobs["artifact"] + jobs["render_artifact"] >= 68 and jobs["render_artifact"] >= 12
 
 
-def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then_has_nothing_to_do(tmp_path):
+def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then_has_nothing_to_do(tmp_path, capsys):
     copy_repository(tmp_path)
     run = snakemake(tmp_path, *TARGETS)
     assert run.returncode == 0, run.stderr[-3000:]
@@ -95,11 +95,10 @@ def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then
         log = (tmp_path / "results" / "logs" / kind / f"{name}.log").read_text()
         assert f"step: compute {name}" in log and "done in" in log, log
         assert (tmp_path / "results" / "benchmarks" / "rules" / kind / f"{name}.tsv").is_file()
-    # Atomic writes leave no temporary behind.
+    # Atomic writes leave no temporary behind; every file the build wrote is one the registry says a rule
+    # writes (what `make all` does not remove as stale: outputs, digests, logs, timings).
     assert not [p for p in (tmp_path / "results").rglob(".*") if p.is_file()]
-
-    again = snakemake(tmp_path, "-n", *TARGETS)
-    assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr, again.stdout
+    assert registry.stale_results(tmp_path) == []
 
     # The report of these two: each PNG with its committed caption, rendered by the one template.
     report = snakemake(tmp_path, "--report", "report.html", *TARGETS)
@@ -110,7 +109,8 @@ def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then
     assert "seed,tolerance,metal_reflectance@" in html and "'lambda_nm': 578" not in html
 
     # The same configuration with its keys sorted (top level and nested) plans no job: params are
-    # compared by a repr that sorts every mapping (registry.ConfigSubset).
+    # compared by a repr that sorts every mapping (registry.ConfigSubset). (So the build has nothing
+    # left to do: were a job planned in the file's own order, it would be planned here too.)
     config_yaml = tmp_path / "config.yaml"
     original = yaml.safe_load(config_yaml.read_text())
     config_yaml.write_text(yaml.safe_dump(original, sort_keys=True))
@@ -121,22 +121,21 @@ def test_snakemake_builds_cheap_artifacts_with_logs_benchmarks_and_captions_then
     assert sorted_keys.returncode == 0, sorted_keys.stderr[-3000:]
     assert "Nothing to be done" in sorted_keys.stdout + sorted_keys.stderr, sorted_keys.stdout[-3000:]
 
-    # ... also given as --configfile over the file's own order (the other way to run it).
+    # A damaged result (truncated) is listed by `python -m brdfs.pipeline.io damaged`, which `make all`
+    # passes to --forcerun: exactly its job is planned again, also with the sorted configuration given as
+    # --configfile over the file's own order (the other way to run it: it plans no other job).
     (tmp_path / "sorted.yaml").write_text(yaml.safe_dump(original, sort_keys=True))
     config_yaml.write_text(yaml.safe_dump(original, sort_keys=False))
-    as_configfile = snakemake(tmp_path, "-n", *TARGETS, "--configfile", "sorted.yaml")
-    assert "Nothing to be done" in as_configfile.stdout + as_configfile.stderr, as_configfile.stdout[-3000:]
-
-    # A damaged result (truncated) is listed by `python -m brdfs.pipeline.io damaged`, which `make all`
-    # passes to --forcerun: exactly its job is planned again.
-    damaged_csv = tmp_path / "results" / "tables" / "table_1_2_metal_reflectance.csv"
-    damaged_csv.write_text(damaged_csv.read_text()[:-20])
-    listed = subprocess.run([sys.executable, "-m", "brdfs.pipeline.io", "damaged"], cwd=tmp_path, text=True,
-                            capture_output=True, env={**os.environ, "PYTHONPATH": str(tmp_path / "src")})
-    assert listed.stdout.split() == ["results/tables/table_1_2_metal_reflectance.csv"], listed
-    assert listed.stderr.startswith("results/tables/table_1_2_metal_reflectance.csv: damaged, its content changed")
-    rebuilt = snakemake(tmp_path, "-n", *TARGETS, "--forcerun", *listed.stdout.split())
-    assert planned_jobs(rebuilt) == {"artifact": 1} and "table_1_2_metal_reflectance" in rebuilt.stdout, rebuilt.stdout
+    # (Figure 5.1 is damaged: Table 1.2, whose section is a list of mappings, must stay planned for nothing.)
+    damaged = "results/figures/fig_5_1_patch_based_brdf.csv"
+    (tmp_path / damaged).write_text((tmp_path / damaged).read_text()[:-20])
+    capsys.readouterr()
+    assert io.main(["damaged", str(tmp_path)]) == 0
+    listed = capsys.readouterr()
+    assert listed.out.split() == [damaged], listed
+    assert listed.err.startswith(f"{damaged}: damaged, its content changed")
+    rebuilt = snakemake(tmp_path, "-n", *TARGETS, "--configfile", "sorted.yaml", "--forcerun", *listed.out.split())
+    assert planned_jobs(rebuilt) == {"artifact": 1} and "fig_5_1_patch_based_brdf" in rebuilt.stdout, rebuilt.stdout
 
     # A changed value in the section one target reads reruns that target alone (its digest changed).
     rewritten["metal_reflectance"]["metals"][4]["ior_im"] = 4.85

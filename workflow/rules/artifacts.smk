@@ -36,9 +36,9 @@ rule artifact:
         mem_mb=lambda wc: ARTIFACTS[wc.name].resources["mem_mb"],
         runtime=lambda wc: ARTIFACTS[wc.name].resources["runtime"],
     log:
-        "results/logs/{kind}/{name}.log",
+        registry.log_of("{kind}/{name}"),
     benchmark:
-        "results/benchmarks/rules/{kind}/{name}.tsv"
+        registry.benchmark_of("{kind}/{name}")
     script:
         "../scripts/artifact.py"
 
@@ -59,6 +59,6 @@ use rule artifact as render_artifact with:
     wildcard_constraints:
         name=wildcard_choice(RENDERING),
     log:
-        "results/logs/figures/{name}.log",
+        registry.log_of("figures/{name}"),
     benchmark:
-        "results/benchmarks/rules/figures/{name}.tsv"
+        registry.benchmark_of("figures/{name}")

@@ -17,9 +17,9 @@ rule check:
         mem_mb=1000,
         runtime=5,
     log:
-        "results/logs/checks/comparisons.log",
+        registry.log_of("checks/comparisons"),
     benchmark:
-        "results/benchmarks/rules/checks/comparisons.tsv"
+        registry.benchmark_of("checks/comparisons")
     script:
         "../scripts/fragment.py"
 
@@ -37,8 +37,8 @@ rule merge_comparison:
         mem_mb=1000,
         runtime=5,
     log:
-        "results/logs/merge_comparison.log",
+        registry.log_of("merge_comparison"),
     benchmark:
-        "results/benchmarks/rules/merge_comparison.tsv"
+        registry.benchmark_of("merge_comparison")
     script:
         "../scripts/merge_comparison.py"

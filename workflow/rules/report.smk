@@ -4,11 +4,11 @@
 # report is rendered: workflow/report/workflow.rst) and each table artifact as an HTML table, its
 # printed numbers beside ours with the differing cells marked (brdfs.pipeline.recomputed).
 
-REPORT_LANDING = "results/report/landing.html"
-REPORT_LANDING_CSV = "results/report/landing.csv"
-REPORT_CHAPTERS_CSV = "results/report/chapters.csv"
+REPORT_LANDING = registry.REPORT_LANDING
+REPORT_LANDING_CSV = registry.REPORT_LANDING_CSV
+REPORT_CHAPTERS_CSV = registry.REPORT_CHAPTERS_CSV
 REPORT_TABLE_NAMES = sorted(name for name, a in ARTIFACTS.items() if a.kind == "table")
-REPORT_TABLES = {name: f"results/report/tables/{name}.html" for name in REPORT_TABLE_NAMES}
+REPORT_TABLES = {name: registry.REPORT_TABLE.format(name=name) for name in REPORT_TABLE_NAMES}
 
 
 rule report_pages:
@@ -32,8 +32,8 @@ rule report_pages:
         mem_mb=1000,
         runtime=5,
     log:
-        "results/logs/report_pages.log",
+        registry.log_of("report_pages"),
     benchmark:
-        "results/benchmarks/rules/report_pages.tsv"
+        registry.benchmark_of("report_pages")
     script:
         "../scripts/report_pages.py"

@@ -14,9 +14,9 @@ temp_copy() {
     find "$1" -name __pycache__ -type d -prune -exec rm -rf {} +
 }
 
-# The bytes of every CSV, PNG and EXR under results/ (tables, figures, checks, renders), one "sha256  path" a line.
+# The bytes of every CSV, PNG and EXR under results/ but its logs and timings (results/logs, results/benchmarks),
+# one "sha256  path" a line.
 fingerprint() {
-    (cd "$1" && find results -type f \( -path 'results/tables/*' -o -path 'results/figures/*' -o -path 'results/checks/*' \
-        -o -path 'results/renders/*' \) \( -name '*.csv' -o -name '*.png' -o -name '*.exr' \) -not -name '.*' \
-        | LC_ALL=C sort | xargs sha256sum)
+    (cd "$1" && find results \( -path results/logs -o -path results/benchmarks \) -prune -o -type f \
+        \( -name '*.csv' -o -name '*.png' -o -name '*.exr' \) -not -name '.*' -print | LC_ALL=C sort | xargs sha256sum)
 }

@@ -1,17 +1,21 @@
 #!/usr/bin/env bash
-# Crash recovery, through the README's rebuild command: in a fresh copy, start `make all
-# TARGETS=...`, SIGKILL make, flock, snakemake and its jobs (the whole process group) while a job
-# is running, run the same `make all` again (nothing by hand: no `snakemake --unlock`), and check
+# Crash recovery, through the README's rebuild command: in a fresh copy, start `make all` (the whole
+# build, renders included; CRASH_TARGETS="..." for a part of it), SIGKILL make, flock, snakemake and
+# its jobs (the whole process group) while a job is running, run the same `make all` again (nothing
+# by hand: no `snakemake --unlock`), and check
 #   0. a second `make all` while the first runs fails at once, with one line, and writes nothing,
 #   1. the kill left Snakemake's lock behind (what the rerun must get past), and every output of
 #      the cut jobs that exists under its final name is complete (writes are atomic; leftovers are
 #      hidden .<stem>.<uuid>.<ext> temporaries, not plausible results),
 #   2. the rerun completes (the Makefile clears the stale lock under its flock; rerun-incomplete),
 #   3. outputs finished before the kill are not rebuilt (same mtime), the cut ones are,
-#   4. every CSV/PNG is byte-identical to a clean, uninterrupted `make all` of the same targets.
+#   4. every CSV, PNG and EXR under results/ (logs and timings apart) is byte-identical to a clean,
+#      uninterrupted `make all` of the same targets.
+# Minutes (two whole builds); not part of `make test`.
 # The copies share this tree's .venv (a symlink; `-o .venv/.installed`: never reinstalled).
 set -euo pipefail
 source "$(dirname "$0")/_temp_copy.sh"
+TARGETS=${CRASH_TARGETS-}
 WORK=$(mktemp -d -t brdfs-crash-XXXXXX)
 trap 'rm -rf "$WORK"' EXIT
 unset MAKEFLAGS MAKELEVEL MFLAGS
@@ -45,7 +49,7 @@ setsid nice "${MAKE_ALL[@]}" > first.log 2>&1 &
 PGID=$!
 # Wait until a job has finished and one is running whose outputs do not all exist yet.
 cut=""
-for _ in $(seq 1 600); do
+for _ in $(seq 1 6000); do  # at most 10 minutes: on a busy machine the first job (a render) takes minutes
     sleep 0.1
     cut=$(running_outputs)
     if [ -n "$(LC_ALL=C comm -23 <(outputs) <(echo "$cut"))" ]; then
@@ -99,4 +103,4 @@ fi
 echo "check-crash: the same make all completed (stale lock cleared under the flock);" \
      "$(echo "$finished" | grep -c . || true) files finished before the kill kept, $rerun_jobs jobs run," \
      "$leftovers hidden temporaries left by the kill," \
-     "$(fingerprint "$WORK/clean" | wc -l) CSV/PNG files identical to a clean build"
+     "$(fingerprint "$WORK/clean" | wc -l) CSV/PNG/EXR files identical to a clean build"

@@ -66,7 +66,6 @@ from dataclasses import dataclass
 from typing import Annotated
 
 import numpy as np
-from scipy.integrate import IntegrationWarning, dblquad
 
 from brdfs.numerics.arguments import Above, AtLeast, OneOf, check_albedo_call, check_table_call
 from brdfs.numerics.integrate import azimuthal, polar
@@ -358,6 +357,8 @@ def _midpoint_grid(model, theta, rtol, atol, n_theta: Annotated[int, AtLeast(1)]
 @_per_angle
 def _dblquad(model, theta, rtol, atol, epsrel: Annotated[float | None, Above(0.0)] = None):
     """``scipy.integrate.dblquad`` over θ_V ∈ [0, π/2], φ_V ∈ [0, π] (doubled by symmetry)."""
+    from scipy.integrate import IntegrationWarning, dblquad  # here: scipy.integrate costs a job ~0.2 s to import
+
     L = light_direction(theta)
 
     def integrand(phi, theta_v):

@@ -92,6 +92,37 @@ RENDERS_WRITER = "brdfs.artifacts._render_figures"
 #: Default of ``chapter=``: derived from the artifact's name.
 AUTO = "auto"
 
+# --- where the workflow writes (workflow/rules/*.smk take every path from here) ---------------------
+
+#: The thesis's printed values, and the comparison of every published artifact with them (rules check
+#: and merge_comparison), with its HTML page and the count of verdicts.
+PUBLISHED = "data/published_values.csv"
+COMPARISON = "results/checks/published_comparison.csv"
+COMPARISON_HTML = "results/checks/published_comparison.html"
+VERDICT_COUNTS_CSV = "results/checks/published_verdicts.csv"
+VERDICT_COUNTS_PNG = "results/checks/published_verdicts.png"
+#: The report's reading aids (rule report_pages): the landing table and each table artifact as HTML.
+REPORT_LANDING = "results/report/landing.html"
+REPORT_LANDING_CSV = "results/report/landing.csv"
+REPORT_CHAPTERS_CSV = "results/report/chapters.csv"
+REPORT_TABLE = "results/report/tables/{name}.html"
+#: The steps of the workflow that are not artifacts, by the name of their log and timings.
+STEPS = ("checks/comparisons", "merge_comparison", "report_pages")
+#: The directories under results/ that only the workflow's rules write into: a file in them that no rule
+#: writes (an artifact, a rule or a batch that no longer exists) is stale (:func:`stale_results`).
+WORKFLOW_DIRECTORIES = ("results/tables", "results/figures", "results/checks", "results/renders", "results/report",
+                        "results/logs", "results/benchmarks/rules")
+
+
+def log_of(step: str) -> str:
+    """The log of a job: ``step`` is ``<kind directory>/<name>`` for an artifact, else one of :data:`STEPS`."""
+    return f"results/logs/{step}.log"
+
+
+def benchmark_of(step: str) -> str:
+    """The timings Snakemake records of a job (``benchmark:``), as :func:`log_of`."""
+    return f"results/benchmarks/rules/{step}.tsv"
+
 
 class DeclarationError(ValueError):
     """A decorator line the registry cannot read without importing its module, or a bad declaration."""
@@ -274,6 +305,11 @@ class Artifact:
     def renders(self) -> str | None:
         """The directory of a rendering artifact's OpenEXR files (one per panel), else None."""
         return f"{RENDERS_DIRECTORY}/{self.name}" if RENDERS_SECTION in self.config else None
+
+    @property
+    def step(self) -> str:
+        """``<kind directory>/<name>``, e.g. ``tables/table_3_2_ward_cmax``: the name of its log and timings."""
+        return f"{Path(_DIRECTORIES[self.kind]).name}/{self.name}"
 
     @property
     def outputs(self) -> tuple[str, ...]:
@@ -527,6 +563,72 @@ def comparisons() -> dict[str, Comparison]:
     return {**_package_declarations()[1], **_COMPARISONS}
 
 
+def workflow_files(registered: dict[str, Artifact] | None = None,
+                   compared: dict[str, Comparison] | None = None) -> tuple[set[str], set[str]]:
+    """What the workflow's rules write: the files (every output, log and timings) and the directories
+    (a render's OpenEXR directory, whose files its job names), relative to the repository root."""
+    registered = artifacts() if registered is None else registered
+    compared = comparisons() if compared is None else compared
+    files = {COMPARISON, COMPARISON_HTML, VERDICT_COUNTS_CSV, VERDICT_COUNTS_PNG, REPORT_LANDING, REPORT_LANDING_CSV,
+             REPORT_CHAPTERS_CSV}
+    files |= {REPORT_TABLE.format(name=name) for name, a in registered.items() if a.kind == "table"}
+    files |= {c.fragment_csv for c in compared.values()}
+    for step in (*STEPS, *(a.step for a in registered.values())):
+        files |= {log_of(step), benchmark_of(step)}
+    directories = {a.renders for a in registered.values() if a.renders}
+    for a in registered.values():
+        files |= set(a.outputs) - directories
+    return files, directories
+
+
+def stale_results(root: str | Path = ".") -> list[str]:
+    """The files under ``root``'s :data:`WORKFLOW_DIRECTORIES` that no rule writes any more (nor their
+    digests, ``.digests/<name>.sha256``, nor Snakemake's own marks), relative to ``root``, sorted."""
+    root = Path(root)
+    files, directories = workflow_files()
+    stale = []
+    for top in WORKFLOW_DIRECTORIES:
+        for path in (root / top).rglob("*"):
+            relative = path.relative_to(root)
+            if path.is_dir() or any(relative.as_posix().startswith(d + "/") for d in directories):
+                continue
+            produced = relative.as_posix()
+            if relative.parent.name == io.DIGESTS and path.suffix == ".sha256":
+                produced = (relative.parent.parent / path.stem).as_posix()
+            if produced not in files and not path.name.startswith(".snakemake"):
+                stale.append(relative.as_posix())
+    return sorted(stale)
+
+
+def remove_stale_results(root: str | Path = ".") -> list[str]:
+    """Remove :func:`stale_results` (and the directories they leave empty); return what was removed."""
+    root = Path(root)
+    stale = stale_results(root)
+    for relative in stale:
+        (root / relative).unlink()
+    kept = {root / d for d in workflow_files()[1]}
+    for parent in sorted({(root / r).parent for r in stale}, key=lambda p: len(p.parts), reverse=True):
+        while parent not in kept and parent != root and not any(parent.iterdir()):
+            parent.rmdir()
+            parent = parent.parent
+    return stale
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m brdfs.pipeline.registry remove-stale [ROOT]`` (``make all``): remove the results no rule
+    writes any more, saying in one line what went."""
+    import sys
+
+    args = list(sys.argv[1:] if argv is None else argv)
+    if not args or args[0] != "remove-stale" or len(args) > 2:
+        print("usage: python -m brdfs.pipeline.registry remove-stale [ROOT]", file=sys.stderr)
+        return 2
+    removed = remove_stale_results(args[1] if len(args) == 2 else ".")
+    if removed:
+        print(f"removed {len(removed)} results no rule writes any more: {' '.join(removed)}")
+    return 0
+
+
 def get_artifact(name: str) -> Artifact:
     """The table or figure ``name``.
 
@@ -644,3 +746,7 @@ def compute_all_comparisons(cfg: dict, only: Iterable[str] | None = None) -> pd.
             paths.append(Path(tmp) / Path(c.fragment_csv).name)
             io.write_csv(c.fragment(cfg, compute_tables(cfg, c.tables, cache)), paths[-1])
         return published.merge_fragments(paths)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -5,7 +5,6 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
-from scipy.integrate import quad
 from scipy.special import gamma
 
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
@@ -130,6 +129,8 @@ def ward_cosmin_normal_incidence(m) -> Estimate:
     a(0) = ∫₀^(1/m²) e^(−x) (1 − m²x) / (1 + m²x)³ dx = 1 − 4m² + O(m⁴), so C_max → 1 as m → 0.
     The range is cut at x = 60 (e^(−60) ≈ 1e-26) where 1/m² is larger; ``scipy.integrate.quad`` to
     1e-13 relative, its own error estimate as the error."""
+    from scipy.integrate import quad  # here: scipy.integrate costs a job ~0.2 s to import
+
     upper = min(1 / m ** 2, 60.0)
     val, err = quad(lambda x: np.exp(-x) * (1 - m * m * x) / (1 + m * m * x) ** 3, 0, upper,
                     epsabs=0, epsrel=1e-13, limit=200)
