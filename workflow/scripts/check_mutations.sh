@@ -12,6 +12,8 @@
 #                                                   its model's angle: the line so marked there
 #   tangent_flipped                                 (issue 42) the model frame's y reversed (anisotropy
 #                                                   mirrored): the two lines so marked there
+#   clamp_direct, clamp_half_kept                   (issue 42) the caustic clamp also bites direct light;
+#                                                   its AOV keeps only half of what it took (integrator.py)
 # FAULT=<name> runs only that fault. Prints the table fault -> test -> caught; exits 1 if a fault goes uncaught or its line is missing.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/_temp_copy.sh"
@@ -36,6 +38,8 @@ FAULTS=(
   "mis_weights_apart|$COMMON|$(own mis_weights_apart)|$T::test_the_lobe_mis_density_leaves_a_wide_light_on_a_patch_plate_unbiased"
   "fresnel_at_theta_l|$COMMON|$(own fresnel_at_theta_l)|$T::test_far_light_on_dielectric_coated_plates_gives_f_times_fresnel_at_each_models_angle_times_e"
   "tangent_flipped|$COMMON|$(own tangent_flipped)|$T::test_an_elliptical_patch_highlight_turns_the_right_way_with_the_tangent"
+  "clamp_direct|$INTEGRATOR|$(own clamp_direct)|$T::test_the_clamp_keeps_what_it_takes_in_its_aov_and_never_touches_direct_light"
+  "clamp_half_kept|$INTEGRATOR|$(own clamp_half_kept)|$T::test_the_clamp_keeps_what_it_takes_in_its_aov_and_never_touches_direct_light"
 )
 
 status=0

@@ -272,9 +272,9 @@ class _BrdfsPathMethods:
         largest = dr.max(terms[0])
         for term in terms[1:]:
             largest = dr.maximum(largest, dr.max(term))
-        keep = dr.select((depth >= 1) & (largest > self.clamp), self.clamp / largest, 1.0)
+        keep = dr.select((depth >= 1) & (largest > self.clamp), self.clamp / largest, 1.0)  # MUTATION:clamp_direct keep = dr.select(largest > self.clamp, self.clamp / largest, 1.0)
         Ls = tuple(dr.select(mask, Lg + keep * t, Lg) for Lg, t in zip(Ls, terms))
-        lost = tuple(dr.select(mask, Kg + (1.0 - keep) * t, Kg) for Kg, t in zip(lost, terms))
+        lost = tuple(dr.select(mask, Kg + (1.0 - keep) * t, Kg) for Kg, t in zip(lost, terms))  # MUTATION:clamp_half_kept lost = tuple(dr.select(mask, Kg + 0.5 * (1.0 - keep) * t, Kg) for Kg, t in zip(lost, terms))
         return Ls, lost
 
     def _bsdf_sample(self, bsdf, bsdf_ctx, si, sampler, active):
