@@ -156,7 +156,7 @@ class Group:
     limit: bool = False
 
 
-def _plan(models, theta, method) -> list[Group]:
+def _plan(models, theta, method, own=True) -> list[Group]:
     """The groups of a call: its elements grouped by model object once, each model's elements at
     exactly 90° apart where the model declares its end (+inf, or its grazing limit integrated)."""
     groups = []
@@ -168,12 +168,12 @@ def _plan(models, theta, method) -> list[Group]:
         if ends.size and m.diverges_at_grazing:
             groups.append(Group(m, m, ends, "declared"))
         elif ends.size and (limit := m.grazing_limit_model()) is not m:
-            groups.append(_routed(limit, m, ends, method, limit=True))
+            groups.append(_routed(limit, m, ends, method, limit=True, own=own))
         else:
             ends = rows[:0]
         rest = rows[~at_90[rows]] if ends.size else rows
         if rest.size:
-            groups.append(_routed(m, m, rest, method))
+            groups.append(_routed(m, m, rest, method, own=own))
     return groups
 
 
@@ -347,7 +347,7 @@ def _run(groups, theta, tol, method, options) -> _Answer:
                 answer.evaluations += int(est.evaluations or 0)
                 chunks._advance(g.rows.size, True)
     for g in groups:
-        if g.route == "own" or g.route in ENGINE_ROUTES:
+        if (g.route == "own" or g.route in ENGINE_ROUTES) and type(g.model).delta_albedo is not BRDF.delta_albedo:
             _with_the_dirac_part(answer, g, theta)
     _short_ones_on_the_disk(answer, [g for g in groups if g.then_disk], theta, tol, chunks)
     return answer
@@ -379,7 +379,7 @@ def _own_route(group, answer, theta, tol, method, chunks) -> Group:
 
 def _with_the_dirac_part(answer, group, theta):
     """The albedo of ``group``'s model's Dirac part (``delta_albedo``, e.g. He–Torrance's specular
-    term; zero for most models) added to its elements."""
+    term; a model that does not override it has none) added to its elements."""
     delta = group.model.delta_albedo(theta[group.rows])
     answer.value[group.rows] += delta.value
     answer.error[group.rows] += delta.error
@@ -434,11 +434,12 @@ def _merged_model_errors(answer, groups, theta, tol):
         answer.status[rows[missed]] = STALLED
 
 
-def _answer(models, theta, tol, method, options=None, model_error=True) -> Estimate:
+def _answer(models, theta, tol, method, options=None, model_error=True, own=True) -> Estimate:
     """Albedo of ``models[i]`` at ``theta[i]`` (1-D) by ``method``: planned, run and merged, with the
-    meaning each model declares at 90° and its ``evaluation_error`` (unless ``model_error`` is False)."""
+    meaning each model declares at 90° and its ``evaluation_error`` (unless ``model_error`` is False);
+    ``own`` False: the models' own routes are not asked (their answer was None)."""
     with counting_evaluations() as count:
-        groups = _plan(models, theta, method)
+        groups = _plan(models, theta, method, own)
         answer = _run(groups, theta, tol, method, options or {})
         if model_error:
             _merged_model_errors(answer, groups, theta, tol)
@@ -703,12 +704,42 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     tol = Tolerance.checked(rtol, atol)
     check_albedo_call(model, theta_deg, method, ALBEDO_METHODS, options, strict=strict, warn=warn)
     theta = np.asarray(theta_deg, float)
-    est = _answer([model] * theta.size, theta.ravel(), tol, method, options)
+    est = _by_its_own_route(model, theta, tol) if method in ("auto", "engine") else None
+    if est is None or est is _DECLINED:
+        est = _answer([model] * theta.size, theta.ravel(), tol, method, options, own=est is None)
     shape = theta.shape
     est = Estimate(est.value.reshape(shape), est.error.reshape(shape), est.evaluations,
                    est.status.reshape(shape), est.route.reshape(shape))
     _report_not_converged(est, model, theta, method, tol, strict, warn)
     return est
+
+
+#: :func:`_by_its_own_route`: the model's own route declined (None), the engine's route is next.
+_DECLINED = Estimate(np.zeros(0), np.zeros(0))
+
+
+def _by_its_own_route(model, theta, tol) -> Estimate | None:
+    """The short way of a model with a route of its own (a closed form: Oren–Nayar, the patch
+    models), nothing to plan: its ``albedo_estimate`` where that answers every angle within the
+    tolerance, the model has no tables' error and declares nothing else at 90°; else None (the
+    plan, which gives the same answer: a single call costs the closed form and little more);
+    :data:`_DECLINED` where the route answered None."""
+    if type(model).albedo_estimate is BRDF.albedo_estimate or model.has_evaluation_error:
+        return None
+    if (theta == 90.0).any() and (model.diverges_at_grazing or model.grazing_limit_model() is not model):
+        return None
+    with counting_evaluations() as count:
+        own = model.albedo_estimate(theta.ravel(), tol.rtol, tol.atol)
+        if own is None:
+            return _DECLINED
+        value, error = np.asarray(own.value, float), np.asarray(own.error, float)
+        status = _status(value, error, tol) if own.status is None else np.asarray(own.status, str)
+        if not _all_in(status, CONVERGED):
+            return None
+        if type(model).delta_albedo is not BRDF.delta_albedo:
+            delta = model.delta_albedo(theta.ravel())
+            value, error = value + delta.value, error + delta.error
+    return Estimate(value, error, count[0], status, np.full(value.shape, "engine/own"))
 
 
 def _report_not_converged(est, model, theta, method, tol, strict, warn):
