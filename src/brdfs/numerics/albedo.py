@@ -256,15 +256,15 @@ class _Chunks:
     def run(self, route, models, theta, tol, counted=True):
         if theta.size <= ENGINE_CHUNK:
             parts = [route(models, theta, rtol=tol.rtol, atol=tol.atol)]
-            self._advance(theta.size, counted)
+            self.advance(theta.size, counted)
         else:
             parts = []
             for k in range(0, theta.size, ENGINE_CHUNK):
                 parts.append(route(models[k:k + ENGINE_CHUNK], theta[k:k + ENGINE_CHUNK], rtol=tol.rtol, atol=tol.atol))
-                self._advance(parts[-1].value.size, counted)
+                self.advance(parts[-1].value.size, counted)
         return _joined(parts)
 
-    def _advance(self, n, counted):
+    def advance(self, n, counted=True):
         if counted:
             self.done += n
         if self.callback is not None:
@@ -329,7 +329,7 @@ def _run(groups, theta, tol, method, options) -> _Answer:
         if route == "declared":
             answer.put(rows, Estimate(np.full(rows.size, np.inf), np.zeros(rows.size), 0, np.full(rows.size, DIVERGED)),
                        "declared")
-            chunks._advance(rows.size, True)
+            chunks.advance(rows.size, True)
         elif route in ENGINE_ROUTES:
             est = chunks.run(ENGINE_ROUTES[route], models, theta[rows], tol)
             answer.put(rows, est, f"engine/{route}")
@@ -345,7 +345,7 @@ def _run(groups, theta, tol, method, options) -> _Answer:
                 est = ALBEDO_METHODS[route](g.model, theta[g.rows], tol.rtol, tol.atol, **options)
                 answer.put(g.rows, est, route)
                 answer.evaluations += int(est.evaluations or 0)
-                chunks._advance(g.rows.size, True)
+                chunks.advance(g.rows.size, True)
     for g in groups:
         if (g.route == "own" or g.route in ENGINE_ROUTES) and type(g.model).delta_albedo is not BRDF.delta_albedo:
             _with_the_dirac_part(answer, g, theta)
@@ -373,7 +373,7 @@ def _own_route(group, answer, theta, tol, method, chunks) -> Group:
     # a route that reports no status is judged by its error, not taken as converged
     status = _status(own.value, own.error, tol) if own.status is None else np.asarray(own.status, str)
     answer.put(group.rows, Estimate(np.asarray(own.value, float), np.asarray(own.error, float), 0, status), "engine/own")
-    chunks._advance(group.rows.size, True)
+    chunks.advance(group.rows.size, True)
     return group
 
 
