@@ -242,7 +242,7 @@ def _batch_models():
 
 
 def test_albedo_table_and_albedo_pairs_answer_as_albedo_does_elementwise_on_a_grid_including_90_degrees():
-    """One code path (``_at_the_ends``): +inf/0/diverged, the grazing limit's albedo and the tables'
+    """One code path (``_answer``): +inf/0/diverged, the grazing limit's albedo and the tables'
     error at the same elements, with the same statuses and routes, by all three doors."""
     models, grid = _batch_models(), np.array([0.0, 45.0, 89.99, 90.0])
     table = albedo_module.albedo_table(models, grid, rtol=1e-8)

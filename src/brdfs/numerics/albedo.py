@@ -51,7 +51,7 @@ own ``albedo_estimate`` (None: it has none), its ``closed_form_azimuth``, and it
 
 :func:`albedo_table` and :func:`albedo_pairs` are the engine's batch doors for the package's own
 derived quantities: the same ends and model error, element by element, through the same code
-(:func:`_at_the_ends`), but no warnings: read their ``status``.  ``albedo_pairs(as_evaluated=True)``
+(:func:`_answer`: its plan, run and merge), but no warnings: read their ``status``.  ``albedo_pairs(as_evaluated=True)``
 leaves the model error out (a table factory that carries it itself, :mod:`brdfs.numerics.pumping`).
 
 A model whose lobe's coordinates stop short of the hemisphere (a lobe about R reaches R·V ≥ 0 only)
