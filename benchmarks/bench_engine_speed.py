@@ -18,6 +18,11 @@ machine's load hits all alike:
   integration, of that on the 1-D route's kernel, the ratios a call would reach with every other cost
   removed, and the kernel's own loose/tight ratio (:func:`_single_floor`).
 
+``--models`` (also part of the default run) times every registered model at its ``typical`` example the
+same way (issue 41, "per-call cost"): ``curve_ms_per_point`` and ``single_ms`` at rtol 1e-10 and 1e-6,
+their ratio ``single_over_curve`` (target ≤ 3 for a model on an integral route), and the single call's
+CPU ms (target ≤ 0.1 ms for a model whose route is its own closed form, ``engine/own``).
+
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
 (BRDF or kernel values) of single calls at 1e-10 at 12 angles from 0° to 89.9° — median and maximum
@@ -177,6 +182,38 @@ def curve_ratios():
     return pd.DataFrame(rows)
 
 
+#: Issue 41's targets: a single angle at most this many curve points (integral routes), a single call
+#: of a model's own route at most this many CPU ms.
+RATIO_TARGET, OWN_MS_TARGET = 3.0, 0.1
+
+
+def model_ratios(rounds=ROUNDS):
+    """Every registered model at its ``typical`` example: CPU ms per curve point (100 angles) and per
+    single call (12 angles), best of ``rounds``, at both tolerances, interleaved model by model."""
+    import warnings
+
+    from brdfs.physics.models import MODELS
+    rows = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name, cls in MODELS.items():
+            brdf = cls.example("typical")
+            route = str(np.ravel(albedo(brdf, 30.0).route)[0])
+            for rtol in (TIGHT, LOOSE):
+                curve = lambda: albedo(brdf, CURVE_THETA, rtol=rtol)                        # noqa: E731
+                single = lambda: [albedo(brdf, float(t), rtol=rtol) for t in SINGLE_THETA]  # noqa: E731
+                best_curve = best_single = np.inf
+                for _ in range(rounds):
+                    best_curve = min(best_curve, _seconds(curve) / CURVE_THETA.size)
+                    best_single = min(best_single, _seconds(single) / SINGLE_THETA.size)
+                ratio = best_single / best_curve
+                own = route.startswith("engine/own")
+                rows.append({"model": name, "route": route, "rtol": rtol, "curve_ms_per_point": 1e3 * best_curve,
+                             "single_ms": 1e3 * best_single, "single_over_curve": ratio,
+                             "meets_target": bool(1e3 * best_single <= OWN_MS_TARGET if own else ratio <= RATIO_TARGET)})
+    return pd.DataFrame(rows)
+
+
 def smith_evaluations():
     """Evaluations and time of single calls at 1e-10 for the Smith-masked models."""
     rows = []
@@ -226,6 +263,13 @@ def accuracy_grid_seconds():
 def main():
     if "--accuracy-grid" in sys.argv:
         print(accuracy_grid_seconds().to_string(index=False, float_format=lambda x: f"{x:.1f}"), flush=True)
+        return
+    models = model_ratios()
+    print(models.to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
+    out = REPO_ROOT / "results" / "benchmarks" / "engine_speed_models.csv"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    models.to_csv(out, index=False, float_format="%.4g")
+    if "--models" in sys.argv:
         return
     curves = curve_ratios()
     print(curves.to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)

@@ -23,6 +23,10 @@ computations are :func:`brdfs.albedo` (one call per angle, so that ``evaluations
 own cost), :func:`brdfs.numerics.chi2.chi2_test` and the pipeline's
 ``results/checks/published_comparison.csv``; only the standard library and the package's core
 (numpy, scipy) are imported.
+
+``brdfs albedo`` and ``brdfs lut`` show a progress bar on standard error when it is a terminal and
+the run has lasted 2 s (``BRDFS_PROGRESS_AFTER`` seconds, if set), nothing when it is piped: the
+engine's chunk loop reports to it (:func:`brdfs.numerics.albedo.reporting_progress`).
 """
 from __future__ import annotations
 
@@ -31,8 +35,10 @@ import csv
 import inspect
 import json
 import math
+import os
 import re
 import sys
+import time
 import warnings
 from collections import Counter
 from pathlib import Path
@@ -149,24 +155,78 @@ def _models(args) -> int:
     return 0
 
 
+# --- progress on a terminal -------------------------------------------------------------------
+
+class _Progress:
+    """A one-line progress bar on standard error, drawn only on a terminal and only once the run
+    has lasted ``after`` seconds (``BRDFS_PROGRESS_AFTER``, default 2), redrawn at most ten times a
+    second, cleared by :meth:`close`.  :meth:`fraction` shows a known share of the work done,
+    :meth:`count` a running count (of albedo values) where the total is not known."""
+
+    WIDTH = 30
+
+    def __init__(self, label, stream=None):
+        self.label, self.stream = label, sys.stderr if stream is None else stream
+        self.on = bool(getattr(self.stream, "isatty", lambda: False)())
+        self.after = float(os.environ.get("BRDFS_PROGRESS_AFTER", "2"))
+        self.start, self.drawn_at = time.monotonic(), -math.inf
+        self.drawn, self.counted, self.last = False, 0, 0
+
+    def fraction(self, done):
+        filled = int(self.WIDTH * min(max(done, 0.0), 1.0))
+        self._draw(f"[{'#' * filled}{'.' * (self.WIDTH - filled)}] {100 * done:5.1f} %", done >= 1.0)
+
+    def count(self, done, total):
+        """An engine callback (``done`` of ``total`` elements of its current call) as a running count."""
+        self.counted += done - self.last if done >= self.last else done
+        self.last = done
+        self._draw(f"{self.counted:,} albedo values", False)
+
+    def _draw(self, text, final):
+        now = time.monotonic()
+        if not self.on or now - self.start < self.after or (now - self.drawn_at < 0.1 and not final):
+            return
+        self.drawn_at, self.drawn = now, True
+        self.stream.write(f"\r{self.label} {text} {now - self.start:.1f} s\x1b[K")
+        self.stream.flush()
+
+    def close(self):
+        if self.drawn:
+            self.stream.write("\r\x1b[K")
+            self.stream.flush()
+            self.drawn = False
+
+
 # --- brdfs albedo ------------------------------------------------------------------------------
 
 def _albedo_rows(model, theta, method, rtol, atol, options):
     import brdfs
-    rows = []
-    for t in theta:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            est = brdfs.albedo(model, float(t), method=method, rtol=rtol, atol=atol, **options)
-        route = getattr(est, "route", None)
-        row = {"theta_deg": float(t), "value": float(est.value), "error": float(est.error),
-               "evaluations": int(est.evaluations), "status": str(np.asarray(est.status).item())}
-        if route is not None:
-            row["route"] = str(np.asarray(route).item()) if np.ndim(route) == 0 or np.size(route) == 1 else str(route)
-        for w in caught:
-            print(f"brdfs: warning at theta = {t:g} deg: {w.message}", file=sys.stderr)
-        rows.append(row)
+    from brdfs.numerics.albedo import reporting_progress
+    rows, bar = [], _Progress(f"brdfs albedo {model.name}")
+    try:
+        for k, t in enumerate(theta):
+            with warnings.catch_warnings(record=True) as caught, \
+                    reporting_progress(lambda done, total, k=k: bar.fraction((k + done / total) / len(theta))):
+                warnings.simplefilter("always")
+                est = brdfs.albedo(model, float(t), method=method, rtol=rtol, atol=atol, **options)
+            if caught:
+                bar.close()                       # the warnings' lines below, not across the bar
+            rows.append(_albedo_row(t, est, caught))
+    finally:
+        bar.close()
     return rows
+
+
+def _albedo_row(t, est, caught):
+    """One angle's row; its warnings on standard error."""
+    route = getattr(est, "route", None)
+    row = {"theta_deg": float(t), "value": float(est.value), "error": float(est.error),
+           "evaluations": int(est.evaluations), "status": str(np.asarray(est.status).item())}
+    if route is not None:
+        row["route"] = str(np.asarray(route).item()) if np.ndim(route) == 0 or np.size(route) == 1 else str(route)
+    for w in caught:
+        print(f"brdfs: warning at theta = {t:g} deg: {w.message}", file=sys.stderr)
+    return row
 
 
 def _albedo(args) -> int:
@@ -259,8 +319,6 @@ def _compare(args) -> int:
 # --- brdfs lut ---------------------------------------------------------------------------------
 
 def _lut(args) -> int:
-    import time
-
     from brdfs import lut
 
     sweeps = [pair for pair in _flat(args.param) if ":" in pair.partition("=")[2]]
@@ -269,8 +327,14 @@ def _lut(args) -> int:
                                          f"{len(sweeps)}" + (f" ({' '.join(sweeps)})" if sweeps else ""))
     param, values = lut.parse_sweep(sweeps[0])
     fixed = _key_values([pair for pair in _flat(args.param) if pair not in sweeps], "--param")
+    from brdfs.numerics.albedo import reporting_progress
     start = time.perf_counter()
-    table = lut.albedo_lut(args.model, param, values, n_mu=args.mu, rtol=args.rtol, fixed=fixed)
+    bar = _Progress(f"brdfs lut {args.model}")
+    try:
+        with reporting_progress(bar.count):
+            table = lut.albedo_lut(args.model, param, values, n_mu=args.mu, rtol=args.rtol, fixed=fixed)
+    finally:
+        bar.close()
     path = lut.write(table, args.output, args.format)
     seconds = time.perf_counter() - start
     print(f"wrote {path}: E({param}, mu) {table.E.shape[0]} x {table.E.shape[1]} and E_avg({param}) of {args.model}"

@@ -130,15 +130,17 @@ def test_auto_is_the_default_and_is_the_engine_to_the_bit_where_the_engine_conve
 
 
 def test_auto_takes_the_disk_where_the_engine_stalled_and_records_it_per_value(monkeypatch):
-    real_engine = albedo_module._engine
+    def stalling_at_60(route):
+        def run(models, theta, rtol, atol):
+            est = route(models, theta, rtol=rtol, atol=atol)
+            status = np.where(theta == 60.0, STALLED, est.status)
+            error = np.where(theta == 60.0, 1e-3, est.error)
+            return Estimate(est.value, error, est.evaluations, status, est.route)
+        return run
 
-    def engine_that_stalls_at_60(model_, theta, rtol, atol):
-        est = real_engine(model_, theta, rtol, atol)
-        status = np.where(theta == 60.0, STALLED, est.status)
-        error = np.where(theta == 60.0, 1e-3, est.error)
-        return Estimate(est.value, error, est.evaluations, status, est.route)
-
-    monkeypatch.setattr(albedo_module, "_engine", engine_that_stalls_at_60)
+    # the 1-D route and its second try in two dimensions both stall at 60 degrees
+    monkeypatch.setitem(albedo_module.ENGINE_ROUTES, "azimuthal", stalling_at_60(albedo_module.ENGINE_ROUTES["azimuthal"]))
+    monkeypatch.setattr(albedo_module, "albedo_many", stalling_at_60(albedo_module.albedo_many))
     est = albedo(model("phong", n=20), [30.0, 60.0], rtol=1e-8)
     assert list(est.route) == ["engine/azimuthal", "disk"] and list(est.status) == [CONVERGED] * 2
     assert est.error[1] <= 1e-8 * est.value[1]
@@ -240,7 +242,7 @@ def _batch_models():
 
 
 def test_albedo_table_and_albedo_pairs_answer_as_albedo_does_elementwise_on_a_grid_including_90_degrees():
-    """One code path (``_at_the_ends``): +inf/0/diverged, the grazing limit's albedo and the tables'
+    """One code path (``_answer``): +inf/0/diverged, the grazing limit's albedo and the tables'
     error at the same elements, with the same statuses and routes, by all three doors."""
     models, grid = _batch_models(), np.array([0.0, 45.0, 89.99, 90.0])
     table = albedo_module.albedo_table(models, grid, rtol=1e-8)

@@ -90,7 +90,7 @@ def test_one_float_angle_answers_as_an_array_of_one_angle_does(name, params, the
 @pytest.mark.parametrize("theta", [48.5, np.linspace(0.0, 89.0, 30)])
 def test_the_front_door_decides_what_depends_on_the_model_once_per_call(monkeypatch, theta):
     """Whether a model has its own route, which scheme integrates it and its Dirac part are asked once
-    per distinct model, for one angle as for a curve: no per-element bookkeeping in ``_albedo_pairs``."""
+    per distinct model, for one angle as for a curve: no per-element bookkeeping in the plan."""
     brdf = model("phong", n=150)
     asked = {"own": 0, "delta": 0}
     cls = type(brdf)

@@ -51,15 +51,25 @@ own ``albedo_estimate`` (None: it has none), its ``closed_form_azimuth``, and it
 
 :func:`albedo_table` and :func:`albedo_pairs` are the engine's batch doors for the package's own
 derived quantities: the same ends and model error, element by element, through the same code
-(:func:`_at_the_ends`), but no warnings: read their ``status``.  ``albedo_pairs(as_evaluated=True)``
+(:func:`_answer`: its plan, run and merge), but no warnings: read their ``status``.  ``albedo_pairs(as_evaluated=True)``
 leaves the model error out (a table factory that carries it itself, :mod:`brdfs.numerics.pumping`).
 
 A model whose lobe's coordinates stop short of the hemisphere (a lobe about R reaches R·V ≥ 0 only)
 is integrated by the engine only if it declares ``zero_beyond_lobe`` (f vanishes beyond); otherwise
 the engine refuses it and ``auto`` takes the disk.
+
+How a call is answered: :func:`_plan` groups its (model, θ) pairs by model once and gives each group
+one route (a :class:`Group`: a declared end at 90°, the model's own route, azimuthal, polar,
+hemisphere, scattering, or the disk); :func:`_run` runs each route once on all of its groups'
+elements, in chunks of at most :data:`ENGINE_CHUNK`; every answer is written into the call's arrays
+by one helper (:meth:`_Answer.put`).  The tolerance travels as one checked value
+(:class:`~brdfs.numerics.arguments.Tolerance`).  Within :func:`reporting_progress` the chunk loop
+reports its progress (the command line's progress bar).
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -67,17 +77,21 @@ from typing import Annotated
 
 import numpy as np
 
-from brdfs.numerics.arguments import Above, AtLeast, OneOf, check_albedo_call, check_table_call
+from brdfs.core.estimate import DIVERGED, STALLED
+from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
+from brdfs.numerics.arguments import (DEFAULT_ATOL, DEFAULT_RTOL, Above, AtLeast, OneOf, Tolerance,
+                                      check_albedo_call, check_table_call)
 from brdfs.numerics.integrate import azimuthal, polar
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
-from brdfs.core.estimate import DIVERGED, STALLED
-from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import albedo_scattering
 from brdfs.physics.geometry import light_direction
 from brdfs.physics.lobes import SCATTERING
-from brdfs.physics.models.base import counting_evaluations
+from brdfs.physics.models.base import BRDF, counting_evaluations
+
+__all__ = ["albedo", "albedo_table", "albedo_pairs", "ALBEDO_METHODS", "DEFAULT_RTOL", "DEFAULT_ATOL",
+           "Estimate", "NotConvergedWarning", "NotConvergedError", "EngineCannotIntegrate", "reporting_progress"]
 
 
 class NotConvergedWarning(RuntimeWarning):
@@ -99,8 +113,6 @@ class EngineCannotIntegrate(ValueError):
     about the plane of incidence); ``auto`` then takes the disk for every value."""
 
 
-DEFAULT_RTOL = 1e-10
-DEFAULT_ATOL = 1e-14
 _EPS = np.finfo(float).eps
 
 
@@ -112,147 +124,356 @@ def _check_angles(theta_deg):
     return theta
 
 
-# --- the engine ------------------------------------------------------------------------------
+# --- the plan: each group of elements on one route ----------------------------------------------
 
-def _albedo_pairs(models, theta, rtol, atol, closed_form_azimuth=True):
-    """Albedo of ``models[i]`` at ``theta[i]``: the model's own route where it has one
-    (``albedo_estimate`` returns an :class:`Estimate`, not None), else the density integrated in the
-    coordinates its lobe asks for — a cosine-power lobe with a closed-form azimuthal integral in one dimension
-    (:mod:`.integrate.azimuthal`, unless ``closed_form_azimuth`` is False), Kirchhoff lobes in the
-    scattering-vector frame (:mod:`.integrate.scattering`), the others in two dimensions around R
-    or N (:mod:`.integrate.hemisphere`) — plus the albedo of its Dirac part (``model.delta_albedo``,
-    e.g. He–Torrance's specular term; zero for most models).
+#: The engine's integral routes: ``route(models, theta, rtol=, atol=)`` integrates (model, angle)
+#: pairs.  The 1-D ones (a closed-form inner integral) count their own nodes as evaluations, and
+#: integrate again in two dimensions the elements they leave short of the tolerance.
+ENGINE_ROUTES: dict[str, Callable[..., Estimate]] = {
+    "azimuthal": azimuthal.albedo_many, "polar": polar.albedo_many,
+    "hemisphere": albedo_many, "scattering": albedo_scattering}
+_ONE_DIMENSIONAL = ("azimuthal", "polar")
+#: The methods that take the engine's routes (``auto`` with the disk for what they leave short).
+_ENGINE_METHODS = ("auto", "engine", "engine_2d", "azimuthal")
 
-    Everything that depends on the model alone (its own route, a refusal, its scheme, its Dirac part)
-    is decided once per distinct model object, never per element: a single angle pays for one model,
-    a batch of one model (a curve) for one, and neither for per-element masks."""
-    groups = [(models[rows[0]], np.asarray(rows)) for rows in indices_by_model(models)]
-    answers = []                                     # (rows, Estimate with status and route)
-    by_scheme = {}
-    for m, rows in groups:
-        own = m.albedo_estimate(theta if len(groups) == 1 else theta[rows], rtol, atol)
-        if own is not None:
-            # a route that reports no status is judged by its error, not taken as converged
-            status = _status(own.value, own.error, rtol, atol) if own.status is None else np.asarray(own.status, str)
-            answers.append((rows, Estimate(np.asarray(own.value, float), np.asarray(own.error, float), 0, status,
-                                           np.full(rows.size, "engine/own"))))
-            continue
-        _refuse_what_the_engine_cannot_integrate(m)
-        by_scheme.setdefault(_engine_scheme(m, closed_form_azimuth), []).append(rows)
-    closed_form_nodes = 0          # the 1-D route evaluates a closed form, not the BRDF: count its nodes
-    for (scheme, name), parts in by_scheme.items():
-        rows = parts[0] if len(parts) == 1 else np.sort(np.concatenate(parts))
-        these, angles = ([models[i] for i in rows], theta[rows]) if rows.size < theta.size else (models, theta)
-        est = _in_chunks(scheme, these, angles, rtol, atol)
-        if scheme is azimuthal.albedo_many or scheme is polar.albedo_many:
-            closed_form_nodes += est.evaluations
-            est = _short_ones_in_two_dimensions(est, these, angles, rtol, atol, name)
-        route = est.route if est.route is not None else np.full(rows.size, f"engine/{name}")
-        answers.append((rows, Estimate(est.value, est.error, 0, np.asarray(est.status, str), route)))
-    if len(answers) == 1 and len(groups) == 1:       # one model (one angle, or a curve): taken whole
-        est, delta = answers[0][1], groups[0][0].delta_albedo(theta)
-        return Estimate(est.value + delta.value, est.error + delta.error, closed_form_nodes, est.status, est.route)
-    value, error, status, route = _gathered(answers, theta.size)
-    for m, rows in groups:
-        delta = m.delta_albedo(theta[rows])
-        value[rows] += delta.value
-        error[rows] += delta.error
-    return Estimate(value, error, closed_form_nodes, status, route)
 
+@dataclass(frozen=True)
+class Group:
+    """The elements ``rows`` of a call that share one integrand and one route.
+
+    ``model`` is the integrand (the model asked for, or at exactly 90° its ``grazing_limit_model()``,
+    then ``limit``), ``owner`` the model asked for (its ``evaluation_error``).  ``route``: ``declared``
+    (a value the model declares), ``own`` (its ``albedo_estimate``), a key of :data:`ENGINE_ROUTES`,
+    ``disk``, or another method's name; ``then_disk``: ``auto`` takes the disk where the route
+    falls short."""
+
+    model: BRDF
+    owner: BRDF
+    rows: np.ndarray
+    route: str
+    then_disk: bool = False
+    limit: bool = False
+
+
+def _plan(models, theta, method, own=True) -> list[Group]:
+    """The groups of a call: its elements grouped by model object once, each model's elements at
+    exactly 90° apart where the model declares its end (+inf, or its grazing limit integrated)."""
+    groups = []
+    at_90 = theta == 90.0
+    any_90 = bool(at_90.any())
+    for rows in indices_by_model(models):
+        m, rows = models[rows[0]], np.asarray(rows)
+        ends = rows[at_90[rows]] if any_90 else rows[:0]
+        if ends.size and m.diverges_at_grazing:
+            groups.append(Group(m, m, ends, "declared"))
+        elif ends.size and (limit := m.grazing_limit_model()) is not m:
+            groups.append(_routed(limit, m, ends, method, limit=True, own=own))
+        else:
+            ends = rows[:0]
+        rest = rows[~at_90[rows]] if ends.size else rows
+        if rest.size:
+            groups.append(_routed(m, m, rest, method, own=own))
+    return groups
+
+
+def _routed(model, owner, rows, method, limit=False, own=True) -> Group:
+    """The group of ``model``'s ``rows`` on the route ``method`` takes for it: another method's own;
+    for the engine's methods the model's own route (``own``), else the engine's route for its lobe,
+    or for ``auto`` the disk where the engine cannot integrate it."""
+    if method not in _ENGINE_METHODS:
+        return Group(model, owner, rows, method, limit=limit)
+    if method == "azimuthal" and not azimuthal.supports(model):
+        raise ValueError(f"the azimuthal method needs a closed-form azimuth, which {model.name!r} lacks")
+    auto = method == "auto"
+    if own and type(model).albedo_estimate is not BRDF.albedo_estimate:
+        return Group(model, owner, rows, "own", auto, limit)
+    refusal = _refusal(model)
+    if refusal is not None:
+        if auto:
+            return Group(model, owner, rows, "disk", limit=limit)
+        raise EngineCannotIntegrate(refusal)
+    return Group(model, owner, rows, _engine_route(model, method != "engine_2d"), auto, limit)
+
+
+def _refusal(model) -> str | None:
+    """Why the engine cannot integrate ``model`` (without a route of its own), or None: no lobe, not
+    symmetric about the plane of incidence (the engine integrates φ over [0, π] and doubles it), or a
+    lobe whose coordinates reach only part of the hemisphere while f may not vanish beyond it."""
+    if model.lobe is None:
+        return f"{model.name!r} declares neither a lobe nor its own albedo route; use method='disk' (or 'auto')"
+    if not model.symmetric_about_incidence_plane:
+        return (f"{model.name!r} is not symmetric about the plane of incidence, which the engine assumes; "
+                "use method='disk' (or 'auto')")
+    if not model.lobe.reaches_hemisphere and not model.zero_beyond_lobe:
+        return (f"{model.name!r} has a lobe whose coordinates reach only part of the hemisphere (about R: "
+                "R·V ≥ 0) and does not declare zero_beyond_lobe; use method='disk' (or 'auto')")
+    return None
+
+
+def _engine_route(model, closed_form_azimuth=True) -> str:
+    """The engine's route for a model without one of its own: Kirchhoff lobes in the scattering-vector
+    frame, a closed-form azimuth in one dimension (``azimuthal``), f = D(H) S(N·L, N·V) in θ_V
+    (``polar``, issue 24 E3), unless ``closed_form_azimuth`` is False; the others in two dimensions
+    around R or N (``hemisphere``)."""
+    if model.lobe.frame is SCATTERING:
+        return "scattering"
+    if closed_form_azimuth and azimuthal.supports(model):
+        return "azimuthal"
+    if closed_form_azimuth and polar.supports(model):
+        return "polar"
+    return "hemisphere"
+
+
+# --- the run: each route once, on all of its elements, in chunks ---------------------------------
 
 #: The most elements one adaptive run integrates at once: the driver's budget of intervals is the run's
 #: (100,000), so 7,000 angles of Phong n = 20 in one run exhausted it and every angle went to the disk
 #: (35 s against 0.4 s for 5,000); in chunks the cost is linear in the angles and the memory bounded.
-#: A call of at most this many elements runs whole, as before.
 ENGINE_CHUNK = 2000
 
+_PROGRESS: contextvars.ContextVar = contextvars.ContextVar("albedo_progress", default=None)
 
-def _in_chunks(scheme, models, theta, rtol, atol):
-    """``scheme(models, theta, rtol=, atol=)`` (an integrator of (model, angle) pairs) on at most
-    :data:`ENGINE_CHUNK` elements at a time, the answers joined."""
-    if theta.size <= ENGINE_CHUNK:
-        return scheme(models, theta, rtol=rtol, atol=atol)
-    parts = [scheme(models[k:k + ENGINE_CHUNK], theta[k:k + ENGINE_CHUNK], rtol=rtol, atol=atol)
-             for k in range(0, theta.size, ENGINE_CHUNK)]
+
+@contextlib.contextmanager
+def reporting_progress(callback: Callable[[int, int], None]):
+    """Within the block, every albedo call (:func:`albedo`, :func:`albedo_table`, :func:`albedo_pairs`)
+    calls ``callback(done, total)`` after each chunk of its elements (a command line's progress bar)."""
+    token = _PROGRESS.set(callback)
+    try:
+        yield
+    finally:
+        _PROGRESS.reset(token)
+
+
+class _Chunks:
+    """Runs a route on at most :data:`ENGINE_CHUNK` elements at a time and tells the progress
+    callback how many of the call's ``total`` elements are done."""
+
+    def __init__(self, total):
+        self.total, self.done, self.callback = total, 0, _PROGRESS.get()
+
+    def run(self, route, models, theta, tol, counted=True):
+        if theta.size <= ENGINE_CHUNK:
+            parts = [route(models, theta, rtol=tol.rtol, atol=tol.atol)]
+            self.advance(theta.size, counted)
+        else:
+            parts = []
+            for k in range(0, theta.size, ENGINE_CHUNK):
+                parts.append(route(models[k:k + ENGINE_CHUNK], theta[k:k + ENGINE_CHUNK], rtol=tol.rtol, atol=tol.atol))
+                self.advance(parts[-1].value.size, counted)
+        return _joined(parts)
+
+    def advance(self, n, counted=True):
+        if counted:
+            self.done += n
+        if self.callback is not None:
+            self.callback(min(self.done, self.total), self.total)
+
+
+def _joined(parts) -> Estimate:
+    """Estimates of consecutive elements as one (a route's ``route`` kept where every part has one)."""
+    if len(parts) == 1:
+        return parts[0]
     join = lambda field: np.concatenate([np.asarray(getattr(p, field)) for p in parts])   # noqa: E731
     route = None if any(p.route is None for p in parts) else join("route")
-    evaluations = sum(int(p.evaluations or 0) for p in parts)
-    return Estimate(join("value"), join("error"), evaluations, join("status").astype(str), route)
+    return Estimate(join("value"), join("error"), sum(int(p.evaluations or 0) for p in parts),
+                    join("status").astype(str), route)
 
 
-def _refuse_what_the_engine_cannot_integrate(model):
-    """Raise :class:`EngineCannotIntegrate` for a model (without a route of its own) that the engine's
-    coordinates would get wrong: no lobe, not symmetric about the plane of incidence (the engine
-    integrates φ over [0, π] and doubles it), or a lobe whose coordinates reach only part of the
-    hemisphere while f may not vanish beyond it (they would silently leave part of f out)."""
-    if model.lobe is None:
-        raise EngineCannotIntegrate(f"{model.name!r} declares neither a lobe nor its own albedo route; "
-                                    "use method='disk' (or 'auto')")
-    if not model.symmetric_about_incidence_plane:
-        raise EngineCannotIntegrate(f"{model.name!r} is not symmetric about the plane of incidence, "
-                                    "which the engine assumes; use method='disk' (or 'auto')")
-    if not model.lobe.reaches_hemisphere and not model.zero_beyond_lobe:
-        raise EngineCannotIntegrate(f"{model.name!r} has a lobe whose coordinates reach only part "
-                                    "of the hemisphere (about R: R·V ≥ 0) and does not declare "
-                                    "zero_beyond_lobe; use method='disk' (or 'auto')")
+class _Answer:
+    """The elements of a call as they are answered: value, error, status and route arrays, written
+    by one helper (:meth:`put`) from each route's answer, and the evaluations the routes report."""
+
+    def __init__(self, size):
+        self.value, self.error = np.zeros(size), np.zeros(size)
+        self.status, self.route = np.empty(size, object), np.empty(size, object)
+        self.evaluations = 0
+
+    def put(self, rows, est, route=None, where=None):
+        """``est`` (of the elements ``rows``) into the answer, only at ``where`` (a mask over ``rows``)
+        if given; its route, or ``route`` where it names none."""
+        if where is not None:
+            rows, est = rows[where], _taken(est, where)
+        self.value[rows], self.error[rows], self.status[rows] = est.value, est.error, est.status
+        self.route[rows] = route if est.route is None else np.asarray(est.route, str)
+
+    def better(self, rows, est, route):
+        """``est`` put where it reports a smaller error (or converged where the first value is not
+        finite) than the answer so far at ``rows``."""
+        first = np.where(np.isfinite(self.error[rows]), self.error[rows], np.inf)
+        self.put(rows, est, route, (est.error < first) | ((est.status == CONVERGED) & ~np.isfinite(self.value[rows])))
+
+    def estimate(self) -> Estimate:
+        return Estimate(self.value, self.error, self.evaluations, self.status.astype(str), self.route.astype(str))
 
 
-def _short_ones_in_two_dimensions(est, models, theta, rtol, atol, name):
-    """A 1-D route's answer with the elements that missed their tolerance integrated again in two
-    dimensions, where that reports the smaller error: within ~1e-4 of grazing the 1-D route of
-    max(N·L, N·V) models loses ε / cos θ to rounding and can stop short of the tolerance.  ``name``:
-    the 1-D route's."""
-    status = np.asarray(est.status, str)
-    route = np.full(theta.size, f"engine/{name}")
-    if _all_in(status, CONVERGED):
-        return Estimate(est.value, est.error, est.evaluations, status, route)
-    short = status != CONVERGED
-    second = _in_chunks(albedo_many, [m for m, s in zip(models, short) if s], theta[short], rtol, atol)
-    value, error = np.array(est.value, float), np.array(est.error, float)
-    better = second.error < error[short]
-    rows = np.flatnonzero(short)[better]
-    value[rows], error[rows], status[rows] = second.value[better], second.error[better], second.status[better]
-    route = route.astype(object)
-    route[rows] = "engine/hemisphere"
-    return Estimate(value, error, est.evaluations, status, route.astype(str))
+def _taken(est, where):
+    return Estimate(np.asarray(est.value)[where], np.asarray(est.error)[where], est.evaluations,
+                    np.asarray(est.status)[where], None if est.route is None else np.asarray(est.route)[where])
 
 
-def _gathered(answers, size):
-    """The (rows, Estimate) answers of :func:`_albedo_pairs` as new element arrays (value, error,
-    status, route)."""
-    value, error = np.zeros(size), np.zeros(size)
-    status, route = np.empty(size, object), np.empty(size, object)
-    for rows, est in answers:
-        value[rows], error[rows], status[rows], route[rows] = est.value, est.error, est.status, est.route
-    return value, error, status.astype(str), route.astype(str)
+def _run(groups, theta, tol, method, options) -> _Answer:
+    """Every group on its route: the models' own routes (a model's may decline: None takes it to the
+    engine), then each engine route once on all of its groups' elements, in chunks; the 1-D routes'
+    short elements again in two dimensions, the Dirac parts added, and ``auto``'s short elements on
+    the disk; other methods one call per group."""
+    answer, chunks = _Answer(theta.size), _Chunks(theta.size)
+    groups = [_own_route(g, answer, theta, tol, method, chunks) if g.route == "own" else g for g in groups]
+    by_route: dict[str, list[Group]] = {}
+    for g in groups:
+        if g.route != "own":
+            by_route.setdefault(g.route, []).append(g)
+    for route, members in by_route.items():
+        rows, models = _elements(members)
+        if route == "declared":
+            answer.put(rows, Estimate(np.full(rows.size, np.inf), np.zeros(rows.size), 0, np.full(rows.size, DIVERGED)),
+                       "declared")
+            chunks.advance(rows.size, True)
+        elif route in ENGINE_ROUTES:
+            est = chunks.run(ENGINE_ROUTES[route], models, theta[rows], tol)
+            answer.put(rows, est, f"engine/{route}")
+            if route in _ONE_DIMENSIONAL:
+                answer.evaluations += int(est.evaluations)
+                _short_ones_in_two_dimensions(answer, rows, models, theta, tol, chunks)
+        elif route == "disk":
+            est = _disk_run(models, theta[rows], tol, chunks)
+            answer.put(rows, est)
+            answer.evaluations += est.evaluations
+        else:
+            for g in members:
+                est = ALBEDO_METHODS[route](g.model, theta[g.rows], tol.rtol, tol.atol, **options)
+                answer.put(g.rows, est, route)
+                answer.evaluations += int(est.evaluations or 0)
+                chunks.advance(g.rows.size, True)
+    for g in groups:
+        if (g.route == "own" or g.route in ENGINE_ROUTES) and type(g.model).delta_albedo is not BRDF.delta_albedo:
+            _with_the_dirac_part(answer, g, theta)
+    _short_ones_on_the_disk(answer, [g for g in groups if g.then_disk], theta, tol, chunks)
+    return answer
 
 
-def _engine_scheme(model, closed_form_azimuth=True):
-    """The engine's integrator for a model without a route of its own, and its route's name: Kirchhoff
-    lobes in the scattering-vector frame, a closed-form azimuth in one dimension (``azimuthal``), or
-    f = D(H) S(N·L, N·V) in θ_V (``polar``, issue 24 E3), unless ``closed_form_azimuth`` is False;
-    the others in two dimensions around R or N."""
-    if model.lobe.frame is SCATTERING:
-        return albedo_scattering, "scattering"
-    if closed_form_azimuth and azimuthal.supports(model):
-        return azimuthal.albedo_many, "azimuthal"
-    if closed_form_azimuth and polar.supports(model):
-        return polar.albedo_many, "polar"
-    return albedo_many, "hemisphere"
+def _elements(groups):
+    """The rows of ``groups`` in the order of the call (a route's elements in one run are in the
+    order the call gave them, whatever their groups) and the integrand of each."""
+    if len(groups) == 1:
+        return groups[0].rows, [groups[0].model] * groups[0].rows.size
+    rows = np.concatenate([g.rows for g in groups])
+    models = [g.model for g in groups for _ in g.rows]
+    order = np.argsort(rows, kind="stable")
+    return rows[order], [models[k] for k in order]
+
+
+def _own_route(group, answer, theta, tol, method, chunks) -> Group:
+    """``group`` answered by its model's own route (``albedo_estimate``); where that declines (None,
+    as a user's subclass may), the group the engine's route takes instead, to be run."""
+    own = group.model.albedo_estimate(theta[group.rows], tol.rtol, tol.atol)
+    if own is None:
+        return _routed(group.model, group.owner, group.rows, method, group.limit, own=False)
+    # a route that reports no status is judged by its error, not taken as converged
+    status = _status(own.value, own.error, tol) if own.status is None else np.asarray(own.status, str)
+    answer.put(group.rows, Estimate(np.asarray(own.value, float), np.asarray(own.error, float), 0, status), "engine/own")
+    chunks.advance(group.rows.size, True)
+    return group
+
+
+def _with_the_dirac_part(answer, group, theta):
+    """The albedo of ``group``'s model's Dirac part (``delta_albedo``, e.g. He–Torrance's specular
+    term; a model that does not override it has none) added to its elements."""
+    delta = group.model.delta_albedo(theta[group.rows])
+    answer.value[group.rows] += delta.value
+    answer.error[group.rows] += delta.error
+
+
+def _short_ones_in_two_dimensions(answer, rows, models, theta, tol, chunks):
+    """A 1-D route's elements that missed their tolerance integrated again in two dimensions, where
+    that reports the smaller error: within ~1e-4 of grazing the 1-D route of max(N·L, N·V) models
+    loses ε / cos θ to rounding and can stop short of the tolerance."""
+    short = answer.status[rows] != CONVERGED
+    if not short.any():
+        return
+    second = chunks.run(albedo_many, [m for m, s in zip(models, short) if s], theta[rows[short]], tol, counted=False)
+    answer.better(rows[short], second, "engine/hemisphere")
+
+
+def _short_ones_on_the_disk(answer, groups, theta, tol, chunks):
+    """``auto``: the elements of ``groups`` the engine left short of the tolerance on the disk, each
+    keeping the answer with the smaller reported error (its route says which)."""
+    if not groups:
+        return
+    rows, models = _elements(groups)
+    short = answer.status[rows] != CONVERGED
+    if not short.any():
+        return
+    second = _disk_run([m for m, s in zip(models, short) if s], theta[rows[short]], tol, chunks, counted=False)
+    answer.better(rows[short], second, "disk")
+    answer.evaluations += second.evaluations
+
+
+def _disk_run(models, theta, tol, chunks, counted=True) -> Estimate:
+    """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`);
+    a value short of its tolerance keeps the driver's reason (``stalled`` or ``budget_exhausted``)."""
+    est = chunks.run(disk_albedo_many, models, theta, tol, counted)
+    met = _status(est.value, est.error, tol) == CONVERGED
+    reason = np.where(np.asarray(est.status) == CONVERGED, STALLED, np.asarray(est.status, str))
+    evaluations = 0 if est.evaluations is None else est.evaluations
+    return Estimate(est.value, est.error, evaluations, np.where(met, CONVERGED, reason), np.full(theta.size, "disk"))
+
+
+def _merged_model_errors(answer, groups, theta, tol):
+    """Each group's owner's ``evaluation_error`` (the error of its tables) added to its finite
+    values; a value it takes above the tolerance is ``stalled`` (no refinement of the integral helps)."""
+    for g in groups:
+        if not g.owner.has_evaluation_error:
+            continue
+        rows = g.rows[np.isfinite(answer.value[g.rows])]
+        if not rows.size:
+            continue
+        answer.error[rows] += g.owner.evaluation_error(theta[rows], answer.value[rows])
+        missed = (answer.status[rows] == CONVERGED) & (answer.error[rows] > tol.target(answer.value[rows]))
+        answer.status[rows[missed]] = STALLED
+
+
+def _answer(models, theta, tol, method, options=None, model_error=True, own=True) -> Estimate:
+    """Albedo of ``models[i]`` at ``theta[i]`` (1-D) by ``method``: planned, run and merged, with the
+    meaning each model declares at 90° and its ``evaluation_error`` (unless ``model_error`` is False);
+    ``own`` False: the models' own routes are not asked (their answer was None)."""
+    with counting_evaluations() as count:
+        groups = _plan(models, theta, method, own)
+        answer = _run(groups, theta, tol, method, options or {})
+        if model_error:
+            _merged_model_errors(answer, groups, theta, tol)
+        for g in groups:
+            if g.limit:
+                answer.route[g.rows] = np.char.add(answer.route[g.rows].astype(str), ":grazing_limit")
+    est = answer.estimate()
+    return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)
 
 
 def _engine(model, theta, rtol, atol):
-    return _albedo_pairs([model] * theta.size, theta, rtol, atol)
+    """The engine: the model's own route, else its lobe's (an integral in one or two dimensions)."""
+    return _answer([model] * theta.size, theta, Tolerance(rtol, atol), "engine")
 
 
 def _engine_2d(model, theta, rtol, atol):
-    return _albedo_pairs([model] * theta.size, theta, rtol, atol, closed_form_azimuth=False)
+    """The engine always in two dimensions (no closed-form azimuth)."""
+    return _answer([model] * theta.size, theta, Tolerance(rtol, atol), "engine_2d")
 
 
 def _azimuthal(model, theta, rtol, atol):
-    if not azimuthal.supports(model):
-        raise ValueError(f"the azimuthal method needs a closed-form azimuth, which {model.name!r} lacks")
-    return _albedo_pairs([model] * theta.size, theta, rtol, atol)
+    """Only the engine's 1-D route of a closed-form azimuth."""
+    return _answer([model] * theta.size, theta, Tolerance(rtol, atol), "azimuthal")
+
+
+def _auto(model, theta, rtol, atol):
+    """The engine, then the disk for the values the engine left short of the tolerance (or for all,
+    where the engine cannot integrate the model); each value keeps the answer with the smaller
+    reported error, and its route says which."""
+    return _answer([model] * theta.size, theta, Tolerance(rtol, atol), "auto")
+
+
+def _disk(model, theta, rtol, atol):
+    """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`)."""
+    return _answer([model] * theta.size, theta, Tolerance(rtol, atol), "disk")
 
 
 # --- independent and historical methods ------------------------------------------------------
@@ -266,9 +487,8 @@ def _all_in(status, *kinds) -> bool:
     return bool(np.all(np.isin(status, kinds)))
 
 
-def _status(value, error, rtol, atol):
-    met = np.asarray(error) <= np.maximum(rtol * np.abs(value), atol)
-    return np.where(met, CONVERGED, BUDGET_EXHAUSTED)
+def _status(value, error, tol):
+    return np.where(np.asarray(error) <= tol.target(value), CONVERGED, BUDGET_EXHAUSTED)
 
 
 def _per_angle(one):
@@ -277,42 +497,10 @@ def _per_angle(one):
         pairs = [one(model, float(t), rtol, atol, **options) for t in theta]
         value = np.array([p[0] for p in pairs], float)
         error = np.array([p[1] for p in pairs], float)
-        return Estimate(value, error, 0, _status(value, error, rtol, atol))
+        return Estimate(value, error, 0, _status(value, error, Tolerance(rtol, atol)))
     method.__doc__ = one.__doc__
     method.__wrapped__ = one             # its options are one's (brdfs.numerics.arguments reads them)
     return method
-
-
-def _disk(model, theta, rtol, atol):
-    """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`);
-    a value short of its tolerance keeps the driver's reason (``stalled`` or ``budget_exhausted``)."""
-    est = _in_chunks(disk_albedo_many, [model] * theta.size, theta, rtol, atol)
-    met = _status(est.value, est.error, rtol, atol) == CONVERGED
-    reason = np.where(np.asarray(est.status) == CONVERGED, STALLED, np.asarray(est.status, str))
-    evaluations = 0 if est.evaluations is None else est.evaluations
-    return Estimate(est.value, est.error, evaluations, np.where(met, CONVERGED, reason), np.full(theta.size, "disk"))
-
-
-def _auto(model, theta, rtol, atol):
-    """The engine, then the disk for the values the engine left short of the tolerance (or for all,
-    where the engine cannot integrate the model); each value keeps the answer with the smaller
-    reported error, and its route says which."""
-    try:
-        first = _engine(model, theta, rtol, atol)
-    except EngineCannotIntegrate:
-        return _disk(model, theta, rtol, atol)
-    if _all_in(first.status, CONVERGED):
-        return first
-    short = np.asarray(first.status) != CONVERGED
-    second = _disk(model, theta[short], rtol, atol)
-    value, error = np.array(first.value, float), np.array(first.error, float)
-    status, route = np.array(first.status, object), np.array(first.route, object)
-    engine_error = np.where(np.isfinite(error[short]), error[short], np.inf)
-    better = (second.error < engine_error) | ((second.status == CONVERGED) & ~np.isfinite(value[short]))
-    rows = np.flatnonzero(short)[better]
-    value[rows], error[rows] = second.value[better], second.error[better]
-    status[rows], route[rows] = second.status[better], "disk"
-    return Estimate(value, error, first.evaluations + second.evaluations, status.astype(str), route.astype(str))
 
 
 def _grid_sum(model, theta, n):
@@ -410,7 +598,7 @@ def monte_carlo_albedo(model, theta_deg, sampler, n_samples, seed_sequence, rtol
     w = np.concatenate([_draw(sampler, model, L, rng, k) for k in _chunks(n_samples)])
     mean = w.mean()
     stderr = w.std(ddof=1) / np.sqrt(w.size) if w.size > 1 else np.inf
-    return MonteCarloEstimate(mean, stderr, int(w.size), _status(mean, stderr, rtol, atol),
+    return MonteCarloEstimate(mean, stderr, int(w.size), _status(mean, stderr, Tolerance(rtol, atol)),
                               rounding=4 * _EPS * (np.log2(w.size) + 2) * np.abs(w).mean())
 
 
@@ -449,7 +637,7 @@ ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
 }
 
 
-# --- the front door --------------------------------------------------------------------------
+# --- the front doors -------------------------------------------------------------------------
 
 def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=False, warn=True,
            **options) -> Estimate:
@@ -514,102 +702,48 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     >>> float(est.value), float(est.error), str(est.status), str(est.route)
     (inf, 0.0, 'diverged', 'declared')
     """
-    check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=strict, warn=warn)
-    run = ALBEDO_METHODS[method]
+    tol = Tolerance.checked(rtol, atol)
+    check_albedo_call(model, theta_deg, method, ALBEDO_METHODS, options, strict=strict, warn=warn)
     theta = np.asarray(theta_deg, float)
-    rtol = DEFAULT_RTOL if rtol is None else rtol
-    atol = DEFAULT_ATOL if atol is None else atol
-    with counting_evaluations() as count:
-        est = _at_the_ends(_one_model_at_a_time(run, rtol, atol, options), [model] * theta.size, theta.ravel(),
-                           rtol, atol, method)
+    est = _by_its_own_route(model, theta, tol) if method in ("auto", "engine") else None
+    if est is None or est is _DECLINED:
+        est = _answer([model] * theta.size, theta.ravel(), tol, method, options, own=est is None)
     shape = theta.shape
-    est = Estimate(est.value.reshape(shape), est.error.reshape(shape), count[0] + est.evaluations,
+    est = Estimate(est.value.reshape(shape), est.error.reshape(shape), est.evaluations,
                    est.status.reshape(shape), est.route.reshape(shape))
-    _report_not_converged(est, model, theta, method, rtol, atol, strict, warn)
+    _report_not_converged(est, model, theta, method, tol, strict, warn)
     return est
 
 
-def _one_model_at_a_time(run, rtol, atol, options):
-    """``run`` (a method of :data:`ALBEDO_METHODS`, one model a call) as ``run_pairs(models, theta)``:
-    one call per distinct model object (the model, and at 90° its grazing limit)."""
-    def run_pairs(models, theta):
-        groups = indices_by_model(models)
-        if len(groups) == 1:
-            return run(models[0], theta, rtol, atol, **options)
-        value, error = np.empty(theta.size), np.empty(theta.size)
-        status, route = np.empty(theta.size, object), np.empty(theta.size, object)
-        evaluations = 0
-        for rows in groups:
-            est = run(models[rows[0]], theta[rows], rtol, atol, **options)
-            value[rows], error[rows], status[rows] = est.value, est.error, est.status
-            route[rows] = None if est.route is None else np.asarray(est.route, str)
-            evaluations += est.evaluations
-        return Estimate(value, error, evaluations, status, None if any(r is None for r in route) else route)
-    return run_pairs
+#: :func:`_by_its_own_route`: the model's own route declined (None), the engine's route is next.
+_DECLINED = Estimate(np.zeros(0), np.zeros(0))
 
 
-def _at_the_ends(run_pairs, models, theta, rtol, atol, method, model_error=True) -> Estimate:
-    """``run_pairs(models, theta)`` (albedo of ``models[i]`` at ``theta[i]``) with the meaning each model
-    declares at exactly 90°: +inf (``diverged``) where it ``diverges_at_grazing``, the albedo of its
-    ``grazing_limit_model()`` where that is another integrand; plus its ``evaluation_error`` (the
-    error of its tables) in every error, unless ``model_error`` is False (f as evaluated).
-    :func:`albedo`, :func:`albedo_table` and :func:`albedo_pairs` all answer through here; what
-    depends on the model alone is decided once per distinct model object, so that one angle (or a
-    curve of one model) short of 90° costs one call of ``run_pairs`` and no per-element bookkeeping."""
-    groups = [(models[rows[0]], np.asarray(rows)) for rows in indices_by_model(models)]
-    at_90 = theta == 90.0
-    if at_90.any():
-        est = _with_the_declared_ends(run_pairs, models, groups, theta, at_90, method)
-    else:
-        est = run_pairs(models, theta)
-        route = np.full(theta.size, method) if est.route is None else np.asarray(est.route, str)
-        est = Estimate(est.value, est.error, est.evaluations, np.asarray(est.status, str), route)
-    if not model_error or not any(m.has_evaluation_error for m, _ in groups):
-        return est
-    value, error, status = np.array(est.value, float), np.array(est.error, float), np.array(est.status, object)
-    finite = np.isfinite(value)
-    for m, rows in groups:
-        rows = rows[finite[rows]]
-        if not rows.size or not m.has_evaluation_error:
-            continue
-        error[rows] += m.evaluation_error(theta[rows], value[rows])
-        # the model is known to no better than its tables: no refinement of the integral helps
-        missed = (status[rows] == CONVERGED) & (error[rows] > np.maximum(rtol * np.abs(value[rows]), atol))
-        status[rows[missed]] = STALLED
-    return Estimate(value, error, est.evaluations, status.astype(str), est.route)
+def _by_its_own_route(model, theta, tol) -> Estimate | None:
+    """The short way of a model with a route of its own (a closed form: Oren–Nayar, the patch
+    models), nothing to plan: its ``albedo_estimate`` where that answers every angle within the
+    tolerance, the model has no tables' error and declares nothing else at 90°; else None (the
+    plan, which gives the same answer: a single call costs the closed form and little more);
+    :data:`_DECLINED` where the route answered None."""
+    if type(model).albedo_estimate is BRDF.albedo_estimate or model.has_evaluation_error:
+        return None
+    if (theta == 90.0).any() and (model.diverges_at_grazing or model.grazing_limit_model() is not model):
+        return None
+    with counting_evaluations() as count:
+        own = model.albedo_estimate(theta.ravel(), tol.rtol, tol.atol)
+        if own is None:
+            return _DECLINED
+        value, error = np.asarray(own.value, float), np.asarray(own.error, float)
+        status = _status(value, error, tol) if own.status is None else np.asarray(own.status, str)
+        if not _all_in(status, CONVERGED):
+            return None
+        if type(model).delta_albedo is not BRDF.delta_albedo:
+            delta = model.delta_albedo(theta.ravel())
+            value, error = value + delta.value, error + delta.error
+    return Estimate(value, error, count[0], status, np.full(value.shape, "engine/own"))
 
 
-def _with_the_declared_ends(run_pairs, models, groups, theta, at_90, method):
-    """``run_pairs`` on the elements it has to answer: those at exactly 90° of a model that
-    ``diverges_at_grazing`` are +inf, error 0, ``diverged`` (route ``declared``), and those of a model
-    with another ``grazing_limit_model()`` integrate that limit (route suffix ``:grazing_limit``)."""
-    answered, limited = np.ones(theta.size, bool), np.zeros(theta.size, bool)
-    integrands = list(models)
-    for m, rows in groups:
-        here = rows[at_90[rows]]
-        if not here.size:
-            continue
-        if m.diverges_at_grazing:
-            answered[here] = False
-        elif (limit := m.grazing_limit_model()) is not m:
-            limited[here] = True
-            for i in here:
-                integrands[i] = limit
-    value, error = np.full(theta.size, np.inf), np.zeros(theta.size)
-    status, route = np.full(theta.size, DIVERGED, object), np.full(theta.size, "declared", object)
-    evaluations = 0
-    if answered.any():
-        rows = np.flatnonzero(answered)
-        est = run_pairs(integrands if rows.size == theta.size else [integrands[i] for i in rows], theta[rows])
-        value[rows], error[rows], status[rows] = est.value, est.error, est.status
-        route[rows] = np.full(rows.size, method) if est.route is None else np.asarray(est.route, str)
-        evaluations += est.evaluations
-    if limited.any():
-        route[limited] = np.char.add(route[limited].astype(str), ":grazing_limit")
-    return Estimate(value, error, evaluations, status.astype(str), route.astype(str))
-
-
-def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
+def _report_not_converged(est, model, theta, method, tol, strict, warn):
     """Warn (or, ``strict``, raise) when a value is neither ``converged`` nor ``diverged``: how many,
     the worst reported error against the tolerance asked for, and what to try."""
     if not (strict or warn) or _all_in(est.status, CONVERGED, DIVERGED):
@@ -617,7 +751,7 @@ def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
     status = np.asarray(est.status)
     short = (status != CONVERGED) & (status != DIVERGED)
     value, error = np.asarray(est.value, float), np.asarray(est.error, float)
-    target = np.fmax(rtol * np.abs(value), atol)          # atol where the value itself is NaN
+    target = np.fmax(tol.rtol * np.abs(value), tol.atol)          # atol where the value itself is NaN
     ratio = np.where(np.isfinite(error), error / np.where(target > 0, target, np.inf), np.inf)
     worst = np.flatnonzero(short)[np.argmax(np.where(short, ratio, -1.0)[short])]
     kinds = ", ".join(f"{int((status == k).sum())} {k}" for k in (BUDGET_EXHAUSTED, STALLED) if (status == k).any())
@@ -631,7 +765,7 @@ def _report_not_converged(est, model, theta, method, rtol, atol, strict, warn):
     message = (f"albedo of {model.name!r} by method {method!r}: {int(short.sum())} of {status.size} values "
                f"did not converge ({kinds}); worst at theta = {float(np.ravel(theta)[worst]):.10g} deg: "
                f"reported error {float(error.ravel()[worst]):.3g} against the {float(target.ravel()[worst]):.3g} "
-               f"asked for (rtol={rtol:g}, atol={atol:g}); the errors reported are honest bounds. Try {advice}, "
+               f"asked for (rtol={tol.rtol:g}, atol={tol.atol:g}); the errors reported are honest bounds. Try {advice}, "
                "or read Estimate.status and Estimate.error (strict=True raises; warn=False is quiet)")
     if strict:
         raise NotConvergedError(message, est)
@@ -643,9 +777,10 @@ def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
 
     The engine's batch door, with :func:`albedo`'s meaning element by element (the ends at 90°, the
     models' evaluation error; no warning: read ``status``)."""
-    check_table_call(models, theta_deg, rtol, atol)
+    tol = Tolerance.checked(rtol, atol, "albedo_table()")
+    check_table_call(models, theta_deg)
     theta = _check_angles(np.atleast_1d(theta_deg)).ravel()
-    est = albedo_pairs([m for m in models for _ in theta], np.tile(theta, len(models)), rtol, atol)
+    est = _answer([m for m in models for _ in theta], np.tile(theta, len(models)), tol, "engine")
     shape = (len(models), theta.size)
     return Estimate(est.value.reshape(shape), est.error.reshape(shape), est.evaluations,
                     est.status.reshape(shape), est.route.reshape(shape))
@@ -656,10 +791,6 @@ def albedo_pairs(models, theta_deg, rtol=None, atol=None, as_evaluated=False) ->
     quantities that need many (model, angle) pairs at once: maxima, mean albedos), with
     :func:`albedo`'s meaning element by element (no warning: read ``status``).  ``as_evaluated``:
     f as evaluated, without the models' ``evaluation_error`` (a table factory that carries it itself)."""
+    tol = Tolerance.checked(rtol, atol, "albedo_pairs()")
     theta = _check_angles(theta_deg).ravel()
-    rtol = DEFAULT_RTOL if rtol is None else rtol
-    atol = DEFAULT_ATOL if atol is None else atol
-    with counting_evaluations() as count:
-        est = _at_the_ends(lambda ms, th: _albedo_pairs(ms, th, rtol, atol), list(models), theta, rtol, atol,
-                           "engine", model_error=not as_evaluated)
-    return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)
+    return _answer(list(models), theta, tol, "engine", model_error=not as_evaluated)

@@ -6,9 +6,11 @@ What is valid is read from where it is declared, never from a list kept here:
 
 * a model's parameters, their types and defaults from its dataclass fields, their ranges from its
   ``param_ranges`` and the values of its categorical parameters from its ``param_choices``;
-* the methods from :data:`brdfs.numerics.albedo.ALBEDO_METHODS`, and each method's options, their
-  types and their constraints from the keyword parameters of the method's function (their
-  annotations: ``Annotated[int, AtLeast(2)]``, ``Annotated[str, OneOf(...)]``).
+* the methods from the table the front door passes (:data:`brdfs.numerics.albedo.ALBEDO_METHODS`:
+  this module imports nothing of the numerics above it), and each method's options, their types and
+  their constraints from the keyword parameters of the method's function (their annotations:
+  ``Annotated[int, AtLeast(2)]``, ``Annotated[str, OneOf(...)]``);
+* the tolerances once, as a :class:`Tolerance` value that the front door carries.
 
 >>> from brdfs import model
 >>> model("phong", n="20")
@@ -24,8 +26,11 @@ import inspect
 import math
 import numbers
 import typing
+from dataclasses import dataclass
 
 import numpy as np
+
+from brdfs.physics.models import BRDF, MODELS
 
 
 class ArgumentError(ValueError, TypeError):
@@ -91,7 +96,6 @@ def _describe_interval(interval) -> str:
 def check_model_call(name, params) -> None:
     """Refuse a bad :func:`brdfs.model` call before any table is computed: the name (a string
     naming a registered model), every parameter's name, type, finiteness, range and choice."""
-    from brdfs.physics.models import BRDF, MODELS
     if isinstance(name, BRDF):
         _fail("model()", "name", name, "already a model; pass it to albedo() as it is")
     if not isinstance(name, str):
@@ -135,11 +139,39 @@ def _check_parameter(cls, where, field, value):
 
 # --- brdfs.albedo ------------------------------------------------------------------------------
 
-def check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=False, warn=True) -> None:
-    """Refuse a bad :func:`brdfs.albedo` call (``options``: the method's keyword options): the model
-    (a model object, not its name), the angles (finite, in [0°, 90°]), the method, the tolerances
-    (finite, > 0), ``strict`` and ``warn`` (bools) and every option of the method."""
-    ALBEDO_METHODS, BRDF, MODELS = _albedo_front_door_names()
+DEFAULT_RTOL = 1e-10
+DEFAULT_ATOL = 1e-14
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """The error an albedo call asks for, max(rtol |a|, atol): both finite and > 0, checked once
+    (:meth:`checked`, the first check of a front door) and carried as one value through the plan,
+    the routes and the merge."""
+
+    rtol: float = DEFAULT_RTOL
+    atol: float = DEFAULT_ATOL
+
+    @classmethod
+    def checked(cls, rtol=None, atol=None, where="albedo()") -> "Tolerance":
+        """The tolerance of a call (None: the default), or :class:`ArgumentError` naming the bad one."""
+        for argument, value in (("rtol", rtol), ("atol", atol)):
+            if value is not None:
+                _check_real(where, argument, value)
+                if value <= 0:
+                    _fail(where, argument, value, "must be > 0")
+        return cls(DEFAULT_RTOL if rtol is None else rtol, DEFAULT_ATOL if atol is None else atol)
+
+    def target(self, value):
+        """max(rtol |value|, atol), element by element."""
+        return np.maximum(self.rtol * np.abs(value), self.atol)
+
+
+def check_albedo_call(model, theta_deg, method, methods, options, strict=False, warn=True) -> None:
+    """Refuse a bad :func:`brdfs.albedo` call (``methods``: the albedo methods by name; ``options``:
+    the method's keyword options): the model (a model object, not its name), the angles (finite, in
+    [0°, 90°]), the method, ``strict`` and ``warn`` (bools) and every option of the method.  The
+    tolerances are :meth:`Tolerance.checked` before."""
     where = "albedo()"
     if isinstance(model, str):
         hint = ", ".join(f"{k}=..." for k in MODELS[model].param_columns()) if model in MODELS else "..."
@@ -148,17 +180,12 @@ def check_albedo_call(model, theta_deg, method, rtol, atol, options, strict=Fals
         _fail(where, "model", model, f"must be a model (brdfs.model(name, ...)), not {type(model).__name__}")
     _check_declared_ranges(where, model)
     _check_angles(where, theta_deg)
-    if not isinstance(method, str) or method not in ALBEDO_METHODS:
-        _fail(where, "method", method, f"unknown method; choose one of {', '.join(ALBEDO_METHODS)}")
-    for argument, value in (("rtol", rtol), ("atol", atol)):
-        if value is not None:
-            _check_real(where, argument, value)
-            if value <= 0:
-                _fail(where, argument, value, "must be > 0")
+    if not isinstance(method, str) or method not in methods:
+        _fail(where, "method", method, f"unknown method; choose one of {', '.join(methods)}")
     for argument, value in (("strict", strict), ("warn", warn)):
         if not isinstance(value, (bool, np.bool_)):
             _fail(where, argument, value, f"must be True or False, not {type(value).__name__}")
-    _check_options(f"albedo(method={method!r})", ALBEDO_METHODS[method], options)
+    _check_options(f"albedo(method={method!r})", methods[method], options)
 
 
 def _check_declared_ranges(where, model):
@@ -171,19 +198,9 @@ def _check_declared_ranges(where, model):
                   f"{_describe_interval(interval)}")
 
 
-@functools.cache
-def _albedo_front_door_names():
-    """The methods and the model classes :func:`check_albedo_call` checks against, imported on first
-    use (their modules import this one) and kept: an import statement on every call cost a single-angle
-    albedo call two microseconds."""
-    from brdfs.numerics.albedo import ALBEDO_METHODS
-    from brdfs.physics.models import BRDF, MODELS
-    return ALBEDO_METHODS, BRDF, MODELS
-
-
-def check_table_call(models, theta_deg, rtol, atol) -> None:
-    """Refuse a bad :func:`brdfs.albedo_table` call: a list of model objects, angles, tolerances."""
-    _, BRDF, _ = _albedo_front_door_names()
+def check_table_call(models, theta_deg) -> None:
+    """Refuse a bad :func:`brdfs.albedo_table` call: a list of model objects, angles (the tolerances
+    are :meth:`Tolerance.checked` before)."""
     where = "albedo_table()"
     if isinstance(models, (str, BRDF)) or not hasattr(models, "__iter__"):
         _fail(where, "models", models, "must be a list of models (brdfs.model(name, ...))")
@@ -191,11 +208,6 @@ def check_table_call(models, theta_deg, rtol, atol) -> None:
         if not isinstance(m, BRDF):
             _fail(where, f"models[{k}]", m, f"must be a model (brdfs.model(name, ...)), not {type(m).__name__}")
     _check_angles(where, theta_deg)
-    for argument, value in (("rtol", rtol), ("atol", atol)):
-        if value is not None:
-            _check_real(where, argument, value)
-            if value <= 0:
-                _fail(where, argument, value, "must be > 0")
 
 
 def _check_angles(where, theta_deg):

@@ -55,12 +55,19 @@ def _segment(t):
     small = np.abs(x) < 0.25
     xs = np.where(small, x, 0.0)
     # x − sin x = Σ_{k≥1} (−1)^(k+1) x^(2k+1)/(2k+1)!, truncated after x^15 (error < 1e-18 rel).
-    series = sum((-1) ** (k + 1) * xs ** (2 * k + 1) / _factorial(2 * k + 1) for k in range(1, 8))
+    if not small.any():                  # (the series of zeros would add nothing)
+        return 0.5 * (x - np.sin(x))
+    series = sum(sign * xs ** power / factorial for sign, power, factorial in _SEGMENT_TERMS)
     return 0.5 * np.where(small, series, x - np.sin(x))
 
 
 def _factorial(n):
     return float(np.prod(np.arange(1, n + 1, dtype=float)))
+
+
+#: The terms of :func:`_segment`'s series, (−1)^(k+1), 2k + 1 and (2k + 1)!, k = 1 … 7, computed once
+#: (a single angle's albedo computed the factorials 28 times).
+_SEGMENT_TERMS = tuple(((-1) ** (k + 1), 2 * k + 1, _factorial(2 * k + 1)) for k in range(1, 8))
 
 
 def _four_triangle_area(a, b, c):
@@ -136,12 +143,14 @@ def circle_intersection(d, R, cos_theta=None):
     apart = d >= 1.0 + R
     alpha = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, 0.0, np.pi), alpha))
     beta = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, np.pi, 0.0), beta))
-    area = _segment(alpha) + R * R * _segment(beta)
+    segments = _segment(alpha), _segment(beta)
+    area = segments[0] + R * R * segments[1]
     alpha_abs = d * d + np.abs(1.0 - R) * (1.0 + R)
     with np.errstate(divide="ignore", invalid="ignore"):  # R − (1 − d): inputs that carry 4 ε themselves
         y_rel = 16 * _EPS + np.where(one_minus_d > 0, 4 * _EPS * one_minus_d / np.abs(R - one_minus_d), 0.0)
     error = np.where(apart | nested, _EPS * area,
-                     _lens_rounding(alpha, beta, R, four_delta, y_rel, (x_alpha, alpha_abs), (x_beta, beta_abs), area))
+                     _lens_rounding(alpha, beta, R, four_delta, y_rel, (x_alpha, alpha_abs), (x_beta, beta_abs), area,
+                                    segments))
     return Lens(alpha, beta, area, error)
 
 
@@ -162,20 +171,23 @@ def _angle_rounding(y, y_rel, x, x_abs):
     return np.where(np.isfinite(spread), spread, 0.0) + _EPS * np.abs(np.arctan2(y, x))
 
 
-def _lens_rounding(alpha, beta, R, y, y_rel, x_alpha, x_beta, area):
+def _lens_rounding(alpha, beta, R, y, y_rel, x_alpha, x_beta, area, segments):
     """Bound on the rounding of eq. 4.9's area for exact d and R: the angles' errors times
     d(t − sin t cos t)/dt = 2 sin²t, the segments' own rounding (t − sin t cos t is formed as
     (x − sin x)/2, x = 2t, with an absolute error of a few ε t), and the final sum.  ``x_alpha``,
-    ``x_beta``: the atan2 denominators with the sums of their terms' absolute values."""
+    ``x_beta``: the atan2 denominators with the sums of their terms' absolute values; ``segments``:
+    :func:`_segment` of α and β, as the area has them."""
     d_alpha = _angle_rounding(y, y_rel, *x_alpha)
     d_beta = _angle_rounding(y, y_rel, *x_beta)
     propagated = 2 * np.sin(alpha) ** 2 * d_alpha + 2 * R * R * np.sin(beta) ** 2 * d_beta
-    return propagated + _segment_rounding(alpha) + R * R * _segment_rounding(beta) + 2 * _EPS * area
+    return (propagated + _segment_rounding(alpha, segments[0]) + R * R * _segment_rounding(beta, segments[1])
+            + 2 * _EPS * area)
 
 
-def _segment_rounding(t):
-    """Rounding of :func:`_segment`: a few ε relative on its series (2t < 1/4), a few ε t beyond."""
-    return 4 * _EPS * np.where(2 * np.abs(t) < 0.25, _segment(t), np.abs(t))
+def _segment_rounding(t, segment):
+    """Rounding of ``segment`` = :func:`_segment` (t): a few ε relative on its series (2t < 1/4), a
+    few ε t beyond."""
+    return 4 * _EPS * np.where(2 * np.abs(t) < 0.25, segment, np.abs(t))
 
 
 def basic_constant(R):

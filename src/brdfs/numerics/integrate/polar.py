@@ -76,6 +76,9 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     factors = {k: models[k].half_vector_factors() for k in np.unique(index)}
 
     def integrand(theta_v, elem):
+        if len(factors) == 1:                    # one model (a single angle, a curve): no masks
+            value, rounding = radial_integrand(*next(iter(factors.values())), theta_l[elem, None], theta_v)
+            return NodeValues(value, value, rounding)
         value, rounding = np.empty_like(theta_v), np.empty_like(theta_v)
         for k in np.unique(index[elem]):
             rows = index[elem] == k
@@ -105,7 +108,7 @@ def breakpoints(models, theta_l):
     """Per element, ascending and NaN-padded: 0, π/2, the mirror angle θ_L and θ_L ± k · 2 arctan α
     (:data:`LOBE_WIDTHS`), the polar angles of the model's ``nv_levels`` (the Smith term's scale) and,
     near grazing incidence, of μ_V = μ_L · 8^k below α (:func:`_grazing_levels`)."""
-    rows = [None] * len(models)
+    rows = [None] * len(models)                  # (element indices, candidates), at a group's first element
     for members in indices_by_model(models):
         idx = np.array(members)
         brdf = models[idx[0]]
@@ -117,10 +120,24 @@ def breakpoints(models, theta_l):
         cand += _grazing_levels(np.cos(t), distribution.alpha)
         cand = np.stack(cand, 1)
         cand = np.where((cand > 0) & (cand < 0.5 * np.pi), cand, 0.0)
-        for i, row in zip(members, cand):
-            rows[i] = np.unique(np.concatenate([[0.0, 0.5 * np.pi], row]))
-    width = max(r.size for r in rows)
-    return np.vstack([np.pad(r, (0, width - r.size), constant_values=np.nan) for r in rows])
+        rows[idx[0]] = (idx, cand)
+    return _ascending_distinct([part for part in rows if part is not None], len(models))
+
+
+def _ascending_distinct(parts, size):
+    """Rows of breakpoints, each with 0 and π/2, ascending, without repeats, NaN-padded to the
+    longest (``parts``: (element indices, candidate rows))."""
+    width = 2 + max(cand.shape[1] for _, cand in parts)
+    out = np.full((size, width), np.nan)
+    for idx, cand in parts:
+        out[idx, :2] = 0.0, 0.5 * np.pi
+        out[idx, 2:2 + cand.shape[1]] = cand
+    out.sort(axis=1)
+    repeated = np.zeros(out.shape, bool)
+    repeated[:, 1:] = out[:, 1:] == out[:, :-1]
+    out[repeated] = np.nan
+    out.sort(axis=1)
+    return out[:, :int((~np.isnan(out)).sum(axis=1).max())]
 
 
 def _grazing_levels(mu_l, alpha):
