@@ -283,13 +283,15 @@ def main(argv=None) -> None:
         cpu = time.process_time() - start
         total += cpu
         print(f"{name:32s} cpu {cpu:6.1f} s", flush=True)
-        table += [{"figure": name, "panel": r.panel, "object": r.object, "spp": r.spp, "cpu_s": cpu,
+        table += [{"figure": name, "panel": r.panel, "object": r.object, "spp": r.spp,
+                   "crop_spp": getattr(r, "crop_spp", 0), "object_spp": getattr(r, "object_spp", r.spp), "cpu_s": cpu,
                    "p95_relative_se": r.object_p95_relative_se, "fireflies": r.object_fireflies,
                    "sparkles": r.object_sparkles, "clamp": getattr(r, "clamp", 0.0),
                    "clamp_bias": getattr(r, "clamp_bias", 0.0)} for r in df.itertuples()]
         for r in df.itertuples():
             print(f"    panel {r.panel} {r.object:14s} p95 {r.object_p95_relative_se:.4f} fireflies "
-                  f"{r.object_fireflies:4.0f} sparkles {r.object_sparkles:4.0f} @ {r.spp:.0f} spp", flush=True)
+                  f"{r.object_fireflies:4.0f} sparkles {r.object_sparkles:4.0f} @ {r.spp:.0f} spp"
+                  f" (object {getattr(r, 'object_spp', r.spp):.0f})", flush=True)
         if args.maps:
             os.makedirs(args.maps, exist_ok=True)
             for k, (passes, ids) in enumerate(store):
