@@ -192,12 +192,14 @@ def plan(preview_csv: str, target: float, budget_cpu_s: float, passes: int = 8) 
     --validate), or, if all of them together would take more than ``budget_cpu_s``, to the common p95
     t that the budget reaches (sum_i cpu_i (p_i / t)^2 = budget); with the predicted p95 of every object
     and the predicted CPU seconds (the preview's scaled by the samples: an upper bound, the figure's
-    fixed costs scale too)."""
+    fixed costs scale too). A preview with crop windows (``crop_spp``) is scaled from its objects' own
+    samples (``object_spp``): the final then renders the whole film at that count, no crop (an upper bound)."""
     import pandas as pd
 
     rows = pd.read_csv(preview_csv)
     rows = rows[[(f, p) not in EXCEPTED for f, p in zip(rows["figure"], rows["panel"])]]
-    figures = rows.groupby("figure").agg(p95=("p95_relative_se", "max"), spp=("spp", "max"), cpu_s=("cpu_s", "first"))
+    own = "object_spp" if "object_spp" in rows.columns else "spp"
+    figures = rows.groupby("figure").agg(p95=("p95_relative_se", "max"), spp=(own, "max"), cpu_s=("cpu_s", "first"))
     reach = float(np.sqrt((figures["cpu_s"] * figures["p95"] ** 2).sum() / budget_cpu_s))
     goal = max(target, reach)
     figures["final_spp"] = [exact_spp(max(spp, spp * (p / goal) ** 2), passes) for p, spp in zip(figures["p95"], figures["spp"])]

@@ -222,7 +222,7 @@ def test_a_pixel_inside_crop_windows_gets_the_spp_weighted_mean_of_its_parts_and
     assert samples[5, 9] == 56 and samples[4, 7] == 32 and samples[0, 0] == 8 and samples[7, 11] == 32
 
 
-def test_each_object_but_the_floor_gets_its_own_crop_window_with_its_margin():
+def test_each_object_but_the_floor_gets_a_crop_window_with_its_margin_and_overlapping_ones_merge():
     from brdfs.artifacts import _render_figures as rf
 
     ids = np.full((40, 60), 1.0)                           # 1: the floor, everywhere
@@ -231,7 +231,10 @@ def test_each_object_but_the_floor_gets_its_own_crop_window_with_its_margin():
     ids[0, 0] = 4.0                                        # a light sphere: not an object
     labels = {1: "floor", 2: "ball", 3: "tank", 4: "light", 5: "hidden"}
     assert rf.crop_windows(ids, labels, margin=2) == [(18, 8, 10, 9), (38, 20, 8, 12)]
-    assert rf.crop_windows(ids, labels, margin=50) == [(0, 0, 60, 40)] * 2      # clipped to the film
+    assert rf.crop_windows(ids, labels, margin=50) == [(0, 0, 60, 40)]      # clipped to the film, merged
+    # overlapping windows become their bounding box (no pixel sampled twice), then it may meet a third
+    assert rf.merge_windows([(0, 0, 4, 4), (3, 3, 4, 4), (8, 0, 2, 2), (6, 6, 2, 2)]) == [(0, 0, 8, 8), (8, 0, 2, 2)]
+    assert rf.merge_windows([(0, 0, 4, 4), (4, 0, 4, 4)]) == [(0, 0, 4, 4), (4, 0, 4, 4)]     # touching: kept
     assert rf.crop_windows(np.ones((4, 4)), {1: "floor"}) == []
 
 

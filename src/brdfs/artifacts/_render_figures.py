@@ -321,9 +321,10 @@ CROP_MARGIN = 4
 
 
 def crop_windows(ids: np.ndarray, labels: dict, skip=("floor",), margin: int = CROP_MARGIN) -> list[tuple]:
-    """One window (x, y, width, height) per object whose label does not start with one of ``skip``
-    (the floor: large and quiet) and that has pixels: the smallest holding its pixels, ``margin``
-    pixels wider (clipped to the film)."""
+    """Windows (x, y, width, height) around the objects whose label does not start with one of
+    ``skip`` (the floor: large and quiet): per object the smallest holding its pixels, ``margin``
+    pixels wider (clipped to the film), and overlapping windows merged into their bounding box
+    (:func:`merge_windows`), so that every window pixel gets the same samples."""
     height, width = ids.shape
     out = []
     for k, label in sorted(labels.items()):
@@ -335,7 +336,27 @@ def crop_windows(ids: np.ndarray, labels: dict, skip=("floor",), margin: int = C
         y0, x0 = max(rows.min() - margin, 0), max(cols.min() - margin, 0)
         y1, x1 = min(rows.max() + margin + 1, height), min(cols.max() + margin + 1, width)
         out.append((int(x0), int(y0), int(x1 - x0), int(y1 - y0)))
-    return out
+    return merge_windows(out)
+
+
+def merge_windows(windows) -> list[tuple]:
+    """``windows`` (x, y, width, height) with every overlapping pair replaced by its bounding box, until
+    none overlap (sorted by y, then x)."""
+    boxes = [(x, y, x + w, y + h) for x, y, w, h in windows]
+    merged = True
+    while merged:
+        merged = False
+        for i in range(len(boxes)):
+            for j in range(i + 1, len(boxes)):
+                a, b = boxes[i], boxes[j]
+                if a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]:
+                    boxes[i] = (min(a[0], b[0]), min(a[1], b[1]), max(a[2], b[2]), max(a[3], b[3]))
+                    del boxes[j]
+                    merged = True
+                    break
+            if merged:
+                break
+    return sorted(((x0, y0, x1 - x0, y1 - y0) for x0, y0, x1, y1 in boxes), key=lambda b: (b[1], b[0]))
 
 
 def combine_crop(full: np.ndarray, crops, windows, spp_full: int, spp_crop: int) -> np.ndarray:
