@@ -192,12 +192,14 @@ def plan(preview_csv: str, target: float, budget_cpu_s: float, passes: int = 8) 
     --validate), or, if all of them together would take more than ``budget_cpu_s``, to the common p95
     t that the budget reaches (sum_i cpu_i (p_i / t)^2 = budget); with the predicted p95 of every object
     and the predicted CPU seconds (the preview's scaled by the samples: an upper bound, the figure's
-    fixed costs scale too)."""
+    fixed costs scale too). A preview with crop windows (``crop_spp``) is scaled from its objects' own
+    samples (``object_spp``): the final then renders the whole film at that count, no crop (an upper bound)."""
     import pandas as pd
 
     rows = pd.read_csv(preview_csv)
     rows = rows[[(f, p) not in EXCEPTED for f, p in zip(rows["figure"], rows["panel"])]]
-    figures = rows.groupby("figure").agg(p95=("p95_relative_se", "max"), spp=("spp", "max"), cpu_s=("cpu_s", "first"))
+    own = "object_spp" if "object_spp" in rows.columns else "spp"
+    figures = rows.groupby("figure").agg(p95=("p95_relative_se", "max"), spp=(own, "max"), cpu_s=("cpu_s", "first"))
     reach = float(np.sqrt((figures["cpu_s"] * figures["p95"] ** 2).sum() / budget_cpu_s))
     goal = max(target, reach)
     figures["final_spp"] = [exact_spp(max(spp, spp * (p / goal) ** 2), passes) for p, spp in zip(figures["p95"], figures["spp"])]
@@ -283,13 +285,15 @@ def main(argv=None) -> None:
         cpu = time.process_time() - start
         total += cpu
         print(f"{name:32s} cpu {cpu:6.1f} s", flush=True)
-        table += [{"figure": name, "panel": r.panel, "object": r.object, "spp": r.spp, "cpu_s": cpu,
+        table += [{"figure": name, "panel": r.panel, "object": r.object, "spp": r.spp,
+                   "crop_spp": getattr(r, "crop_spp", 0), "object_spp": getattr(r, "object_spp", r.spp), "cpu_s": cpu,
                    "p95_relative_se": r.object_p95_relative_se, "fireflies": r.object_fireflies,
                    "sparkles": r.object_sparkles, "clamp": getattr(r, "clamp", 0.0),
                    "clamp_bias": getattr(r, "clamp_bias", 0.0)} for r in df.itertuples()]
         for r in df.itertuples():
             print(f"    panel {r.panel} {r.object:14s} p95 {r.object_p95_relative_se:.4f} fireflies "
-                  f"{r.object_fireflies:4.0f} sparkles {r.object_sparkles:4.0f} @ {r.spp:.0f} spp", flush=True)
+                  f"{r.object_fireflies:4.0f} sparkles {r.object_sparkles:4.0f} @ {r.spp:.0f} spp"
+                  f" (object {getattr(r, 'object_spp', r.spp):.0f})", flush=True)
         if args.maps:
             os.makedirs(args.maps, exist_ok=True)
             for k, (passes, ids) in enumerate(store):

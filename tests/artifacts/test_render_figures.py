@@ -8,6 +8,7 @@ import json
 import re
 
 import numpy as np
+import pandas as pd
 import pytest
 import yaml
 
@@ -121,10 +122,13 @@ def test_a_render_figure_written_twice_from_one_config_has_identical_csv_png_and
     """Byte determinism (issue 23): the passes' seeds come from the config's ``seed`` alone, so two
     runs agree byte for byte, the OpenEXR linear radiance included (issue 42: Mitsuba's writer, the
     same bytes for the same image on one variant and machine), and another ``seed`` gives another
-    noise (the seed is really used)."""
+    noise (the seed is really used). The crop windows' passes (``crop_spp``) are seeded alike."""
     cfg = copy.deepcopy(tiny_cfg)
     name = "fig_3_12_plastics"                 # an rgb figure: one pass per seed (the cheapest)
+    preset = cfg["renders"][cfg["renders"]["preset"]]
+    preset["crop_spp"] = {name: preset["passes"]}
     first = _written_bytes(cfg, name, tmp_path / "a")
+    assert (pd.read_csv(tmp_path / "a" / "x.csv")["crop_windows"] > 0).all()
     assert _written_bytes(cfg, name, tmp_path / "b") == first
     cfg["seed"] = int(cfg["seed"]) + 1
     other = _written_bytes(cfg, name, tmp_path / "c")

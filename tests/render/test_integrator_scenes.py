@@ -203,3 +203,82 @@ def test_a_pixel_whose_samples_hit_two_objects_has_no_object_id_even_where_their
     mean = np.array([4.0, 4.0, 2.0, 0.0, (63 * 2 + 3) / n, 0.5])
     mean_sq = np.array([(9 + 25) / 2, 16.0, 4.0, 0.0, (63 * 4 + 9) / n, 0.5])
     assert rf.pure_ids(mean, mean_sq, n).tolist() == [rf.MIXED_ID, 4.0, 2.0, 0.0, rf.MIXED_ID, rf.MIXED_ID]
+
+
+def test_a_pixel_inside_crop_windows_gets_the_spp_weighted_mean_of_its_parts_and_one_outside_keeps_its_value():
+    from brdfs.artifacts import _render_figures as rf
+
+    rng = np.random.default_rng(5)
+    full, crops = rng.random((10, 12, 3)), [rng.random((4, 5, 3)), rng.random((3, 3, 3))]
+    windows = [(6, 3, 5, 4), (9, 5, 3, 3)]                 # x, y, width, height; overlapping at (9..10, 5..6)
+    out = rf.combine_crop(full, crops, windows, 8, 24)
+    assert np.allclose(out[3 + 1, 6 + 1], (8 * full[4, 7] + 24 * crops[0][1, 1]) / 32)
+    assert np.allclose(out[5, 9], (8 * full[5, 9] + 24 * crops[0][2, 3] + 24 * crops[1][0, 0]) / 56)
+    assert np.allclose(out[7, 11], (8 * full[7, 11] + 24 * crops[1][2, 2]) / 32)
+    inside = np.zeros((10, 12), bool)
+    inside[3:7, 6:11] = inside[5:8, 9:12] = True
+    assert np.array_equal(out[~inside], full[~inside])
+    samples = rf.window_samples((10, 12), windows, 8, 24)
+    assert samples[5, 9] == 56 and samples[4, 7] == 32 and samples[0, 0] == 8 and samples[7, 11] == 32
+
+
+def test_each_object_but_the_floor_gets_a_crop_window_with_its_margin_and_overlapping_ones_merge():
+    from brdfs.artifacts import _render_figures as rf
+
+    ids = np.full((40, 60), 1.0)                           # 1: the floor, everywhere
+    ids[10:15, 20:26] = 2.0
+    ids[22:30, 40:44] = 3.0
+    ids[0, 0] = 4.0                                        # a light sphere: not an object
+    labels = {1: "floor", 2: "ball", 3: "tank", 4: "light", 5: "hidden"}
+    assert rf.crop_windows(ids, labels, margin=2) == [(18, 8, 10, 9), (38, 20, 8, 12)]
+    assert rf.crop_windows(ids, labels, margin=50) == [(0, 0, 60, 40)]      # clipped to the film, merged
+    # overlapping windows become their bounding box (no pixel sampled twice), then it may meet a third
+    assert rf.merge_windows([(0, 0, 4, 4), (3, 3, 4, 4), (8, 0, 2, 2), (6, 6, 2, 2)]) == [(0, 0, 8, 8), (8, 0, 2, 2)]
+    assert rf.merge_windows([(0, 0, 4, 4), (4, 0, 4, 4)]) == [(0, 0, 4, 4), (4, 0, 4, 4)]     # touching: kept
+    assert rf.crop_windows(np.ones((4, 4)), {1: "floor"}) == []
+
+
+def test_full_frame_passes_with_a_crop_pass_are_the_full_frame_render_in_expectation_and_quieter_in_the_window(mi):
+    """Eight passes of 4 spp over the film plus 12 spp in a crop window (Mitsuba's crop film) against
+    eight passes of 32 spp over the film: in the window, each pixel's pass mean agrees with the
+    reference within its noise (z over every window pixel), and the pass-to-pass standard deviation
+    falls as sqrt(4 / 16); outside, the passes are the 4-spp render's."""
+    from brdfs.artifacts import _render_figures as rf
+    from brdfs.render.mitsuba import scenes
+
+    objects = (scenes.SceneObject("floor", scenes.floor(4.0), {"type": "brdfs_lambert"}),
+               scenes.SceneObject("ball", scenes.sphere((0.0, 0.0, 1.0), 1.0), {"type": "brdfs_phong_cosmin", "n": 20.0}))
+    scene = scenes.load(scenes.Scene(objects, (scenes.Light((-3.0, -4.0, 6.0), 40.0),), sky=0.5),
+                        scenes.Camera((0.0, -7.0, 2.5), (0.0, 0.0, 0.8), 24, 16, 34.0), {"type": "brdfs_path"})
+    camera = scenes.Camera((0.0, -7.0, 2.5), (0.0, 0.0, 0.8), 24, 16, 34.0)
+    windows, passes = [(7, 3, 10, 9)], 8
+    full = np.stack([np.asarray(mi.render(scene, spp=4, seed=rf.pass_seed(1, p)))[..., :3] for p in range(passes)])
+    combined = full.copy()
+    rf._render_crop(mi, scene, camera, "independent", windows, 1, 4, 12, None, combined, None)
+    reference = np.stack([np.asarray(mi.render(scene, spp=32, seed=rf.pass_seed(2, p)))[..., :3] for p in range(passes)])
+    x, y, w, h = windows[0]
+    inside = (slice(None), slice(y, y + h), slice(x, x + w))
+    a, r = combined[inside], reference[inside]
+    se = np.sqrt(a.var(axis=0, ddof=1) / passes + r.var(axis=0, ddof=1) / passes) + 1e-12
+    z = (a.mean(axis=0) - r.mean(axis=0)) / se
+    assert abs(z.mean()) < 4.0 / np.sqrt(z.size) * 1.5 and np.mean(np.abs(z) > 3.5) < 0.02
+    ratio = np.median(a.std(axis=0) / (full[inside].std(axis=0) + 1e-12))
+    assert 0.35 < ratio < 0.7, ratio                       # sqrt(4 / 16) = 0.5
+    outside = np.ones(full.shape[1:3], bool)
+    outside[y:y + h, x:x + w] = False
+    assert np.array_equal(combined[:, outside], full[:, outside])
+
+
+def test_a_figures_crop_spp_reaches_its_panels_and_must_be_a_multiple_of_passes():
+    from brdfs.artifacts import _render_figures as rf
+
+    cfg = {"renders": {"preset": "preview", "variant": "llvm_ad_rgb", "sampler": "multijitter", "caustics": False,
+                       "preview": {"min_width": 64, "min_height": 40, "spp": 64, "passes": 8,
+                                   "crop_spp": {"fig_3_9_metals_new_model": 160}}}}
+    setup = rf.settings(cfg)
+    assert setup["crop_spp"] == 0
+    assert rf.figure_setup(setup, "fig_3_9_metals_new_model")["crop_spp"] == 160
+    assert rf.figure_setup(setup, "fig_4_11_anisotropic_metals")["crop_spp"] == 0
+    cfg["renders"]["preview"]["crop_spp"]["fig_3_9_metals_new_model"] = 20
+    with pytest.raises(ValueError, match="crop_spp.fig_3_9_metals_new_model = 20"):
+        rf.settings(cfg)

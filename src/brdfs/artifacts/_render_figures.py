@@ -97,13 +97,20 @@ def settings(cfg: dict) -> dict:
         if any(value % setup["passes"] for value in np.atleast_1d(spp)):
             raise ValueError(f"renders.{preset}.figure_spp.{name} = {spp}: must be a multiple of passes = {setup['passes']}"
                              + (" (each entry)" if isinstance(spp, list) else ""))
+    # the preset's crop_spp is per figure (figure_crop_spp); a panel's own is figure_setup's crop_spp
+    setup["figure_crop_spp"], setup["crop_spp"] = setup.pop("crop_spp", None) or {}, 0
+    for name, spp in setup["figure_crop_spp"].items():
+        if not isinstance(spp, int) or spp < 0 or spp % setup["passes"]:
+            raise ValueError(f"renders.{preset}.crop_spp.{name} = {spp!r}: must be a whole multiple of passes = "
+                             f"{setup['passes']}, >= 0")
     return setup
 
 
 def figure_setup(setup: dict, name: str) -> dict:
     """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp`` (an
     integer, or a list with one entry per panel, :func:`panel_setups`)."""
-    return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"]), "clamp": float(setup["figure_clamp"].get(name, 0.0))}
+    return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"]), "crop_spp": int(setup["figure_crop_spp"].get(name, 0)),
+            "clamp": float(setup["figure_clamp"].get(name, 0.0))}
 
 
 def panel_setups(setup: dict, name: str, count: int) -> list[dict]:
@@ -205,6 +212,8 @@ class RenderedPanel:
     rays: int | None = None
     cos_v: np.ndarray | None = None
     lost: np.ndarray | None = None       # (P, H, W, C): the light the clamp took, per pass (clamp > 0)
+    crop_spp: int = 0                    # more samples per pixel in the crop window (render_panel)
+    windows: tuple = ()                  # the crop windows (x, y, width, height), one per object but the floor
 
     @property
     def radiance(self):
@@ -255,6 +264,12 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     compiles its kernel once (the kernel cache). A spectral panel's eight wavelengths ride along one
     path as three colour groups (:data:`~brdfs.render.mitsuba.spectral.WAVELENGTH_PASSES`): the
     image carries the first, the integrator's ``c<g>_*`` AOVs the others.
+
+    ``setup["crop_spp"]`` > 0 spends samples where the noise is: each pass also renders a crop
+    window around each object but the floor (:func:`crop_windows`, Mitsuba's film crop) at
+    ``crop_spp / passes`` more samples per pixel (seeds :data:`CROP_LAUNCH` on), and a pixel gets the
+    spp-weighted mean of the parts that cover it, pass by pass (:func:`combine_crop`): the passes
+    stay independent and alike, so the 8-pass noise estimate holds pixel by pixel.
     """
     mi = _mitsuba(setup["variant"])
     cam = panel.camera
@@ -262,11 +277,12 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     groups = WAVELENGTH_PASSES if panel.channels == "spectral" else None
     passes = setup["passes"]
     spp = max((setup["spp"] if panel.spp is None else panel.spp) // passes, 1)
+    crop_spp = int(setup.get("crop_spp", 0)) // passes if panel.spp is None else 0
     out = np.zeros((passes, height, width, SPECTRAL if groups else 3))
     # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a pixel's
     # ID is an object's only where all its samples hit that object
     ids, ids_sq, cos_v = np.zeros((height, width)), np.zeros((height, width)), np.zeros((height, width))
-    labels, first = None, True
+    labels, first, windows = None, True, []
     clamp = float(setup.get("clamp", 0.0))
     integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1, clamp)
     lost = np.zeros_like(out) if clamp > 0 else None
@@ -289,9 +305,100 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
             if first:
                 labels, first = msc.object_labels(scene), False
                 ids = pure_ids(ids, ids_sq, spp * passes)
+                windows = crop_windows(ids, labels) if crop_spp else []
+            if windows:
+                _render_crop(mi, scene, camera, setup["sampler"], windows, cfg["seed"], spp, crop_spp, groups, out, lost)
     costs = _plugin_costs(scene) if count else {}
     rays = int(np.asarray(scene.integrator().rays)[0]) if count else None
-    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v, lost)
+    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v, lost,
+                         crop_spp * passes if windows else 0, tuple(windows))
+
+
+#: The first launch index of the crop passes' seeds (:func:`pass_seed`): above any full-frame launch.
+CROP_LAUNCH = 4096
+#: Pixels around the crop window's objects (their mixed edge pixels, the floor's contact shadows).
+CROP_MARGIN = 4
+
+
+def crop_windows(ids: np.ndarray, labels: dict, skip=("floor",), margin: int = CROP_MARGIN) -> list[tuple]:
+    """Windows (x, y, width, height) around the objects whose label does not start with one of
+    ``skip`` (the floor: large and quiet): per object the smallest holding its pixels, ``margin``
+    pixels wider (clipped to the film), and overlapping windows merged into their bounding box
+    (:func:`merge_windows`), so that every window pixel gets the same samples."""
+    height, width = ids.shape
+    out = []
+    for k, label in sorted(labels.items()):
+        if label == "light" or label.startswith(tuple(skip)):
+            continue
+        rows, cols = np.nonzero(ids == k)
+        if rows.size == 0:
+            continue
+        y0, x0 = max(rows.min() - margin, 0), max(cols.min() - margin, 0)
+        y1, x1 = min(rows.max() + margin + 1, height), min(cols.max() + margin + 1, width)
+        out.append((int(x0), int(y0), int(x1 - x0), int(y1 - y0)))
+    return merge_windows(out)
+
+
+def merge_windows(windows) -> list[tuple]:
+    """``windows`` (x, y, width, height) with every overlapping pair replaced by its bounding box, until
+    none overlap (sorted by y, then x)."""
+    boxes = [(x, y, x + w, y + h) for x, y, w, h in windows]
+    merged = True
+    while merged:
+        merged = False
+        for i in range(len(boxes)):
+            for j in range(i + 1, len(boxes)):
+                a, b = boxes[i], boxes[j]
+                if a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]:
+                    boxes[i] = (min(a[0], b[0]), min(a[1], b[1]), max(a[2], b[2]), max(a[3], b[3]))
+                    del boxes[j]
+                    merged = True
+                    break
+            if merged:
+                break
+    return sorted(((x0, y0, x1 - x0, y1 - y0) for x0, y0, x1, y1 in boxes), key=lambda b: (b[1], b[0]))
+
+
+def combine_crop(full: np.ndarray, crops, windows, spp_full: int, spp_crop: int) -> np.ndarray:
+    """``full`` (H, W, ...) of ``spp_full`` samples per pixel with ``crops[i]`` (h, w, ...) of
+    ``spp_crop`` more in ``windows[i]`` = (x, y, w, h): each pixel's mean over all of its samples, the
+    spp-weighted mean of the parts that cover it (windows may overlap); outside every window ``full``."""
+    total = spp_full * np.asarray(full, float)
+    weight = np.full(full.shape[:2], float(spp_full))
+    for crop, (x, y, w, h) in zip(crops, windows):
+        total[y:y + h, x:x + w] += spp_crop * np.asarray(crop)
+        weight[y:y + h, x:x + w] += spp_crop
+    return total / weight.reshape(weight.shape + (1,) * (total.ndim - 2))
+
+
+def window_samples(shape, windows, spp_full: int, spp_crop: int) -> np.ndarray:
+    """(H, W) samples per pixel of all passes' parts: ``spp_full`` plus ``spp_crop`` per window over it."""
+    out = np.full(shape, int(spp_full))
+    for x, y, w, h in windows:
+        out[y:y + h, x:x + w] += int(spp_crop)
+    return out
+
+
+def _render_crop(mi, scene, camera, sampler: str, windows, seed: int, spp: int, crop_spp: int, groups, out, lost) -> None:
+    """Add ``crop_spp`` samples per pixel of each pass in each of ``windows`` to ``out`` (and ``lost``)
+    in place (:func:`combine_crop`); window i's launches are seeded from CROP_LAUNCH + 64 i."""
+    sensors = [mi.load_dict(msc.camera_dict(camera, sampler=sampler, crop=window)) for window in windows]
+    for p in range(out.shape[0]):
+        crops, crops_lost = [], []
+        for i, ((x, y, w, h), sensor) in enumerate(zip(windows, sensors)):
+            crop = np.zeros((h, w) + out.shape[3:])
+            crop_lost = None if lost is None else np.zeros_like(crop)
+            for c, chunk in enumerate(launches(w, h, crop_spp, sampler)):
+                image = np.asarray(mi.render(scene, sensor=sensor, spp=chunk,
+                                             seed=pass_seed(seed, p, CROP_LAUNCH + 64 * i + c)))
+                crop += chunk / crop_spp * panel_channels(image, groups)
+                if lost is not None:
+                    crop_lost += chunk / crop_spp * clamped_channels(image, groups)
+            crops.append(crop)
+            crops_lost.append(crop_lost)
+        out[p] = combine_crop(out[p], crops, windows, spp, crop_spp)
+        if lost is not None:
+            lost[p] = combine_crop(lost[p], crops_lost, windows, spp, crop_spp)
 
 
 @contextlib.contextmanager
@@ -413,14 +520,17 @@ def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict, lost: np.nd
     """Per object: pixels, mean Y over its pixels and the standard error of that mean over passes
     (``y``: the (P, H, W) luminance passes), the object's own noise figures (``noise``:
     :func:`~brdfs.render.mitsuba.metrics.panel_noise`'s per object) and the clamp's bias (``lost``: the
-    (P, H, W) luminance the clamp took, :func:`_clamp_columns`)."""
+    (P, H, W) luminance the clamp took, :func:`_clamp_columns`); ``object_spp``: the fewest samples per
+    pixel of its pixels (``spp``, plus ``crop_spp`` inside the crop windows)."""
     rows = []
+    samples = window_samples(rendered.ids.shape, rendered.windows, rendered.spp, rendered.crop_spp)
     for k, label in sorted(rendered.labels.items()):
         sel = rendered.ids == k
         if label == "light" or not sel.any():
             continue
         per_pass = y[:, sel].mean(axis=1)
-        rows.append({"object": label, "pixels": int(sel.sum()), "luminance": float(per_pass.mean()),
+        rows.append({"object": label, "pixels": int(sel.sum()), "object_spp": int(samples[sel].min()),
+                     "luminance": float(per_pass.mean()),
                      "luminance_err": float(per_pass.std(ddof=1) / np.sqrt(per_pass.size)),
                      **_object_noise_columns(noise.get(k)), **_clamp_columns(lost, y, sel)})
     return rows
@@ -460,7 +570,8 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
         for row in object_rows(rendered, y, per_object, lost):
             rows.append({"figure": name, "panel": k, "panel_title": panel.title, **row,
                          **_describe(specs.get(row["object"], {})),
-                         "width": width, "height": height, "spp": rendered.spp, "passes": setup["passes"],
+                         "width": width, "height": height, "spp": rendered.spp,
+                         "crop_spp": rendered.crop_spp, "crop_windows": len(rendered.windows), "passes": setup["passes"],
                          "max_depth": panel.max_depth, "preset": setup["preset"], "variant": setup["variant"],
                          "caustics": bool(setup["caustics"]), "clamp": float(setup.get("clamp", 0.0)),
                          "point_lights": len(panel.lights),

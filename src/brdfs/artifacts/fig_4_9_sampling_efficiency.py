@@ -63,7 +63,8 @@ def panel_costs(df: pd.DataFrame) -> list[str]:
         first = rows.iloc[0]
         minutes = first["thesis_minutes"]
         thesis = f"thesis {THESIS_SPP} spp, {minutes:g} min" if minutes == minutes else "not in the thesis"
-        out.append(f"{int(first['spp'])} spp, {first['rays_per_pixel']:.0f} rays/px, "
+        crop = f" (spheres {int(first['spp'] + first['crop_spp'])})" if first.get("crop_spp", 0) else ""
+        out.append(f"{int(first['spp'])} spp{crop}, {first['rays_per_pixel']:.0f} rays/px, "
                    f"{rows['plugin_evaluations_per_pixel'].sum():.1f} plugin evals/px; {thesis}")
     return out
 

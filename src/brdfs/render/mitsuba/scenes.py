@@ -161,15 +161,20 @@ def light_radiance(intensity, radius=LIGHT_RADIUS):
     return np.asarray(intensity, float) / (np.pi * radius * radius)
 
 
-def camera_dict(camera: Camera, rfilter="box", sampler="independent") -> dict:
+def camera_dict(camera: Camera, rfilter="box", sampler="independent", crop=None) -> dict:
+    """The perspective sensor of ``camera``; ``crop`` = (x, y, width, height) renders only that window
+    of the film (Mitsuba's crop window: the same rays as the full film's pixels there)."""
     import mitsuba as mi
 
+    film = {"type": "hdrfilm", "width": int(camera.width), "height": int(camera.height),
+            "pixel_format": "rgb", "rfilter": {"type": rfilter}}
+    if crop is not None:
+        x, y, width, height = (int(v) for v in crop)
+        film.update(crop_offset_x=x, crop_offset_y=y, crop_width=width, crop_height=height)
     return {"type": "perspective", "fov": float(camera.fov_deg), "fov_axis": "y",
             "to_world": mi.ScalarTransform4f().look_at(origin=list(camera.eye), target=list(camera.target),
                                                        up=list(camera.up)),
-            "film": {"type": "hdrfilm", "width": int(camera.width), "height": int(camera.height),
-                     "pixel_format": "rgb", "rfilter": {"type": rfilter}},
-            "sampler": {"type": sampler}}
+            "film": film, "sampler": {"type": sampler}}
 
 
 def _key(label: str, k: int) -> str:
