@@ -47,6 +47,9 @@ FORCE_DAMAGED = damaged=$$($(BIN)/python -m brdfs.pipeline.io damaged)
 # Inside $(call locked,...) only: remove the results no rule writes any more (of an artifact, a rule or a batch
 # that is gone, a killed job's hidden temporary; brdfs.pipeline.registry.stale_results), saying so in one line.
 REMOVE_STALE = $(BIN)/python -m brdfs.pipeline.registry remove-stale
+# The pre-loaded parent of the artifact jobs (brdfs.pipeline.zygote): started beside Snakemake, gone with it.
+ZYGOTE := .snakemake/zygote.sock
+START_ZYGOTE = $(BIN)/python -m brdfs.pipeline.zygote $(ZYGOTE) & zygote=$$!; trap "kill $$zygote 2>/dev/null || true" EXIT; export BRDFS_ZYGOTE=$(CURDIR)/$(ZYGOTE)
 # Inside $(call locked,...) only: clear the lock a killed Snakemake run left behind.
 UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
   echo "make $@: clearing the Snakemake lock of a run that was killed (snakemake --unlock)"; \
@@ -88,7 +91,7 @@ check-wheel: $(STAMP)
 
 # The whole build: one job per artifact, as a plain `snakemake` plans it (the default profile).
 all: llvm $(STAMP)
-	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); $(REMOVE_STALE); $(FORCE_DAMAGED); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS) $${damaged:+--forcerun $$damaged})
+	@$(CHECK_CONFIG) $(call locked,$(UNLOCK_STALE); $(REMOVE_STALE); $(FORCE_DAMAGED); $(START_ZYGOTE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default $(CONFIG_ARGS) $(TARGETS) $${damaged:+--forcerun $$damaged})
 
 # Lint first (a few seconds), then the tests (the explorer's run in headless Chromium: `make chromium`).
 test: llvm chromium $(STAMP) lint
