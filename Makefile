@@ -114,7 +114,7 @@ benchmark: llvm $(STAMP)
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.
 renders-final: llvm $(STAMP)
-	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default "renders={preset: final}" $(TARGETS))
+	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default --config "renders={preset: final}" $(TARGETS))
 
 # The nine deliberate renderer faults (issue 23's six, mis_weights_apart, issue 42's fresnel_at_theta_l and
 # tangent_flipped), each in a temporary copy; a named test must fail.
