@@ -83,15 +83,9 @@ def main() -> None:
     args = parser.parse_args()
     run = one_run
     if args.zygote:
-        import importlib
-
-        import matplotlib
-
         from brdfs.pipeline import zygote
 
-        matplotlib.use("Agg")
-        for module in zygote.PRELOAD:
-            importlib.import_module(module)
+        zygote.preload()
         run = one_forked_run
     print(f"src={args.src} preamble={args.preamble} zygote={args.zygote} runs={args.runs} (min wall s, min CPU s)")
     for name in args.names:

@@ -123,16 +123,22 @@ def _die_with_the_build(parent: int) -> None:
     os._exit(0)
 
 
-def serve(path: str) -> None:
-    """Import :data:`PRELOAD`, listen on ``path`` and fork a child per job until killed."""
+def preload() -> None:
+    """Import :data:`PRELOAD` (matplotlib with the Agg backend) into this process."""
     import importlib
-    import signal
 
     import matplotlib
 
     matplotlib.use("Agg")
     for module in PRELOAD:
         importlib.import_module(module)
+
+
+def serve(path: str) -> None:
+    """Import :data:`PRELOAD`, listen on ``path`` and fork a child per job until killed."""
+    import signal
+
+    preload()
     signal.signal(signal.SIGCHLD, signal.SIG_IGN)  # children report to their job, never to us
     threading.Thread(target=_die_with_the_build, args=(os.getppid(),), daemon=True).start()
     if os.path.exists(path):
