@@ -88,3 +88,17 @@ def test_a_reading_verdict_replaces_differs_and_reports_the_procedures_error():
     fragment = published.make_fragment("ward_cmax", rows)
     assert (fragment["verdict"] == "reproduces under a reading").all()
     assert np.allclose(fragment["reading_error"], -0.01)
+
+
+@pytest.mark.parametrize("accepted", [True, False])
+def test_a_differing_rows_reason_says_whether_its_groups_reading_was_accepted(accepted):
+    """A row reproduced only by a reading other than its group's: the reason says the group's reading
+    is accepted (above the placebo) but misses this entry, or that it is not above the placebo."""
+    from types import SimpleNamespace
+
+    search = SimpleNamespace(accepted=accepted, placebo_p99=8.0, family_size=62)
+    row = {"reading_verdict": "", "reading": "other", "value_under_reading": 5.3387, "group_score": "18/20",
+           "closest_hits": 1}
+    reason = readings._reason(search, row, 5.33418, None)
+    assert ("not above the placebo" in reason) is not accepted
+    assert ("does not reproduce this entry" in reason) is accepted

@@ -439,6 +439,11 @@ def _reason(s: Search, row: dict, computed: float, effect) -> str:
         return (f"the thesis's procedure '{row['reading']}' gives {value:.6g}, which prints as the print "
                 f"(it reproduces {row['group_score']} of the group, best of {s.family_size} readings, "
                 f"placebo 99th percentile {s.placebo_p99:g}){said}")
+    if row.get("closest_hits") and s.accepted:
+        return (f"the reading '{row['reading']}' gives {value:.6g}, which prints as the print, but the group's "
+                f"accepted reading (it reproduces {row['group_score']}, above the placebo's 99th percentile "
+                f"{s.placebo_p99:g}, in a family of {s.family_size}) does not reproduce this entry; the formula "
+                f"gives {computed:.6g}")
     if row.get("closest_hits"):
         return (f"the reading '{row['reading']}' gives {value:.6g}, which prints as the print, but the group's best "
                 f"reading reproduces {row['group_score']}, not above the placebo's 99th percentile "
