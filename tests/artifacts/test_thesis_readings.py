@@ -13,6 +13,7 @@ from brdfs.artifacts.extra_metal_a0_readings import box_range
 from brdfs.artifacts.table_1_2_metal_reflectance import a0_percent
 from brdfs.artifacts.table_4_1_exponential_patch import _closed_forms
 from brdfs.pipeline.published import rounds_to
+from brdfs.pipeline import readings
 from brdfs.pipeline.readings import digits_of, printed_digits
 
 
@@ -55,7 +56,7 @@ def test_table_3_1_corrected_blinn_n_2_is_the_maximum_over_a_30_degree_grid(step
 
 @pytest.mark.parametrize(("steps", "prints"), [(90, True), (100, False)])
 def test_table_3_3_new_model_n_512_is_eq_3_37_by_90_midpoints_in_cos2_theta(steps, prints):
-    u, w = chapter_3.rule_weights("midpoint", 0.0, 1.0, steps)
+    u, w = readings.rule_weights("midpoint", 0.0, 1.0, steps)
     a = brdfs.albedo(brdfs.model("phong_cosmin", n=512.0), np.degrees(np.arccos(np.sqrt(u))), rtol=1e-8).value
     assert rounds_to("0.975", float(np.sum(w * a))) is prints
 
@@ -66,3 +67,21 @@ def test_the_box_of_the_inputs_has_its_extremes_at_the_proven_corners():
     inside = a0_percent(n.ravel(), k.ravel())[0]
     assert low <= inside.min() + 1e-12 and inside.max() <= high + 1e-12
     assert inside.min() == pytest.approx(low, abs=1e-12) and inside.max() == pytest.approx(high, abs=1e-12)
+
+
+@pytest.mark.parametrize("rule, degree", [("left", 0), ("right", 0), ("midpoint", 1), ("trapezoid", 1),
+                                          ("simpson", 3)])
+def test_each_elementary_rule_is_exact_to_its_degree_and_the_grid_sum_is_the_same_rule(rule, degree):
+    """∫₀^b x^k dx = b^(k+1)/(k+1) for k ≤ the rule's degree, and not for k = degree + 1; the
+    prefix sums of Table 4.3 over a longer grid give the weights' sums."""
+    n, h = 8, 0.25
+    x, w = readings.rule_weights(rule, 0.0, n * h, n)
+    b = n * h
+    for k in range(degree + 2):
+        exact = b ** (k + 1) / (k + 1)
+        assert (abs(w @ x**k - exact) < 1e-12) == (k <= degree)
+    if rule != "midpoint":
+        grid = np.arange(2 * n + 1) * h
+        values = np.stack([grid**2, np.cos(grid)])
+        assert readings.grid_rule_sum(rule, values, h, n) == pytest.approx([w @ x**2, w @ np.cos(x)], rel=1e-14)
+    assert readings.rule_weights("simpson", 0.0, 1.0, 7)[0].size == 0

@@ -55,30 +55,9 @@ def _build(model_name: str, param: str, value: float, C=None):
     return model(model_name, **kwargs) if C is None else model(model_name, C=float(C), **kwargs)
 
 
-def rule_weights(rule: str, a: float, b: float, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes and weights of a rule with n steps on [a, b] (Simpson: n even, else empty)."""
-    h = (b - a) / n
-    grid = a + h * np.arange(n + 1)
-    if rule == "left":
-        return grid[:-1], np.full(n, h)
-    if rule == "right":
-        return grid[1:], np.full(n, h)
-    if rule == "midpoint":
-        return grid[:-1] + h / 2, np.full(n, h)
-    w = np.full(n + 1, h)
-    if rule == "trapezoid":
-        w[[0, -1]] = h / 2
-        return grid, w
-    if n % 2:
-        return np.empty(0), np.empty(0)
-    w = np.where(np.arange(n + 1) % 2 == 1, 4.0, 2.0) * h / 3
-    w[[0, -1]] = h / 3
-    return grid, w
-
-
 def _a0_by_rule(brdf, rule: str, n: int) -> float:
     """a(0) = 2π ∫₀^{π/2} f(N, V(θ_V)) cos θ_V sin θ_V dθ_V as a sum (NaN where the rule cannot)."""
-    x, w = rule_weights(rule, 0.0, np.pi / 2, n)
+    x, w = readings.rule_weights(rule, 0.0, np.pi / 2, n)
     if x.size == 0:
         return np.nan
     theta_v = np.degrees(x)
@@ -147,7 +126,7 @@ def mean_search(cfg: dict, constants: pd.DataFrame) -> readings.Search:
     for variable, (a, b, _) in integrands.items():
         for rule in RULES:
             for n in family["mean_steps"]:
-                x, w = rule_weights(rule, a, b, n)
+                x, w = readings.rule_weights(rule, a, b, n)
                 if x.size:
                     plan.append((variable, rule, n, x, w))
                     angles = variables[variable](x) if variable != "theta" else np.degrees(x)

@@ -37,20 +37,6 @@ CLIP_NODES = ("clipped", "unclipped")
 PROCEDURE = ("eq. 4.22 as a sum, 'by numerical methods using formula (4.22)' (Sec. 4.6, after eq. 4.42)")
 
 
-def _rule_sum(rule: str, P: np.ndarray, h: float, n: int) -> np.ndarray:
-    """Σ wᵢ Pᵢ of a rule over the first n steps of the grid Pᵢ = P(i h) (last axis)."""
-    if rule == "left":
-        return h * P[..., :n].sum(axis=-1)
-    if rule == "right":
-        return h * P[..., 1:n + 1].sum(axis=-1)
-    if rule == "trapezoid":
-        return h * (P[..., :n + 1].sum(axis=-1) - 0.5 * (P[..., 0] + P[..., n]))
-    if n % 2:
-        return np.full(P.shape[:-1], np.nan)
-    odd, even = P[..., 1:n:2].sum(axis=-1), P[..., 2:n - 1:2].sum(axis=-1)      # simpson
-    return h / 3 * (P[..., 0] + P[..., n] + 4 * odd + 2 * even)
-
-
 def _slopes(ds, R: np.ndarray, m_clip: float) -> np.ndarray:
     """ξ'(R) of every d (rows): the formula below m_clip, 0 from m_clip on."""
     below = np.minimum(R, m_clip)
@@ -98,7 +84,7 @@ def reading_values(ds, m_clip: float, steps, rules=RULES) -> tuple[pd.DataFrame,
                         k = n if rule == "midpoint" else 2 * n
                         total = products[rule][..., :k].sum(axis=-1) * (h if rule == "midpoint" else h / 2)
                     else:
-                        total = _rule_sum(rule, P, h, n)
+                        total = readings.grid_rule_sum(rule, P, h, n)
                     a = np.pi * xi_max[:, None] - total                                # (d, θ)
                     end_label = f"m_clip = {m_clip:g}" if end_name == "m_clip" else "2"
                     name = f"{rule}, h = {h:g}, to {end_label}, clip node {clip_node}"

@@ -58,6 +58,40 @@ PRINTED_AS = {"round": "rounded", "truncate": "truncated"}
 NO_DIGITS = np.iinfo(np.int64).min
 
 
+def rule_weights(rule: str, a: float, b: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights of an elementary rule with n equal steps on [a, b]: ``left``, ``right``,
+    ``midpoint``, ``trapezoid`` or ``simpson`` (n even; else empty arrays: the rule cannot)."""
+    h = (b - a) / n
+    grid = a + h * np.arange(n + 1)
+    if rule == "left":
+        return grid[:-1], np.full(n, h)
+    if rule == "right":
+        return grid[1:], np.full(n, h)
+    if rule == "midpoint":
+        return grid[:-1] + h / 2, np.full(n, h)
+    w = np.full(n + 1, h)
+    if rule == "trapezoid":
+        w[[0, -1]] = h / 2
+        return grid, w
+    if n % 2:
+        return np.empty(0), np.empty(0)
+    w = np.where(np.arange(n + 1) % 2 == 1, 4.0, 2.0) * h / 3
+    w[[0, -1]] = h / 3
+    return grid, w
+
+
+def grid_rule_sum(rule: str, P: np.ndarray, h: float, n: int) -> np.ndarray:
+    """Σ wᵢ Pᵢ of a grid rule (:func:`rule_weights`, not ``midpoint``) over the first n steps of
+    values Pᵢ = P(i h) on the last axis (NaN where the rule cannot)."""
+    if rule == "midpoint":
+        raise ValueError("the midpoint rule has no nodes on the grid")
+    _, w = rule_weights(rule, 0.0, n * h, n)
+    if w.size == 0:
+        return np.full(P.shape[:-1], np.nan)
+    first = 1 if rule == "right" else 0
+    return P[..., first:first + w.size] @ w
+
+
 def print_exponent(published: str) -> int:
     """The decimal exponent of a print's last digit.
 
