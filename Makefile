@@ -110,6 +110,9 @@ benchmark: llvm $(STAMP)
 	$(BIN)/python benchmarks/bench_sampling.py
 	$(BIN)/python benchmarks/bench_explorer.py
 	$(BIN)/python benchmarks/bench_checked_calls.py
+	$(BIN)/python benchmarks/bench_many_angles.py --ggx-million
+	$(BIN)/python benchmarks/bench_job_startup.py --preamble snakemake
+	$(BIN)/python benchmarks/bench_job_startup.py --preamble snakemake --zygote
 
 # The renders at the publication preset (config.yaml renders.final): a changed config section reruns
 # the render jobs, and only them.
