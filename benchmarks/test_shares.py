@@ -16,6 +16,10 @@ one place::
     PYTHONPATH=src:benchmarks .venv/bin/python -m pytest -n 2 -p test_shares --shares-out /tmp/rec
     PYTHONPATH=src .venv/bin/python benchmarks/test_shares.py suite /tmp/rec
 
+    # an issue's tests (new, changed and removed) in several checkouts, alternately
+    PYTHONPATH=src .venv/bin/python benchmarks/test_shares.py trees --issue 40 --repeat 2 \
+        base=/work/old-e0ba585 before=/tmp/before here=.
+
     # the costliest test functions of that run (existing at the base), here and at the base
     PYTHONPATH=src .venv/bin/python benchmarks/test_shares.py compare /tmp/rec --old /work/old-e0ba585 --top 40
 
@@ -25,7 +29,8 @@ one place::
 Attribution: a test function (module level or in a class) is *new* when the base has no function of
 that name in that file, *changed* when its source (decorators included) differs. A new test belongs
 to the issue of the commit that added its ``def``; a changed one to the issues of the commits that git
-blame gives for its lines since the base; a commit's issue is the number its
+blame gives for its lines since the base; a removed one (a function of the base no longer
+there, often merged into another) to the issue of the commit that removed its ``def``; a commit's issue is the number its
 message names ("issue 40", "issue 39/40"), else that of the branch it was merged from ("Merge branch
 's3-41'"); commits named by neither are "other". A parametrized function counts with all its cases.
 
@@ -217,6 +222,10 @@ def attribute(base: str = BASE) -> list[dict]:
             owners = sorted({i for c in commits for i in issues.get(c, set())} or {"other"}, key=str)
             rows.append({"nodeid": f"{path}::{name}", "status": "new" if name not in before else "changed",
                          "issues": owners})
+        for name in sorted(set(before) - set(now)):   # removed (or merged into another test)
+            found = _git("log", "--format=%H", "-S", f"def {name.split('::')[-1]}(", f"{base}..HEAD", "--", path).split()
+            owners = sorted(issues.get(found[0], set()) if found else set(), key=str) or ["other"]
+            rows.append({"nodeid": f"{path}::{name}", "status": "removed", "issues": owners})
     return rows
 
 
@@ -249,6 +258,15 @@ def run_pytest(nodeids: list[str], out: Path, cwd: Path = ROOT, src: Path | None
     if run.returncode != 0:
         print(run.stdout[-3000:], run.stderr[-3000:], sep="\n", file=sys.stderr)
     return wall, cpu, run.returncode
+
+
+def _defined_in(tree: Path, function_id: str) -> bool:
+    """Whether the checkout ``tree`` defines the test function ``file::[Class::]name``."""
+    path, name = function_id.split("::", 1)
+    try:
+        return name in _test_functions((tree / path).read_text())
+    except FileNotFoundError:
+        return False
 
 
 def share(records: dict[str, dict[str, float]], function_ids: list[str]) -> tuple[float, float, int]:
@@ -288,6 +306,12 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("records", type=Path)
     p.add_argument("--base", default=BASE)
     p.add_argument("--slowest", type=int, default=5)
+    p = commands.add_parser("trees", help="an issue's tests (new, changed, removed) in several checkouts")
+    p.add_argument("--issue", required=True)
+    p.add_argument("--base", default=BASE)
+    p.add_argument("trees", nargs="+", metavar="LABEL=DIR", help="checkouts, each run with its own src/")
+    p.add_argument("--repeat", type=int, default=1)
+    p.add_argument("--out", type=Path, default=Path("/tmp/test_shares_trees"))
     p = commands.add_parser("compare", help="the costliest tests of a suite run (existing here and at the base), here and at the base")
     p.add_argument("records", type=Path)
     p.add_argument("--old", type=Path, required=True, help="a checkout of the base (run with its own src/)")
@@ -305,7 +329,8 @@ def main(argv: list[str] | None = None) -> int:
         rows = attribute(args.base)
         for issue, chosen in by_issue(rows).items():
             print(f"issue {issue}: {sum(r['status'] == 'new' for r in chosen)} new, "
-                  f"{sum(r['status'] == 'changed' for r in chosen)} changed test functions")
+                  f"{sum(r['status'] == 'changed' for r in chosen)} changed, "
+                  f"{sum(r['status'] == 'removed' for r in chosen)} removed test functions")
             for row in chosen:
                 print(f"    {row['status']:<8} {row['nodeid']}" + (f"  (with {', '.join(i for i in row['issues'] if i != issue)})"
                                                                 if len(row["issues"]) > 1 else ""))
@@ -318,6 +343,8 @@ def main(argv: list[str] | None = None) -> int:
         status = 0
         for issue in args.issues:
             ids = [r["nodeid"] for r in grouped.get(issue, [])]
+            removed = [r["nodeid"] for r in grouped.get(issue, []) if r["status"] == "removed"]
+            ids = [i for i in ids if i not in removed]
             new = [r["nodeid"] for r in grouped.get(issue, []) if r["status"] == "new"]
             changed = [r["nodeid"] for r in grouped.get(issue, []) if r["status"] == "changed"]
             for attempt in range(args.repeat):
@@ -330,12 +357,12 @@ def main(argv: list[str] | None = None) -> int:
                 _print_share(f"issue {issue} run {attempt + 1}", *share(records, ids), process=(wall, cpu))
                 _print_share("    new tests", *share(records, new))
                 _print_share("    changed tests", *share(records, changed))
-                if args.old and changed:   # what the changed tests cost at the base, run in its checkout
+                if args.old and changed + removed:   # what they cost at the base, run in its checkout
                     old = args.out / f"issue-{issue}-{attempt}-base"
                     for stale in old.glob("records-*.json"):
                         stale.unlink()
-                    wall, cpu, code = run_pytest(changed, old, cwd=args.old)
-                    _print_share("    changed tests at the base", *share(read_records(old), changed),
+                    wall, cpu, code = run_pytest(changed + removed, old, cwd=args.old)
+                    _print_share("    changed and removed tests at the base", *share(read_records(old), changed + removed),
                                  process=(wall, cpu))
             _slowest(records, ids, args.slowest)
             print(f"    budget: {BUDGETS.get(issue, '-')}")
@@ -346,13 +373,39 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{'whole suite':<28} {len(records):>5} tests  wall {sum(r['wall'] for r in records.values()):7.2f} s"
               f"  CPU {sum(r['cpu'] for r in records.values()):7.2f} s  (summed over tests)")
         for issue, chosen in by_issue(attribute(args.base)).items():
-            ids = [r["nodeid"] for r in chosen]
+            ids = [r["nodeid"] for r in chosen if r["status"] != "removed"]
             new = [r["nodeid"] for r in chosen if r["status"] == "new"]
             _print_share(f"issue {issue}", *share(records, ids))
             _print_share(f"issue {issue} (new only)", *share(records, new))
             _slowest(records, ids, args.slowest)
         render = [n for n in records if n.startswith(RENDER_TESTS)]
         _print_share("render tests", *share(records, render))
+        return 0
+
+    if args.command == "trees":
+        chosen = sorted({r["nodeid"] for r in attribute(args.base) if args.issue in r["issues"]})
+        trees = [t.split("=", 1) for t in args.trees]
+        present = {label: [f for f in chosen if _defined_in(Path(path), f)] for label, path in trees}
+        cost = {label: defaultdict(lambda: [0.0, 0.0]) for label, _ in trees}
+        for attempt in range(args.repeat):
+            for label, path in trees:
+                out = args.out / f"{label}-{attempt}"
+                for stale in out.glob("records-*.json"):
+                    stale.unlink()
+                wall, cpu, _ = run_pytest(present[label], out, cwd=Path(path))
+                records = read_records(out)
+                _print_share(f"{label} run {attempt + 1}", *share(records, present[label]), process=(wall, cpu))
+                for nodeid, record in records.items():
+                    entry = cost[label][nodeid.split("[")[0]]
+                    entry[0] += record["wall"] / args.repeat
+                    entry[1] += record["cpu"] / args.repeat
+        print("mean CPU seconds per test function: " + "  ".join(f"{label:>8}" for label, _ in trees))
+        for function in chosen:
+            cells = "  ".join(f"{cost[label][function][1]:8.2f}" if function in present[label] else f"{'-':>8}"
+                              for label, _ in trees)
+            print(f"{cells}  {function}")
+        print("  ".join(f"{sum(c[1] for c in cost[label].values()):8.2f}" for label, _ in trees) + "  in all (CPU)")
+        print("  ".join(f"{sum(c[0] for c in cost[label].values()):8.2f}" for label, _ in trees) + "  in all (wall)")
         return 0
 
     if args.command == "compare":
