@@ -376,12 +376,10 @@ def test_the_accuracy_map_families_are_the_models_declared_families():
     assert set(families["properties"]) == declared
 
 
-def dry_run(tmp_path: Path, *config_args: str, edit=None) -> subprocess.CompletedProcess:
-    """`snakemake -n --config ...` in a copy of the workflow (its config.yaml through ``edit``)."""
+def dry_run(tmp_path: Path, *config_args: str) -> subprocess.CompletedProcess:
+    """`snakemake -n --config ...` in a copy of the workflow."""
     for name in ("Snakefile", "workflow", "config.yaml"):
         (shutil.copytree if (REPO_ROOT / name).is_dir() else shutil.copy)(REPO_ROOT / name, tmp_path / name)
-    if edit is not None:
-        (tmp_path / "config.yaml").write_text(edit((tmp_path / "config.yaml").read_text()))
     for name in ("src", "data"):
         (tmp_path / name).symlink_to(REPO_ROOT / name)
     env = {**os.environ, "PATH": f"{SNAKEMAKE.parent}{os.pathsep}{os.environ.get('PATH', '')}"}
@@ -389,28 +387,30 @@ def dry_run(tmp_path: Path, *config_args: str, edit=None) -> subprocess.Complete
     return subprocess.run(args, cwd=tmp_path, capture_output=True, text=True, env=env, timeout=120)
 
 
-def test_dry_run_of_the_valid_config_plans_every_rule(tmp_path):
-    """Also with `1e-10` (YAML 1.2) in config.yaml and nested `--config` values (deep-merged)."""
-    run = dry_run(tmp_path, "tolerance={atol: 1e-15}", "ward_cmax={m: [0.4, 1e-1]}",
-                  edit=lambda text: text.replace("rtol: 1.0e-10", "rtol: 1e-10"))
-    assert "rtol: 1e-10" in (tmp_path / "config.yaml").read_text()
-    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
-    assert "results/checks/published/metal_a0.csv" in run.stdout and "merge_comparison" in run.stdout
-    assert "results/figures/fig_2_1_albedo_classical.png" in run.stdout
-    assert "results/tables/table_3_2_ward_cmax.png" in run.stdout
-    assert not (tmp_path / "results").exists()
+# The valid configuration through `snakemake -n` (with `1e-10` in config.yaml and nested `--config`
+# values): tests/pipeline/test_workflow_e2e.py plans the whole workflow so, once for its claims and these.
 
 
-@pytest.mark.parametrize(
-    ("argument", "line"),
-    [
-        ("tolerance=-1", "Error validating config file: tolerance = -1: must be of type object"),
-        ("seed=-5", "Error validating config file: seed = -5: must be >= 0"),
-        ("colour=red", "Error validating config file: colour = 'red': unknown key"),
-        ("tolerance={rtol: .nan}", "Error validating config file: tolerance.rtol = nan: must be a finite number"),
-    ],
-)
-def test_snakemake_stops_on_a_malformed_command_line_config(tmp_path, argument, line):
+# `--config` entries and the whole line each stops the run with. All are read in process as Snakemake's
+# command line reads and merges them (the workflow calls the same validate_config on the result); the
+# last also goes through `snakemake -n`, for the wiring: one line, no traceback, before any job.
+COMMAND_LINE_STOPS = [
+    ("tolerance=-1", "Error validating config file: tolerance = -1: must be of type object"),
+    ("seed=-5", "Error validating config file: seed = -5: must be >= 0"),
+    ("colour=red", "Error validating config file: colour = 'red': unknown key"),
+    ("tolerance={rtol: .nan}", "Error validating config file: tolerance.rtol = nan: must be a finite number"),
+]
+
+
+@pytest.mark.parametrize(("argument", "line"), COMMAND_LINE_STOPS, ids=[a for a, _ in COMMAND_LINE_STOPS])
+def test_a_malformed_command_line_config_stops_with_exactly_its_line(argument, line):
+    with pytest.raises(ConfigError) as error:
+        validate_config(override(argument))
+    assert str(error.value) == line
+
+
+def test_snakemake_stops_on_a_malformed_command_line_config(tmp_path):
+    argument, line = COMMAND_LINE_STOPS[-1]
     run = dry_run(tmp_path, argument)
     assert run.returncode != 0
     output = run.stdout + run.stderr

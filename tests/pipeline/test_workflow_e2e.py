@@ -54,27 +54,31 @@ def tree(root: Path) -> dict[str, tuple[int, int]]:
             if p.is_file() and not p.relative_to(root).as_posix().startswith(".snakemake/iocache/")}
 
 
-@pytest.fixture(scope="module")
-def pristine(tmp_path_factory) -> Path:
-    """A copy of the repository in which nothing is ever built (only planned)."""
-    return copy_repository(tmp_path_factory.mktemp("plan"))
-
-
-def test_planning_one_table_from_scratch_yields_exactly_one_job(pristine):
-    run = snakemake(pristine, "-n", "results/tables/table_3_2_ward_cmax.png")
+def test_planning_one_table_from_scratch_yields_exactly_one_job(tmp_path):
+    run = snakemake(copy_repository(tmp_path), "-n", "results/tables/table_3_2_ward_cmax.png")
     assert run.returncode == 0, run.stderr[-3000:]
     assert planned_jobs(run) == {"artifact": 1}
 
 
-def test_planning_the_whole_workflow_writes_nothing_and_reads_no_output(pristine):
+def test_planning_the_whole_workflow_writes_nothing_and_reads_no_output(tmp_path):
+    """Also with `1e-10` (YAML 1.2) in config.yaml and nested `--config` values (deep-merged into the
+    file's sections): the configuration is valid and every rule is planned. (One plan of the whole
+    workflow for both claims: each costs a Snakemake start and a DAG of every artifact.)"""
+    copy_repository(tmp_path)
+    config_yaml = tmp_path / "config.yaml"
+    config_yaml.write_text(config_yaml.read_text().replace("rtol: 1.0e-10", "rtol: 1e-10"))
+    assert "rtol: 1e-10" in config_yaml.read_text()
     # A comparison no parser reads: planning that read the outputs would stop on it.
-    (pristine / "results" / "checks").mkdir(parents=True, exist_ok=True)
-    (pristine / "results" / "checks" / "published_comparison.csv").write_text('artifact,"unterminated\n')
-    before = tree(pristine)
-    run = snakemake(pristine, "-n")
-    assert run.returncode == 0, run.stderr[-3000:]
-    assert tree(pristine) == before
-    assert not (pristine / ".snakemake" / "report_captions").exists()
+    (tmp_path / "results" / "checks").mkdir(parents=True, exist_ok=True)
+    (tmp_path / "results" / "checks" / "published_comparison.csv").write_text('artifact,"unterminated\n')
+    before = tree(tmp_path)
+    run = snakemake(tmp_path, "-n", "--config", "tolerance={atol: 1e-15}", "ward_cmax={m: [0.4, 1e-1]}")
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    assert tree(tmp_path) == before
+    assert not (tmp_path / ".snakemake" / "report_captions").exists()
+    assert "results/checks/published/metal_a0.csv" in run.stdout and "merge_comparison" in run.stdout
+    assert "results/figures/fig_2_1_albedo_classical.png" in run.stdout
+    assert "results/tables/table_3_2_ward_cmax.png" in run.stdout
     jobs = planned_jobs(run)
     assert jobs["check"] == jobs["merge_comparison"] == 1
     # one job per artifact: no other rule computes one (a render's rule also declares its EXRs)
