@@ -18,7 +18,7 @@ machine's load hits all alike:
   integration, of that on the 1-D route's kernel, the ratios a call would reach with every other cost
   removed, and the kernel's own loose/tight ratio (:func:`_single_floor`).
 
-``--models`` (also part of the default run) times every registered model at its ``typical`` example the
+``--models`` (also part of the default run; ``--only=ggx,phong`` for some) times every registered model at its ``typical`` example the
 same way (issue 41, "per-call cost"): ``curve_ms_per_point`` and ``single_ms`` at rtol 1e-10 and 1e-6,
 their ratio ``single_over_curve`` (target ≤ 3 for a model on an integral route), and the single call's
 CPU ms (target ≤ 0.1 ms for a model whose route is its own closed form, ``engine/own``).
@@ -187,9 +187,10 @@ def curve_ratios():
 RATIO_TARGET, OWN_MS_TARGET = 3.0, 0.1
 
 
-def model_ratios(rounds=ROUNDS):
-    """Every registered model at its ``typical`` example: CPU ms per curve point (100 angles) and per
-    single call (12 angles), best of ``rounds``, at both tolerances, interleaved model by model."""
+def model_ratios(rounds=ROUNDS, only=None):
+    """Every registered model (or those named in ``only``) at its ``typical`` example: CPU ms per
+    curve point (100 angles) and per single call (12 angles), best of ``rounds``, at both tolerances,
+    interleaved model by model."""
     import warnings
 
     from brdfs.physics.models import MODELS
@@ -197,6 +198,8 @@ def model_ratios(rounds=ROUNDS):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for name, cls in MODELS.items():
+            if only and name not in only:
+                continue
             brdf = cls.example("typical")
             route = str(np.ravel(albedo(brdf, 30.0).route)[0])
             for rtol in (TIGHT, LOOSE):
@@ -264,7 +267,8 @@ def main():
     if "--accuracy-grid" in sys.argv:
         print(accuracy_grid_seconds().to_string(index=False, float_format=lambda x: f"{x:.1f}"), flush=True)
         return
-    models = model_ratios()
+    only = next((a.split("=", 1)[1].split(",") for a in sys.argv if a.startswith("--only=")), None)
+    models = model_ratios(only=only)
     print(models.to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
     out = REPO_ROOT / "results" / "benchmarks" / "engine_speed_models.csv"
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -114,6 +114,8 @@ class EngineCannotIntegrate(ValueError):
 
 
 _EPS = np.finfo(float).eps
+#: The dtype of a status array (room for the longest status, as ``np.where`` of the two gives).
+_STATUS_DTYPE = f"<U{len(BUDGET_EXHAUSTED)}"
 
 
 def _check_angles(theta_deg):
@@ -488,7 +490,11 @@ def _all_in(status, *kinds) -> bool:
 
 
 def _status(value, error, tol):
-    return np.where(np.asarray(error) <= tol.target(value), CONVERGED, BUDGET_EXHAUSTED)
+    error = np.asarray(error)
+    if error.size == 1:             # one value compared as floats: numpy's string where costs more
+        met = float(error.item()) <= max(tol.rtol * abs(float(np.asarray(value).item())), tol.atol)
+        return np.full(error.shape, CONVERGED if met else BUDGET_EXHAUSTED, _STATUS_DTYPE)
+    return np.where(error <= tol.target(value), CONVERGED, BUDGET_EXHAUSTED)
 
 
 def _per_angle(one):
@@ -707,7 +713,8 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     theta = np.asarray(theta_deg, float)
     est = _by_its_own_route(model, theta, tol) if method in ("auto", "engine") else None
     if est is None or est is _DECLINED:
-        est = _answer([model] * theta.size, theta.ravel(), tol, method, options, own=est is None)
+        est = _by_its_engine_route(model, theta, tol, method, declined=est is _DECLINED) or \
+            _answer([model] * theta.size, theta.ravel(), tol, method, options, own=est is None)
     shape = theta.shape
     est = Estimate(est.value.reshape(shape), est.error.reshape(shape), est.evaluations,
                    est.status.reshape(shape), est.route.reshape(shape))
@@ -727,7 +734,7 @@ def _by_its_own_route(model, theta, tol) -> Estimate | None:
     :data:`_DECLINED` where the route answered None."""
     if type(model).albedo_estimate is BRDF.albedo_estimate or model.has_evaluation_error:
         return None
-    if (theta == 90.0).any() and (model.diverges_at_grazing or model.grazing_limit_model() is not model):
+    if _declares_its_end(model) and (theta == 90.0).any():
         return None
     with counting_evaluations() as count:
         own = model.albedo_estimate(theta.ravel(), tol.rtol, tol.atol)
@@ -741,6 +748,32 @@ def _by_its_own_route(model, theta, tol) -> Estimate | None:
             delta = model.delta_albedo(theta.ravel())
             value, error = value + delta.value, error + delta.error
     return Estimate(value, error, count[0], status, np.full(value.shape, "engine/own"))
+
+
+def _by_its_engine_route(model, theta, tol, method, declined=False) -> Estimate | None:
+    """The short way of a single angle on one of the engine's routes, nothing to plan or merge: the
+    route's answer where it converged and nothing else applies (no route of the model's own, or it
+    ``declined``; no
+    tables' error, no Dirac part, no declared end at 90°, no progress to report); else None (the
+    plan, which runs the same route on the same element first and gives the same answer)."""
+    if (method not in ("auto", "engine") or theta.size != 1 or model.has_evaluation_error
+            or not declined and type(model).albedo_estimate is not BRDF.albedo_estimate
+            or type(model).delta_albedo is not BRDF.delta_albedo or _PROGRESS.get() is not None
+            or _declares_its_end(model) and (theta == 90.0).any()
+            or _refusal(model) is not None):
+        return None
+    route = _engine_route(model)
+    with counting_evaluations() as count:
+        est = ENGINE_ROUTES[route]([model], theta.ravel(), rtol=tol.rtol, atol=tol.atol)
+    if not _all_in(est.status, CONVERGED):
+        return None
+    own = int(est.evaluations) if route in _ONE_DIMENSIONAL else 0      # as _run counts them
+    return Estimate(est.value, est.error, count[0] + own, est.status, np.full(1, f"engine/{route}"))
+
+
+def _declares_its_end(model) -> bool:
+    """Whether ``model`` declares its albedo at exactly 90° (+inf, or its grazing limit's)."""
+    return model.diverges_at_grazing or model.grazing_limit_model() is not model
 
 
 def _report_not_converged(est, model, theta, method, tol, strict, warn):
