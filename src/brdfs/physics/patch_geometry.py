@@ -460,13 +460,28 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
         w = p(x)
         return NodeValues(w * g.value, w * g.value, w * g.error)
 
+    kept = []                     # the rough pass's first evaluation: (nodes, elements, values)
+
+    def rough_integrand(x, elem):
+        out = integrand(x, elem)
+        if not kept:
+            kept.append((x, elem, out))
+        return out
+
+    def final_integrand(x, elem):
+        if kept:                  # the second pass starts on the same intervals: their values again
+            x0, elem0, out = kept.pop()
+            if x.shape == x0.shape and np.array_equal(x, x0) and np.array_equal(elem, elem0):
+                return out
+        return integrand(x, elem)
+
     bp = _r_breakpoints(points, d)
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
-    rough = integrate(integrand, bp, rtol=1e-4, atol=atol)
+    rough = integrate(rough_integrand, bp, rtol=1e-4, atol=atol)
     target = np.maximum(0.5 * rtol * np.abs(rough.value + p_diffuse), atol)
-    est = integrate(integrand, bp, rtol=0.0, atol=target)
+    est = integrate(final_integrand, bp, rtol=0.0, atol=target)
     return Estimate(est.value + p_diffuse, est.error + CLOSED_FORM_RTOL * abs(p_diffuse))
 
 
