@@ -52,7 +52,9 @@ class Lens(NamedTuple):
 def _segment(t):
     """t − sin t cos t = (x − sin x)/2 with x = 2t, by its Taylor series where it cancels."""
     x = 2.0 * np.asarray(t, float)
-    small = (np.abs(x) < 0.25) & (x != 0.0)     # at 0 both forms give 0 (a lens's special cases)
+    small = np.abs(x) < 0.25
+    if small.any():
+        small &= x != 0.0                # at 0 both forms give 0 (a lens's special cases)
     # x − sin x = Σ_{k≥1} (−1)^(k+1) x^(2k+1)/(2k+1)!, truncated after x^15 (error < 1e-18 rel).
     if not small.any():                  # (the series of zeros would add nothing)
         return 0.5 * (x - np.sin(x))
@@ -191,7 +193,8 @@ def _same_shape(d, R):
 def _four_triangle_area_near_unit(u, d, R):
     """4Δ of the triangle with sides 1, R, d = 1 − u: √((R + u)(1 + R + d)(R − u)(d − (R − 1)))
     (Heron's product with the differences 1 − d = u and R − 1 formed exactly, Sterbenz)."""
-    last = np.where(R >= 0.5, d - (R - 1.0), d + (1.0 - R))
+    upper = R >= 0.5
+    last = d - (R - 1.0) if upper.all() else np.where(upper, d - (R - 1.0), d + (1.0 - R))
     return np.sqrt(np.maximum((R + u) * (1.0 + R + d) * (R - u) * last, 0.0))
 
 
@@ -201,7 +204,7 @@ def _angle_rounding(y, y_rel, x, x_abs):
     values): |δ atan2| ≤ (|x| |δy| + |y| |δx|)/(x² + y²), plus atan2's own rounding.  The ratio
     x_abs / |x| is the condition number of the cancellation in x, which no rewriting removes."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        spread = (np.abs(x) * y_rel * y + y * 4 * _EPS * x_abs) / (x * x + y * y)
+        spread = (np.abs(x) * y_rel * y + y * (4 * _EPS) * x_abs) / (x * x + y * y)   # y 4 ε: exact either way
     return np.where(np.isfinite(spread), spread, 0.0) + _EPS * np.abs(np.arctan2(y, x))
 
 
@@ -220,7 +223,8 @@ def _lens_rounding(angles, R, y, y_rel, x, x_abs, area, segments):
 def _segment_rounding(t, segment):
     """Rounding of ``segment`` = :func:`_segment` (t): a few ε relative on its series (2t < 1/4), a
     few ε t beyond."""
-    return 4 * _EPS * np.where(2 * np.abs(t) < 0.25, segment, np.abs(t))
+    size = np.abs(t)
+    return 4 * _EPS * np.where(size < 0.125, segment, size)          # 2 |t| < 1/4, exactly
 
 
 def basic_constant(R):
@@ -540,7 +544,7 @@ def basic_albedo_at(d, R, cos_theta=None):
     d = np.asarray(d, float)
     with np.errstate(divide="ignore", invalid="ignore"):
         moved = d if cos_theta is None else np.minimum(d, np.asarray(cos_theta, float) ** 2 / d)
-    from_input = 2.0 * np.abs(np.sin(lens.alpha)) * 2 * _EPS * moved
+    from_input = np.abs(np.sin(lens.alpha)) * (4 * _EPS) * moved      # 2 |sin α| · 2 ε: scalings by powers of 2
     return Estimate(value, c * (lens.area_error + from_input) + 3 * _EPS * value)
 
 
