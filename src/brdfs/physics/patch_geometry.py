@@ -58,9 +58,16 @@ def _segment(t):
     # x − sin x = Σ_{k≥1} (−1)^(k+1) x^(2k+1)/(2k+1)!, truncated after x^15 (error < 1e-18 rel).
     if not small.any():                  # (the series of zeros would add nothing)
         return 0.5 * (x - np.sin(x))
-    xs = np.where(small, x, 0.0)
-    series = sum(sign * xs ** power / factorial for sign, power, factorial in _SEGMENT_TERMS)
-    return 0.5 * np.where(small, series, x - np.sin(x))
+    out = np.asarray(x - np.sin(x))
+    if out.ndim == 0:
+        return 0.5 * _segment_series(x)
+    out[small] = _segment_series(x[small])     # only where taken: its powers cost per value
+    return 0.5 * out
+
+
+def _segment_series(x):
+    """x − sin x by its Taylor series (:func:`_segment`), for |x| < 1/4."""
+    return sum(sign * x ** power / factorial for sign, power, factorial in _SEGMENT_TERMS)
 
 
 def _factorial(n):
