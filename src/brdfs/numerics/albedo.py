@@ -313,11 +313,12 @@ def _taken(est, where):
                     np.asarray(est.status)[where], None if est.route is None else np.asarray(est.route)[where])
 
 
-def _run(groups, theta, tol, method, options) -> _Answer:
+def _run(groups, theta, tol, method, options, ran=None) -> _Answer:
     """Every group on its route: the models' own routes (a model's may decline: None takes it to the
-    engine), then each engine route once on all of its groups' elements, in chunks; the 1-D routes'
-    short elements again in two dimensions, the Dirac parts added, and ``auto``'s short elements on
-    the disk; other methods one call per group."""
+    engine), then each engine route once on all of its groups' elements, in chunks (or its answer in
+    ``ran``, by route, where it has run already); the 1-D routes' short elements again in two
+    dimensions, the Dirac parts added, and ``auto``'s short elements on the disk; other methods one
+    call per group."""
     answer, chunks = _Answer(theta.size), _Chunks(theta.size)
     groups = [_own_route(g, answer, theta, tol, method, chunks) if g.route == "own" else g for g in groups]
     by_route: dict[str, list[Group]] = {}
@@ -331,7 +332,11 @@ def _run(groups, theta, tol, method, options) -> _Answer:
                        "declared")
             chunks.advance(rows.size, True)
         elif route in ENGINE_ROUTES:
-            est = chunks.run(ENGINE_ROUTES[route], models, theta[rows], tol)
+            if ran and route in ran:
+                est = ran[route]
+                chunks.advance(rows.size)
+            else:
+                est = chunks.run(ENGINE_ROUTES[route], models, theta[rows], tol)
             answer.put(rows, est, f"engine/{route}")
             if route in _ONE_DIMENSIONAL:
                 answer.evaluations += int(est.evaluations)
@@ -614,24 +619,27 @@ def _by_its_own_route(model, theta, tol) -> Estimate | None:
 
 
 def _by_its_engine_route(model, theta, tol, method, declined=False) -> Estimate | None:
-    """The short way of a single angle on one of the engine's routes, nothing to plan or merge: the
-    route's answer where it converged and nothing else applies (no route of the model's own, or it
-    ``declined``; no
-    tables' error, no Dirac part, no declared end at 90°, no progress to report); else None (the
-    plan, which runs the same route on the same element first and gives the same answer)."""
+    """The short way of a single angle on one of the engine's routes, nothing to plan: the route's
+    answer where it converged; else the rest of the run (:func:`_run` of the one group the plan would
+    give, on the route's answer: the 1-D route's second try in two dimensions, ``auto``'s disk).  None
+    (the plan) where more applies: a route of the model's own (unless it ``declined``), tables' error,
+    a Dirac part, a declared end at 90°."""
     if (method not in ("auto", "engine") or theta.size != 1 or model.has_evaluation_error
             or not declined and type(model).albedo_estimate is not BRDF.albedo_estimate
-            or type(model).delta_albedo is not BRDF.delta_albedo or _PROGRESS.get() is not None
+            or type(model).delta_albedo is not BRDF.delta_albedo
             or _declares_its_end(model) and (theta == 90.0).any()
             or _refusal(model) is not None):
         return None
-    route = _engine_route(model)
+    route, flat = _engine_route(model), theta.ravel()
     with counting_evaluations() as count:
-        est = ENGINE_ROUTES[route]([model], theta.ravel(), rtol=tol.rtol, atol=tol.atol)
-    if not _all_in(est.status, CONVERGED):
-        return None
-    own = int(est.evaluations) if route in _ONE_DIMENSIONAL else 0      # as _run counts them
-    return Estimate(est.value, est.error, count[0] + own, est.status, np.full(1, f"engine/{route}"))
+        est = ENGINE_ROUTES[route]([model], flat, rtol=tol.rtol, atol=tol.atol)
+        if _all_in(est.status, CONVERGED) and _PROGRESS.get() is None:
+            own = int(est.evaluations) if route in _ONE_DIMENSIONAL else 0      # as _run counts them
+            return Estimate(est.value, est.error, count[0] + own, est.status, np.full(1, f"engine/{route}"))
+        group = Group(model, model, np.zeros(1, np.intp), route, then_disk=method == "auto")
+        answer = _run([group], flat, tol, method, {}, ran={route: est})
+    est = answer.estimate()
+    return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)
 
 
 def _declares_its_end(model) -> bool:
