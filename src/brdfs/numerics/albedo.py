@@ -17,6 +17,8 @@ colour-science manner (one function per method and a table of them, :data:`ALBED
 * ``monte_carlo`` — sampling V (``sampler``: ``cosine``, ``uniform``, ``beckmann_half_vector``, or
   ``model`` for the model's own :meth:`~brdfs.physics.models.base.BRDF.sample`); error = standard error.
 
+The last four live in :mod:`brdfs.numerics.reference_methods`.
+
 Every method returns an :class:`Estimate` with ``value`` and ``error`` shaped like ``theta_deg``,
 its cost in BRDF evaluations (an integer: nodes of a closed-form inner integral count as such), a
 ``status`` per value and a ``route`` per value.  A method's own ``evaluations`` counts what the front
@@ -71,27 +73,27 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Annotated
 
 import numpy as np
 
 from brdfs.core.estimate import DIVERGED, STALLED
 from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
-from brdfs.numerics.arguments import (DEFAULT_ATOL, DEFAULT_RTOL, Above, AtLeast, OneOf, Tolerance,
-                                      check_albedo_call, check_table_call)
+from brdfs.numerics.arguments import DEFAULT_ATOL, DEFAULT_RTOL, Tolerance, check_albedo_call, check_table_call
 from brdfs.numerics.integrate import azimuthal, polar
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import albedo_scattering
-from brdfs.physics.geometry import light_direction
+from brdfs.numerics.reference_methods import (MonteCarloEstimate, midpoint_grid, monte_carlo, monte_carlo_albedo,
+                                              product_grid, scipy_dblquad, status_against)
 from brdfs.physics.lobes import SCATTERING
 from brdfs.physics.models.base import BRDF, counting_evaluations
 
 __all__ = ["albedo", "albedo_table", "albedo_pairs", "ALBEDO_METHODS", "DEFAULT_RTOL", "DEFAULT_ATOL",
-           "Estimate", "NotConvergedWarning", "NotConvergedError", "EngineCannotIntegrate", "reporting_progress"]
+           "Estimate", "NotConvergedWarning", "NotConvergedError", "EngineCannotIntegrate", "reporting_progress",
+           "monte_carlo_albedo", "MonteCarloEstimate"]
 
 
 class NotConvergedWarning(RuntimeWarning):
@@ -113,7 +115,6 @@ class EngineCannotIntegrate(ValueError):
     about the plane of incidence); ``auto`` then takes the disk for every value."""
 
 
-_EPS = np.finfo(float).eps
 
 
 def _check_angles(theta_deg):
@@ -312,11 +313,12 @@ def _taken(est, where):
                     np.asarray(est.status)[where], None if est.route is None else np.asarray(est.route)[where])
 
 
-def _run(groups, theta, tol, method, options) -> _Answer:
+def _run(groups, theta, tol, method, options, ran=None) -> _Answer:
     """Every group on its route: the models' own routes (a model's may decline: None takes it to the
-    engine), then each engine route once on all of its groups' elements, in chunks; the 1-D routes'
-    short elements again in two dimensions, the Dirac parts added, and ``auto``'s short elements on
-    the disk; other methods one call per group."""
+    engine), then each engine route once on all of its groups' elements, in chunks (or its answer in
+    ``ran``, by route, where it has run already); the 1-D routes' short elements again in two
+    dimensions, the Dirac parts added, and ``auto``'s short elements on the disk; other methods one
+    call per group."""
     answer, chunks = _Answer(theta.size), _Chunks(theta.size)
     groups = [_own_route(g, answer, theta, tol, method, chunks) if g.route == "own" else g for g in groups]
     by_route: dict[str, list[Group]] = {}
@@ -330,7 +332,11 @@ def _run(groups, theta, tol, method, options) -> _Answer:
                        "declared")
             chunks.advance(rows.size, True)
         elif route in ENGINE_ROUTES:
-            est = chunks.run(ENGINE_ROUTES[route], models, theta[rows], tol)
+            if ran and route in ran:
+                est = ran[route]
+                chunks.advance(rows.size)
+            else:
+                est = chunks.run(ENGINE_ROUTES[route], models, theta[rows], tol)
             answer.put(rows, est, f"engine/{route}")
             if route in _ONE_DIMENSIONAL:
                 answer.evaluations += int(est.evaluations)
@@ -370,7 +376,7 @@ def _own_route(group, answer, theta, tol, method, chunks) -> Group:
     if own is None:
         return _routed(group.model, group.owner, group.rows, method, group.limit, own=False)
     # a route that reports no status is judged by its error, not taken as converged
-    status = _status(own.value, own.error, tol) if own.status is None else np.asarray(own.status, str)
+    status = status_against(own.value, own.error, tol) if own.status is None else np.asarray(own.status, str)
     answer.put(group.rows, Estimate(np.asarray(own.value, float), np.asarray(own.error, float), 0, status), "engine/own")
     chunks.advance(group.rows.size, True)
     return group
@@ -413,7 +419,7 @@ def _disk_run(models, theta, tol, chunks, counted=True) -> Estimate:
     """The independent projected-disk reference (:func:`brdfs.numerics.integrate.disk.disk_albedo_many`);
     a value short of its tolerance keeps the driver's reason (``stalled`` or ``budget_exhausted``)."""
     est = chunks.run(disk_albedo_many, models, theta, tol, counted)
-    met = _status(est.value, est.error, tol) == CONVERGED
+    met = status_against(est.value, est.error, tol) == CONVERGED
     reason = np.where(np.asarray(est.status) == CONVERGED, STALLED, np.asarray(est.status, str))
     evaluations = 0 if est.evaluations is None else est.evaluations
     return Estimate(est.value, est.error, evaluations, np.where(met, CONVERGED, reason), np.full(theta.size, "disk"))
@@ -476,7 +482,7 @@ def _disk(model, theta, rtol, atol):
     return _answer([model] * theta.size, theta, Tolerance(rtol, atol), "disk")
 
 
-# --- independent and historical methods ------------------------------------------------------
+# --- the front door's helpers -------------------------------------------------------------------
 
 def _all_in(status, *kinds) -> bool:
     """Whether every value's status is one of ``kinds`` (one value compared as a str: numpy's string
@@ -485,138 +491,6 @@ def _all_in(status, *kinds) -> bool:
     if status.size == 1:
         return status.item() in kinds
     return bool(np.all(np.isin(status, kinds)))
-
-
-def _status(value, error, tol):
-    return np.where(np.asarray(error) <= tol.target(value), CONVERGED, BUDGET_EXHAUSTED)
-
-
-def _per_angle(one):
-    """A method for one angle at a time, lifted to an array of angles."""
-    def method(model, theta, rtol, atol, **options):
-        pairs = [one(model, float(t), rtol, atol, **options) for t in theta]
-        value = np.array([p[0] for p in pairs], float)
-        error = np.array([p[1] for p in pairs], float)
-        return Estimate(value, error, 0, _status(value, error, Tolerance(rtol, atol)))
-    method.__doc__ = one.__doc__
-    method.__wrapped__ = one             # its options are one's (brdfs.numerics.arguments reads them)
-    return method
-
-
-def _grid_sum(model, theta, n):
-    x, w = np.polynomial.legendre.leggauss(n)
-    u, wu = 0.5 * (x + 1), 0.5 * w
-    phi, wphi = 0.5 * np.pi * (x + 1), 0.5 * np.pi * w
-    U, P = np.meshgrid(u, phi, indexing="ij")
-    s = np.sqrt((1 - U) * (1 + U))
-    V = np.stack([s * np.cos(P), s * np.sin(P), U], -1)
-    f = model.unchecked(light_direction(theta), V)
-    return float(2 * np.einsum("i,j,ij->", wu, wphi, f * U))
-
-
-@_per_angle
-def _product_grid(model, theta, rtol, atol, n: Annotated[int, AtLeast(2)] = 64):
-    """N × N Gauss–Legendre in (u = cos θ_V, φ_V ∈ [0, π]), doubled by symmetry; error |Q_N − Q_{N/2}|."""
-    value = _grid_sum(model, theta, n)
-    return value, abs(value - _grid_sum(model, theta, n // 2)) if n >= 2 else np.inf
-
-
-@_per_angle
-def _midpoint_grid(model, theta, rtol, atol, n_theta: Annotated[int, AtLeast(1)] = 90,
-                   n_phi: Annotated[int, AtLeast(1)] = 360):
-    """Midpoint rule on n_θ × n_φ cells of (θ_V, φ_V): Σ f cos θ_V sin θ_V Δθ Δφ; a rounding bound as error."""
-    L = light_direction(theta)
-    d_theta, d_phi = 0.5 * np.pi / n_theta, 2 * np.pi / n_phi
-    phi = (np.arange(n_phi) + 0.5) * d_phi
-    total = bound = 0.0
-    rows_per_block = max(1, 2 ** 18 // n_phi)          # a block of rows at a time bounds the memory
-    theta_v = (np.arange(n_theta) + 0.5) * d_theta
-    for start in range(0, n_theta, rows_per_block):
-        tv = theta_v[start:start + rows_per_block, None]
-        V = np.stack(np.broadcast_arrays(np.sin(tv) * np.cos(phi), np.sin(tv) * np.sin(phi), np.cos(tv)), -1)
-        rows = model.unchecked(L, V) * np.cos(tv) * np.sin(tv) * d_theta * d_phi
-        # rows summed one by one, in order, as the row-by-row loop summed them
-        for row_sum, row_abs in zip(rows.sum(axis=-1), np.abs(rows).sum(axis=-1)):
-            total += row_sum
-            bound += row_abs
-    return total, 4 * _EPS * (np.log2(n_theta * n_phi) + 2) * bound
-
-
-@_per_angle
-def _dblquad(model, theta, rtol, atol, epsrel: Annotated[float | None, Above(0.0)] = None):
-    """``scipy.integrate.dblquad`` over θ_V ∈ [0, π/2], φ_V ∈ [0, π] (doubled by symmetry)."""
-    from scipy.integrate import IntegrationWarning, dblquad  # here: scipy.integrate costs a job ~0.2 s to import
-
-    L = light_direction(theta)
-
-    def integrand(phi, theta_v):
-        st = np.sin(theta_v)
-        V = np.array([st * np.cos(phi), st * np.sin(phi), np.cos(theta_v)])
-        return float(model.unchecked(L, V)) * np.cos(theta_v) * st
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", IntegrationWarning)
-        value, err = dblquad(integrand, 0.0, np.pi / 2, 0.0, np.pi, epsabs=0.0, epsrel=epsrel or rtol)
-    return 2 * value, 2 * err
-
-
-#: Samplers of the Monte Carlo method that are a model's own strategies (``model.sample``).
-_MODEL_STRATEGIES = {"model": None, "cosine": "cosine", "uniform": "uniform", "beckmann_half_vector": "beckmann"}
-
-
-def _draw(sampler, model, L, rng, n):
-    """Weights f cos θ_V / p(V) of ``n`` directions V drawn by ``sampler``: a strategy of the model's
-    own :meth:`~brdfs.physics.models.base.BRDF.sample` (``uniform`` and ``cosine`` are every model's;
-    ``model`` is its default)."""
-    try:
-        strategy = _MODEL_STRATEGIES[sampler]
-    except KeyError:
-        raise ValueError(f"unknown sampler {sampler!r}; choose one of {', '.join(_MODEL_STRATEGIES)}") from None
-    if sampler == "model":
-        u = rng.random((n, model.sample_dimension()))
-    else:                                    # two streams, as the readings have always drawn them
-        u = np.stack([rng.random(n), rng.random(n)], -1)
-    return model.sample(L, u, strategy)[1]
-
-
-@dataclass(frozen=True)
-class MonteCarloEstimate(Estimate):
-    """A Monte Carlo mean: ``error`` is its standard error (one standard deviation of the estimator),
-    ``rounding`` a bound of the error of computing the sum of these samples (a seeded reading is a
-    number in its own right, reproducible to that bound)."""
-
-    rounding: float = 0.0
-
-
-def monte_carlo_albedo(model, theta_deg, sampler, n_samples, seed_sequence, rtol=DEFAULT_RTOL,
-                       atol=DEFAULT_ATOL) -> MonteCarloEstimate:
-    """Monte Carlo albedo with ``n_samples`` drawn by ``sampler``: a :class:`MonteCarloEstimate` with the
-    mean, its standard error, ``evaluations`` = ``n_samples`` and the status of that error against
-    max(rtol |value|, atol)."""
-    rng = np.random.default_rng(seed_sequence)
-    L = light_direction(theta_deg)
-    w = np.concatenate([_draw(sampler, model, L, rng, k) for k in _chunks(n_samples)])
-    mean = w.mean()
-    stderr = w.std(ddof=1) / np.sqrt(w.size) if w.size > 1 else np.inf
-    return MonteCarloEstimate(mean, stderr, int(w.size), _status(mean, stderr, Tolerance(rtol, atol)),
-                              rounding=4 * _EPS * (np.log2(w.size) + 2) * np.abs(w).mean())
-
-
-def _chunks(n, size=250_000):
-    return [size] * (n // size) + ([n % size] if n % size else [])
-
-
-def _monte_carlo(model, theta, rtol, atol, n_samples: Annotated[int, AtLeast(2)] = 100_000,
-                 sampler: Annotated[str, OneOf(_MODEL_STRATEGIES)] = "cosine",
-                 seed: Annotated[int | Sequence[int], AtLeast(0)] = 0):
-    """Monte Carlo with ``n_samples`` per angle, the k-th angle seeded by ``[*seed, k]``;
-    error = standard error (one standard deviation)."""
-    root = [int(s) for s in np.atleast_1d(seed)]
-    runs = [monte_carlo_albedo(model, float(t), sampler, n_samples, [*root, k], rtol, atol)
-            for k, t in enumerate(theta)]
-    value = np.array([float(r.value) for r in runs])
-    error = np.array([float(r.error) for r in runs])
-    return Estimate(value, error, 0, np.array([str(r.status) for r in runs]))
 
 
 #: The albedo methods by name, ``auto`` (the default of :func:`albedo`) first:
@@ -630,10 +504,10 @@ ALBEDO_METHODS: dict[str, Callable[..., Estimate]] = {
     "engine_2d": _engine_2d,
     "azimuthal": _azimuthal,
     "disk": _disk,
-    "product_grid": _product_grid,
-    "midpoint_grid": _midpoint_grid,
-    "dblquad": _dblquad,
-    "monte_carlo": _monte_carlo,
+    "product_grid": product_grid,
+    "midpoint_grid": midpoint_grid,
+    "dblquad": scipy_dblquad,
+    "monte_carlo": monte_carlo,
 }
 
 
@@ -707,7 +581,8 @@ def albedo(model, theta_deg, method="auto", *, rtol=None, atol=None, strict=Fals
     theta = np.asarray(theta_deg, float)
     est = _by_its_own_route(model, theta, tol) if method in ("auto", "engine") else None
     if est is None or est is _DECLINED:
-        est = _answer([model] * theta.size, theta.ravel(), tol, method, options, own=est is None)
+        est = _by_its_engine_route(model, theta, tol, method, declined=est is _DECLINED) or \
+            _answer([model] * theta.size, theta.ravel(), tol, method, options, own=est is None)
     shape = theta.shape
     est = Estimate(est.value.reshape(shape), est.error.reshape(shape), est.evaluations,
                    est.status.reshape(shape), est.route.reshape(shape))
@@ -727,20 +602,49 @@ def _by_its_own_route(model, theta, tol) -> Estimate | None:
     :data:`_DECLINED` where the route answered None."""
     if type(model).albedo_estimate is BRDF.albedo_estimate or model.has_evaluation_error:
         return None
-    if (theta == 90.0).any() and (model.diverges_at_grazing or model.grazing_limit_model() is not model):
+    if _declares_its_end(model) and (theta == 90.0).any():
         return None
     with counting_evaluations() as count:
         own = model.albedo_estimate(theta.ravel(), tol.rtol, tol.atol)
         if own is None:
             return _DECLINED
         value, error = np.asarray(own.value, float), np.asarray(own.error, float)
-        status = _status(value, error, tol) if own.status is None else np.asarray(own.status, str)
+        status = status_against(value, error, tol) if own.status is None else np.asarray(own.status, str)
         if not _all_in(status, CONVERGED):
             return None
         if type(model).delta_albedo is not BRDF.delta_albedo:
             delta = model.delta_albedo(theta.ravel())
             value, error = value + delta.value, error + delta.error
     return Estimate(value, error, count[0], status, np.full(value.shape, "engine/own"))
+
+
+def _by_its_engine_route(model, theta, tol, method, declined=False) -> Estimate | None:
+    """The short way of a single angle on one of the engine's routes, nothing to plan: the route's
+    answer where it converged; else the rest of the run (:func:`_run` of the one group the plan would
+    give, on the route's answer: the 1-D route's second try in two dimensions, ``auto``'s disk).  None
+    (the plan) where more applies: a route of the model's own (unless it ``declined``), tables' error,
+    a Dirac part, a declared end at 90°."""
+    if (method not in ("auto", "engine") or theta.size != 1 or model.has_evaluation_error
+            or not declined and type(model).albedo_estimate is not BRDF.albedo_estimate
+            or type(model).delta_albedo is not BRDF.delta_albedo
+            or _declares_its_end(model) and (theta == 90.0).any()
+            or _refusal(model) is not None):
+        return None
+    route, flat = _engine_route(model), theta.ravel()
+    with counting_evaluations() as count:
+        est = ENGINE_ROUTES[route]([model], flat, rtol=tol.rtol, atol=tol.atol)
+        if _all_in(est.status, CONVERGED) and _PROGRESS.get() is None:
+            own = int(est.evaluations) if route in _ONE_DIMENSIONAL else 0      # as _run counts them
+            return Estimate(est.value, est.error, count[0] + own, est.status, np.full(1, f"engine/{route}"))
+        group = Group(model, model, np.zeros(1, np.intp), route, then_disk=method == "auto")
+        answer = _run([group], flat, tol, method, {}, ran={route: est})
+    est = answer.estimate()
+    return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)
+
+
+def _declares_its_end(model) -> bool:
+    """Whether ``model`` declares its albedo at exactly 90° (+inf, or its grazing limit's)."""
+    return model.diverges_at_grazing or model.grazing_limit_model() is not model
 
 
 def _report_not_converged(est, model, theta, method, tol, strict, warn):

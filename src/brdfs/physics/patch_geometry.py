@@ -53,12 +53,21 @@ def _segment(t):
     """t − sin t cos t = (x − sin x)/2 with x = 2t, by its Taylor series where it cancels."""
     x = 2.0 * np.asarray(t, float)
     small = np.abs(x) < 0.25
-    xs = np.where(small, x, 0.0)
+    if small.any():
+        small &= x != 0.0                # at 0 both forms give 0 (a lens's special cases)
     # x − sin x = Σ_{k≥1} (−1)^(k+1) x^(2k+1)/(2k+1)!, truncated after x^15 (error < 1e-18 rel).
     if not small.any():                  # (the series of zeros would add nothing)
         return 0.5 * (x - np.sin(x))
-    series = sum(sign * xs ** power / factorial for sign, power, factorial in _SEGMENT_TERMS)
-    return 0.5 * np.where(small, series, x - np.sin(x))
+    out = np.asarray(x - np.sin(x))
+    if out.ndim == 0:
+        return 0.5 * _segment_series(x)
+    out[small] = _segment_series(x[small])     # only where taken: its powers cost per value
+    return 0.5 * out
+
+
+def _segment_series(x):
+    """x − sin x by its Taylor series (:func:`_segment`), for |x| < 1/4."""
+    return sum(sign * x ** power / factorial for sign, power, factorial in _SEGMENT_TERMS)
 
 
 def _factorial(n):
@@ -71,13 +80,14 @@ _SEGMENT_TERMS = tuple(((-1) ** (k + 1), 2 * k + 1, _factorial(2 * k + 1)) for k
 
 
 def _four_triangle_area(a, b, c):
-    """4 × area of the triangle with sides a, b, c (Kahan's stable Heron formula); 0 if degenerate."""
-    a, b, c = np.sort(np.stack(np.broadcast_arrays(a, b, c)), axis=0)[::-1]
+    """4 × area of the triangle with sides a, b, c (arrays of one shape; Kahan's stable Heron
+    formula); 0 if degenerate."""
+    a, b, c = np.sort(np.array([a, b, c]), axis=0)[::-1]
     factors = (a + (b + c)), (c - (a - b)), (c + (a - b)), (a + (b - c))
     prod = factors[0] * factors[1] * factors[2] * factors[3]
     out = np.sqrt(np.maximum(prod, 0.0))
     tiny = prod < _UNDERFLOWING
-    if np.any(tiny):
+    if tiny.any():
         # a sliver of a triangle (sides 1, 1, d < 1e-160: the lens of R = 1 next to the pole) whose
         # product underflowed to 0, a lens area of 0 and an exact sampler's pdf of 0: the factors' roots
         roots = np.sqrt(np.maximum(factors[0], 0.0)) * np.sqrt(np.maximum(factors[1], 0.0))
@@ -122,42 +132,76 @@ def circle_intersection(d, R, cos_theta=None):
     >>> bool(abs(lens - (2 * np.pi / 3 - np.sqrt(3) / 2)) < CLOSED_FORM_RTOL)
     True
     """
-    d, R = np.broadcast_arrays(np.asarray(d, float), np.asarray(R, float))
+    d, R = _same_shape(np.asarray(d, float), np.asarray(R, float))
     # 1 + d² − R² as d² + (1 − R)(1 + R): 1 − R is exact near R = 1 (Sterbenz), and
     # 1.0 + (d − R)(d + R) lost all of d² ≈ 3e-16 at d = sin 1e-6°, R = 1 (a 1.5e-9 error).
-    x_alpha = d * d + (1.0 - R) * (1.0 + R)
-    four_delta = _four_triangle_area(1.0, R, d)
-    x_beta = d * d + (R - 1.0) * (R + 1.0)
-    beta_abs = d * d + np.abs(R - 1.0) * (R + 1.0)
-    one_minus_d = np.zeros_like(d)
-    if cos_theta is not None:       # for d > 1/2 only: below, 1 − d from cos²θ/(1 + d) is the worse one
-        mu = np.broadcast_to(np.asarray(cos_theta, float), d.shape)
-        near = d > 0.5
-        one_minus_d = np.where(near, mu * mu / (1.0 + d), 0.0)
-        four_delta = np.where(near, _four_triangle_area_near_unit(one_minus_d, d, R), four_delta)
-        x_beta = np.where(near, (R - mu) * (R + mu), x_beta)
-        beta_abs = np.where(near, R * R + mu * mu, beta_abs)
-    alpha = np.arctan2(four_delta, x_alpha)
-    beta = np.arctan2(four_delta, x_beta)
-    nested = d <= np.abs(1.0 - R)
-    apart = d >= 1.0 + R
-    alpha = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, 0.0, np.pi), alpha))
-    beta = np.where(apart, 0.0, np.where(nested, np.where(R <= 1.0, np.pi, 0.0), beta))
-    segments = _segment(alpha), _segment(beta)
+    d2, one_minus_r, one_plus_r = d * d, 1.0 - R, 1.0 + R
+    product, gap = one_minus_r * one_plus_r, np.abs(one_minus_r)
+    x_alpha = d2 + product
+    alpha_abs = d2 + gap * one_plus_r
+    # for d > 1/2, with cos θ known, the forms of :func:`_four_triangle_area_near_unit` (below, 1 − d
+    # from cos²θ/(1 + d) is the worse one); each form only where it is taken (one value: one form)
+    near = None if cos_theta is None else d > 0.5
+    every = near is not None and bool(near.all())
+    some = every or near is not None and bool(near.any())
+    if not every:
+        four_delta = _four_triangle_area(np.ones_like(d), R, d)
+        x_beta = d2 - product                      # d² + (R − 1)(1 + R), to the bit
+        beta_abs = alpha_abs
+        y_rel = 16 * _EPS
+    if some:
+        mu = np.asarray(cos_theta, float)
+        mu = mu if mu.shape == d.shape else np.broadcast_to(mu, d.shape)
+        mu2 = mu * mu
+        one_minus_d = mu2 / (1.0 + d)
+        with np.errstate(divide="ignore", invalid="ignore"):  # R − (1 − d): inputs that carry 4 ε themselves
+            near_y_rel = 16 * _EPS + 4 * _EPS * one_minus_d / np.abs(R - one_minus_d)
+        near_forms = (_four_triangle_area_near_unit(one_minus_d, d, R), (R - mu) * (R + mu), R * R + mu2, near_y_rel)
+        if every:
+            four_delta, x_beta, beta_abs, y_rel = near_forms
+        else:
+            four_delta, x_beta, beta_abs, y_rel = (
+                np.where(near & (one_minus_d > 0) if k == 3 else near, form, general)
+                for k, (form, general) in enumerate(zip(near_forms, (four_delta, x_beta, beta_abs, y_rel))))
+    # both angles (and below, both segments and their rounding) in one pass: rows α, β
+    # rows of equal shape: atan2 of a broadcast operand may take another loop, not the same to the bit
+    x, y = np.array([x_alpha, x_beta]), np.array([four_delta, four_delta])
+    angles = np.arctan2(y, x)
+    nested = d <= gap
+    apart = d >= one_plus_r
+    special = nested | apart
+    any_special = bool(special.any())
+    if any_special:
+        inside = R <= 1.0
+        angles = np.where(apart, 0.0, np.where(nested, np.array([np.where(inside, 0.0, np.pi),
+                                                                  np.where(inside, np.pi, 0.0)]), angles))
+    segments = _segment(angles)
     area = segments[0] + R * R * segments[1]
-    alpha_abs = d * d + np.abs(1.0 - R) * (1.0 + R)
-    with np.errstate(divide="ignore", invalid="ignore"):  # R − (1 − d): inputs that carry 4 ε themselves
-        y_rel = 16 * _EPS + np.where(one_minus_d > 0, 4 * _EPS * one_minus_d / np.abs(R - one_minus_d), 0.0)
-    error = np.where(apart | nested, _EPS * area,
-                     _lens_rounding(alpha, beta, R, four_delta, y_rel, (x_alpha, alpha_abs), (x_beta, beta_abs), area,
-                                    segments))
-    return Lens(alpha, beta, area, error)
+    if any_special and special.all():
+        error = _EPS * area
+    else:
+        error = _lens_rounding(angles, R, y, y_rel, x, np.array([alpha_abs, beta_abs]), area, segments)
+        if any_special:
+            error = np.where(special, _EPS * area, error)
+    return Lens(angles[0], angles[1], area, error)
+
+
+def _same_shape(d, R):
+    """``d`` and ``R`` broadcast to one shape (a number beside an array: filled, the cheaper way)."""
+    if d.shape == R.shape:
+        return d, R
+    if R.ndim == 0:
+        return d, np.full(d.shape, R)
+    if d.ndim == 0:
+        return np.full(R.shape, d), R
+    return tuple(np.broadcast_arrays(d, R))
 
 
 def _four_triangle_area_near_unit(u, d, R):
     """4Δ of the triangle with sides 1, R, d = 1 − u: √((R + u)(1 + R + d)(R − u)(d − (R − 1)))
     (Heron's product with the differences 1 − d = u and R − 1 formed exactly, Sterbenz)."""
-    last = np.where(R >= 0.5, d - (R - 1.0), d + (1.0 - R))
+    upper = R >= 0.5
+    last = d - (R - 1.0) if upper.all() else np.where(upper, d - (R - 1.0), d + (1.0 - R))
     return np.sqrt(np.maximum((R + u) * (1.0 + R + d) * (R - u) * last, 0.0))
 
 
@@ -167,27 +211,27 @@ def _angle_rounding(y, y_rel, x, x_abs):
     values): |δ atan2| ≤ (|x| |δy| + |y| |δx|)/(x² + y²), plus atan2's own rounding.  The ratio
     x_abs / |x| is the condition number of the cancellation in x, which no rewriting removes."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        spread = (np.abs(x) * y_rel * y + y * 4 * _EPS * x_abs) / (x * x + y * y)
+        spread = (np.abs(x) * y_rel * y + y * (4 * _EPS) * x_abs) / (x * x + y * y)   # y 4 ε: exact either way
     return np.where(np.isfinite(spread), spread, 0.0) + _EPS * np.abs(np.arctan2(y, x))
 
 
-def _lens_rounding(alpha, beta, R, y, y_rel, x_alpha, x_beta, area, segments):
+def _lens_rounding(angles, R, y, y_rel, x, x_abs, area, segments):
     """Bound on the rounding of eq. 4.9's area for exact d and R: the angles' errors times
     d(t − sin t cos t)/dt = 2 sin²t, the segments' own rounding (t − sin t cos t is formed as
-    (x − sin x)/2, x = 2t, with an absolute error of a few ε t), and the final sum.  ``x_alpha``,
-    ``x_beta``: the atan2 denominators with the sums of their terms' absolute values; ``segments``:
-    :func:`_segment` of α and β, as the area has them."""
-    d_alpha = _angle_rounding(y, y_rel, *x_alpha)
-    d_beta = _angle_rounding(y, y_rel, *x_beta)
-    propagated = 2 * np.sin(alpha) ** 2 * d_alpha + 2 * R * R * np.sin(beta) ** 2 * d_beta
-    return (propagated + _segment_rounding(alpha, segments[0]) + R * R * _segment_rounding(beta, segments[1])
-            + 2 * _EPS * area)
+    (x − sin x)/2, x = 2t, with an absolute error of a few ε t), and the final sum.  Rows α and β:
+    ``angles``, the atan2 denominators ``x`` with the sums of their terms' absolute values ``x_abs``,
+    and ``segments`` (:func:`_segment` of the angles, as the area has them)."""
+    (sin2_alpha, sin2_beta), (d_alpha, d_beta) = np.sin(angles) ** 2, _angle_rounding(y, y_rel, x, x_abs)
+    rounding = _segment_rounding(angles, segments)
+    propagated = 2 * sin2_alpha * d_alpha + 2 * R * R * sin2_beta * d_beta
+    return propagated + rounding[0] + R * R * rounding[1] + 2 * _EPS * area
 
 
 def _segment_rounding(t, segment):
     """Rounding of ``segment`` = :func:`_segment` (t): a few ε relative on its series (2t < 1/4), a
     few ε t beyond."""
-    return 4 * _EPS * np.where(2 * np.abs(t) < 0.25, segment, np.abs(t))
+    size = np.abs(t)
+    return 4 * _EPS * np.where(size < 0.125, segment, size)          # 2 |t| < 1/4, exactly
 
 
 def basic_constant(R):
@@ -427,13 +471,28 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
         w = p(x)
         return NodeValues(w * g.value, w * g.value, w * g.error)
 
+    kept = []                     # the rough pass's first evaluation: (nodes, elements, values)
+
+    def rough_integrand(x, elem):
+        out = integrand(x, elem)
+        if not kept:
+            kept.append((x, elem, out))
+        return out
+
+    def final_integrand(x, elem):
+        if kept:                  # the second pass starts on the same intervals: their values again
+            x0, elem0, out = kept.pop()
+            if x.shape == x0.shape and np.array_equal(x, x0) and np.array_equal(elem, elem0):
+                return out
+        return integrand(x, elem)
+
     bp = _r_breakpoints(points, d)
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
-    rough = integrate(integrand, bp, rtol=1e-4, atol=atol)
+    rough = integrate(rough_integrand, bp, rtol=1e-4, atol=atol)
     target = np.maximum(0.5 * rtol * np.abs(rough.value + p_diffuse), atol)
-    est = integrate(integrand, bp, rtol=0.0, atol=target)
+    est = integrate(final_integrand, bp, rtol=0.0, atol=target)
     return Estimate(est.value + p_diffuse, est.error + CLOSED_FORM_RTOL * abs(p_diffuse))
 
 
@@ -492,7 +551,7 @@ def basic_albedo_at(d, R, cos_theta=None):
     d = np.asarray(d, float)
     with np.errstate(divide="ignore", invalid="ignore"):
         moved = d if cos_theta is None else np.minimum(d, np.asarray(cos_theta, float) ** 2 / d)
-    from_input = 2.0 * np.abs(np.sin(lens.alpha)) * 2 * _EPS * moved
+    from_input = np.abs(np.sin(lens.alpha)) * (4 * _EPS) * moved      # 2 |sin α| · 2 ε: scalings by powers of 2
     return Estimate(value, c * (lens.area_error + from_input) + 3 * _EPS * value)
 
 

@@ -72,20 +72,25 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     if bad:
         raise ValueError(f"the polar route needs a model that declares half_vector_factors, got {bad[0].name!r}")
     theta_l = np.radians(theta_deg)
-    index = first_of_model(models)
-    factors = {k: models[k].half_vector_factors() for k in np.unique(index)}
+    groups = indices_by_model(models)
+    if len(groups) == 1:                         # one model (a single angle, a curve): no masks
+        factors = models[0].half_vector_factors()
 
-    def integrand(theta_v, elem):
-        if len(factors) == 1:                    # one model (a single angle, a curve): no masks
-            value, rounding = radial_integrand(*next(iter(factors.values())), theta_l[elem, None], theta_v)
+        def integrand(theta_v, elem):
+            value, rounding = radial_integrand(*factors, theta_l[elem, None], theta_v)
             return NodeValues(value, value, rounding)
-        value, rounding = np.empty_like(theta_v), np.empty_like(theta_v)
-        for k in np.unique(index[elem]):
-            rows = index[elem] == k
-            value[rows], rounding[rows] = radial_integrand(*factors[k], theta_l[elem[rows], None], theta_v[rows])
-        return NodeValues(value, value, rounding)
+    else:
+        index = first_of_model(models)
+        by_first = {members[0]: models[members[0]].half_vector_factors() for members in groups}
 
-    return integrate(integrand, breakpoints(models, theta_l), rtol=rtol, atol=atol, fill=FILL_CHEAP)
+        def integrand(theta_v, elem):
+            value, rounding = np.empty_like(theta_v), np.empty_like(theta_v)
+            for k in np.unique(index[elem]):
+                rows = index[elem] == k
+                value[rows], rounding[rows] = radial_integrand(*by_first[k], theta_l[elem[rows], None], theta_v[rows])
+            return NodeValues(value, value, rounding)
+
+    return integrate(integrand, breakpoints(models, theta_l, groups), rtol=rtol, atol=atol, fill=FILL_CHEAP)
 
 
 def radial_integrand(distribution, S, theta_l, theta_v):
@@ -104,29 +109,48 @@ def radial_integrand(distribution, S, theta_l, theta_v):
     return value, np.where(np.isfinite(rounding), rounding, 0.0)
 
 
-def breakpoints(models, theta_l):
+#: The mirror angle and its offsets in lobe widths, s · k for s = ±1 and k in :data:`LOBE_WIDTHS`.
+_LOBE_OFFSETS = np.array([0.0] + [s * k for k in LOBE_WIDTHS for s in (-1.0, 1.0)])
+
+
+def breakpoints(models, theta_l, groups=None):
     """Per element, ascending and NaN-padded: 0, π/2, the mirror angle θ_L and θ_L ± k · 2 arctan α
     (:data:`LOBE_WIDTHS`), the polar angles of the model's ``nv_levels`` (the Smith term's scale) and,
-    near grazing incidence, of μ_V = μ_L · 8^k below α (:func:`_grazing_levels`)."""
-    rows = [None] * len(models)                  # (element indices, candidates), at a group's first element
-    for members in indices_by_model(models):
+    near grazing incidence, of μ_V = μ_L · 8^k below α (:func:`_grazing_levels`).  ``groups``: the
+    element indices of each model object (:func:`.grouping.indices_by_model`), if known."""
+    parts = []                                   # (element indices, candidates) of each model
+    for members in groups or indices_by_model(models):
         idx = np.array(members)
-        brdf = models[idx[0]]
+        brdf = models[members[0]]
         distribution, _ = brdf.half_vector_factors()
         t = theta_l[idx]
-        width = 2.0 * np.arctan(distribution.alpha)
-        cand = [t] + [t + s * k * width for k in LOBE_WIDTHS for s in (-1.0, 1.0)]
-        cand += [np.broadcast_to(np.arccos(np.clip(c, 0.0, 1.0)), t.shape) for c in brdf.nv_levels(np.cos(t))]
-        cand += _grazing_levels(np.cos(t), distribution.alpha)
-        cand = np.stack(cand, 1)
-        cand = np.where((cand > 0) & (cand < 0.5 * np.pi), cand, 0.0)
-        rows[idx[0]] = (idx, cand)
-    return _ascending_distinct([part for part in rows if part is not None], len(models))
+        mu = np.cos(t)
+        cand = [t[:, None] + _LOBE_OFFSETS * (2.0 * np.arctan(distribution.alpha))]
+        levels = brdf.nv_levels(mu)
+        if levels:
+            cand.append(_level_angles(levels, t.size))
+        graded = _grazing_levels(mu, distribution.alpha)
+        if graded:
+            cand.append(np.stack(graded, 1))
+        cand = np.concatenate(cand, 1) if len(cand) > 1 else cand[0]
+        parts.append((idx, np.where((cand > 0) & (cand < 0.5 * np.pi), cand, 0.0)))
+    return _ascending_distinct(parts, len(models))
+
+
+def _level_angles(levels, size):
+    """The polar angles of the levels μ_V = c (numbers, or arrays over the ``size`` elements), one
+    column per level."""
+    if all(isinstance(c, float) for c in levels):      # constants (GGX, Beckmann: multiples of α)
+        return np.broadcast_to(np.arccos(np.clip(np.array(levels), 0.0, 1.0)), (size, len(levels)))
+    return np.stack([np.broadcast_to(np.arccos(np.clip(c, 0.0, 1.0)), (size,)) for c in levels], 1)
 
 
 def _ascending_distinct(parts, size):
     """Rows of breakpoints, each with 0 and π/2, ascending, without repeats, NaN-padded to the
     longest (``parts``: (element indices, candidate rows))."""
+    if size == 1:                                # one row: no padding
+        (_, cand), = parts
+        return np.array([sorted({0.0, 0.5 * np.pi, *cand[0].tolist()})])
     width = 2 + max(cand.shape[1] for _, cand in parts)
     out = np.full((size, width), np.nan)
     for idx, cand in parts:
@@ -145,7 +169,7 @@ def _grazing_levels(mu_l, alpha):
     not: dropped by :func:`breakpoints`), one array per k: S's layer of width μ_L at the horizon
     (module docstring).  None at μ_L = 0 (θ_L = 90°: no layer) or μ_L ≥ α/r."""
     positive = mu_l[mu_l > 0]
-    if positive.size == 0:
+    if positive.size == 0 or GRAZING_GRADING * positive.min() >= alpha:    # every level at or above α
         return []
     count = int(np.ceil(np.log(alpha / np.min(positive)) / np.log(GRAZING_GRADING))) - 1
     levels = mu_l[:, None] * GRAZING_GRADING ** np.arange(1, max(count, 0) + 1)
