@@ -23,6 +23,8 @@ the sky rather than sideways at the neighbouring spheres. The CSV carries the pr
 """
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import pandas as pd
 
@@ -187,7 +189,10 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     limb = limb_panel(cfg, the_panels)
     limb_width = max(setup["min_width"], LIMB_MIN_WIDTH)
     limb_size = (limb_width, int(round(limb_width / LIMB_ASPECT)))
+    wall, cpu = time.perf_counter(), time.process_time()
     rendered = rf.render_panel(limb, cfg, setup, *limb_size)
+    limb_seconds = {"panel": "limb", "title": limb.title, "wall_s": round(time.perf_counter() - wall, 3),
+                    "cpu_s": round(time.process_time() - cpu, 3)}
     profile_rows = limb_profile(rendered, limb, rf.SPECTRAL)
     # a profile row carries its panel's silver pyramid's material and scene columns, the limb render's size
     per_panel = df[df["object"] == PROFILED_OBJECT].set_index("panel")
@@ -200,6 +205,7 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     out = pd.concat([df, profile], ignore_index=True)
     out.attrs["ids"] = ids
     out.attrs[rf.RADIANCE] = df.attrs[rf.RADIANCE]
+    out.attrs[rf.TIMING] = df.attrs[rf.TIMING] + [limb_seconds]
     titles = [title for title, _ in images]
     crops = [(rf.object_crop(image, panel_ids, labels, PROFILED_OBJECT), title)
              for (title, image), (panel_ids, labels) in zip(images, ids)]
