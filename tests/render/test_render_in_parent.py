@@ -14,7 +14,7 @@ from pathlib import Path
 
 import yaml
 
-from brdfs.pipeline import registry, zygote
+from brdfs.pipeline import job, registry, zygote
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The cheapest render (direct light from point lights), at a tiny preset below.
@@ -28,21 +28,16 @@ def _job(where: Path) -> dict:
                 config=config)
 
 
-def _run(where: Path, sock: Path | None) -> str:
-    """The job as ``workflow/scripts/artifact.py`` runs it, in a fresh process in ``where``: through the
-    parent at ``sock``, or (None) itself."""
+def _run_in_parent(where: Path, sock: Path) -> str:
+    """The job as ``workflow/scripts/artifact.py`` runs it, from a fresh process in ``where``, through
+    the parent at ``sock``."""
     code = textwrap.dedent(f"""
         import pickle
-        from brdfs.pipeline import job, zygote
-        request = pickle.loads({pickle.dumps(_job(where))!r})
-        if zygote.run_in_zygote(request):
-            print("ran in the parent")
-        else:
-            job.run(**request)
-            print("ran alone")
+        from brdfs.pipeline import zygote
+        print("ran in the parent" if zygote.run_in_zygote(pickle.loads({pickle.dumps(_job(where))!r})) else "no parent")
     """)
     env = {k: v for k, v in os.environ.items() if k != zygote.ENV}
-    env.update(PYTHONPATH=str(ROOT / "src"), MPLBACKEND="Agg", **({zygote.ENV: str(sock)} if sock else {}))
+    env.update(PYTHONPATH=str(ROOT / "src"), MPLBACKEND="Agg", **{zygote.ENV: str(sock)})
     done = subprocess.run([sys.executable, "-c", code], cwd=where, env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     return done.stdout.strip().splitlines()[-1]
@@ -53,7 +48,8 @@ def _outputs(where: Path) -> dict[str, bytes]:
             if p.is_file() and p.name != "timing.json"}
 
 
-def test_a_render_job_in_the_parent_writes_the_bytes_of_a_render_job_in_its_own_process(mitsuba, tmp_path):
+def test_a_render_job_in_the_parent_writes_the_bytes_of_a_render_job_in_its_own_process(mitsuba, tmp_path,
+                                                                                         monkeypatch):
     sock = tmp_path / "parent.sock"
     env = {k: v for k, v in os.environ.items() if k != zygote.ENV}
     env["PYTHONPATH"] = str(ROOT / "src")
@@ -69,8 +65,9 @@ def test_a_render_job_in_the_parent_writes_the_bytes_of_a_render_job_in_its_own_
         alone, forked = tmp_path / "alone", tmp_path / "forked"
         alone.mkdir()
         forked.mkdir()
-        assert _run(alone, None) == "ran alone"
-        assert _run(forked, sock) == "ran in the parent"
+        assert _run_in_parent(forked, sock) == "ran in the parent"
+        monkeypatch.chdir(alone)
+        job.run(**_job(alone))          # in this process, as a job without the parent runs
     finally:
         parent.kill()
         parent.wait()

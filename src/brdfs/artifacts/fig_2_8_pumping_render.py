@@ -205,16 +205,16 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     out = pd.concat([df, profile], ignore_index=True)
     out.attrs["ids"] = ids
     out.attrs[rf.RADIANCE] = df.attrs[rf.RADIANCE]
-    out.attrs[rf.TIMING] = df.attrs[rf.TIMING] + [limb_seconds]
+    out.attrs[rf.TIMING] = rf.SharedList(df.attrs[rf.TIMING] + [limb_seconds])
     titles = [title for title, _ in images]
     crops = [(rf.object_crop(image, panel_ids, labels, PROFILED_OBJECT), title)
              for (title, image), (panel_ids, labels) in zip(images, ids)]
     scale = df["display_scale"].iloc[0]
     limb_image = spectrum.to_display(spectrum.linear_rgb(rendered.radiance), scale)
-    out.attrs["images"] = images + [("the silver pyramid (native resolution); a silver sphere under daylight",
+    out.attrs["images"] = rf.SharedList(images + [("the silver pyramid (native resolution); a silver sphere under daylight",
                                      bottom_left_cell(crops, limb_image, limb, titles)),
                                     ("limb profile of the silver sphere under daylight",
-                                     profile_chart(profile, titles))]
+                                     profile_chart(profile, titles))])
     return out
 
 
