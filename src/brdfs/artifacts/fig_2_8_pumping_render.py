@@ -155,6 +155,17 @@ def bottom_left_cell(crops_and_titles: list, limb_image: np.ndarray, limb_panel_
 def profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
     """The limb profiles as an RGB image of CHART_PX pixels: Y against θ_V, one curve per panel's material, ±2 SE."""
     import matplotlib
+
+    from brdfs.pipeline import plotting
+
+    # the project's style, whatever this process imported before (a job alone has not imported
+    # plotting yet when compute draws this; one forked from make all's pre-loaded parent has)
+    with matplotlib.rc_context(plotting.STYLE):
+        return _profile_chart(profile, titles)
+
+
+def _profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
+    import matplotlib
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
