@@ -77,6 +77,7 @@ def reference_config(cfg: dict, name: str, factor: int) -> dict:
     out = copy.deepcopy(cfg)
     preset = out["renders"][out["renders"]["preset"]]
     preset["figure_spp"] = {key: _scaled_spp(spp, factor) for key, spp in preset["figure_spp"].items()}
+    preset["crop_spp"] = {key: int(spp) * factor for key, spp in (preset.get("crop_spp") or {}).items()}
     preset["passes"] = preset["passes"] * factor
     preset["spp"] = preset["spp"] * factor
     out["seed"] = int(cfg["seed"]) + 7919

@@ -1,12 +1,12 @@
 """One artifact job (brdfs.pipeline.job.run): in the pre-loaded parent that `make all` starts
-(brdfs.pipeline.zygote, not for renders), else in this process."""
+(brdfs.pipeline.zygote), else in this process."""
 
 from brdfs.pipeline import zygote
 
 job = dict(name=snakemake.wildcards.name, log=snakemake.log[0],  # noqa: F821 (injected by Snakemake)
            outputs=list(snakemake.output), tables=list(snakemake.input.tables),  # noqa: F821
            config=snakemake.config)  # noqa: F821 (params.config is only a digest)
-if snakemake.rule == "render_artifact" or not zygote.run_in_zygote(job):  # noqa: F821
+if not zygote.run_in_zygote(job):
     from brdfs.pipeline import job as artifact_job
 
     artifact_job.run(**job)

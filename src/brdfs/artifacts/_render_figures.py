@@ -580,11 +580,21 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
                          "object_pixels": noise.object_pixels, "display_scale": scale, **panel.extra,
                          **_count_columns(rendered, row["object"], count)})
     df = pd.DataFrame(rows)
-    df.attrs["images"] = images
-    df.attrs["ids"] = id_buffers
-    df.attrs[RADIANCE] = radiance
-    df.attrs[TIMING] = seconds
+    df.attrs["images"] = SharedList(images)
+    df.attrs["ids"] = SharedList(id_buffers)
+    df.attrs[RADIANCE] = SharedList(radiance)
+    df.attrs[TIMING] = SharedList(seconds)
     return df
+
+
+class SharedList(list):
+    """A list in ``df.attrs`` that pandas shares with the frames derived from ``df`` instead of deep-copying
+    it: pandas deep-copies ``attrs`` into every frame or column it derives (``__finalize__``), and a
+    figure's images, ID buffers and radiance (tens of MB) were copied on every column read (0.7 CPU-s
+    of Fig. 2.8's job). They are results, never changed in place."""
+
+    def __deepcopy__(self, memo):
+        return self
 
 
 #: ``df.attrs`` key of the panels' linear radiance: a list of (H, W, 3) float32 linear sRGB, panel by panel.

@@ -23,6 +23,8 @@ the sky rather than sideways at the neighbouring spheres. The CSV carries the pr
 """
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import pandas as pd
 
@@ -153,6 +155,17 @@ def bottom_left_cell(crops_and_titles: list, limb_image: np.ndarray, limb_panel_
 def profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
     """The limb profiles as an RGB image of CHART_PX pixels: Y against θ_V, one curve per panel's material, ±2 SE."""
     import matplotlib
+
+    from brdfs.pipeline import plotting
+
+    # the project's style, whatever this process imported before (a job alone has not imported
+    # plotting yet when compute draws this; one forked from make all's pre-loaded parent has)
+    with matplotlib.rc_context(plotting.STYLE):
+        return _profile_chart(profile, titles)
+
+
+def _profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
+    import matplotlib
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -187,7 +200,10 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     limb = limb_panel(cfg, the_panels)
     limb_width = max(setup["min_width"], LIMB_MIN_WIDTH)
     limb_size = (limb_width, int(round(limb_width / LIMB_ASPECT)))
+    wall, cpu = time.perf_counter(), time.process_time()
     rendered = rf.render_panel(limb, cfg, setup, *limb_size)
+    limb_seconds = {"panel": "limb", "title": limb.title, "wall_s": round(time.perf_counter() - wall, 3),
+                    "cpu_s": round(time.process_time() - cpu, 3)}
     profile_rows = limb_profile(rendered, limb, rf.SPECTRAL)
     # a profile row carries its panel's silver pyramid's material and scene columns, the limb render's size
     per_panel = df[df["object"] == PROFILED_OBJECT].set_index("panel")
@@ -200,15 +216,16 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     out = pd.concat([df, profile], ignore_index=True)
     out.attrs["ids"] = ids
     out.attrs[rf.RADIANCE] = df.attrs[rf.RADIANCE]
+    out.attrs[rf.TIMING] = rf.SharedList(df.attrs[rf.TIMING] + [limb_seconds])
     titles = [title for title, _ in images]
     crops = [(rf.object_crop(image, panel_ids, labels, PROFILED_OBJECT), title)
              for (title, image), (panel_ids, labels) in zip(images, ids)]
     scale = df["display_scale"].iloc[0]
     limb_image = spectrum.to_display(spectrum.linear_rgb(rendered.radiance), scale)
-    out.attrs["images"] = images + [("the silver pyramid (native resolution); a silver sphere under daylight",
+    out.attrs["images"] = rf.SharedList(images + [("the silver pyramid (native resolution); a silver sphere under daylight",
                                      bottom_left_cell(crops, limb_image, limb, titles)),
                                     ("limb profile of the silver sphere under daylight",
-                                     profile_chart(profile, titles))]
+                                     profile_chart(profile, titles))])
     return out
 
 

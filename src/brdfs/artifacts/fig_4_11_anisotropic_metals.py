@@ -60,9 +60,9 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     the_panels = panels(cfg)
     df = rf.compute_panels(cfg, NAME, the_panels)
     _, image = df.attrs["images"][0]
-    df.attrs["images"] = df.attrs["images"] + [
+    df.attrs["images"] = rf.SharedList(df.attrs["images"] + [
         ("groove direction: along the drawn meridians (the highlights stretch across them)",
-         groove_overlay(the_panels[0], image))]
+         groove_overlay(the_panels[0], image))])
     return df
 
 

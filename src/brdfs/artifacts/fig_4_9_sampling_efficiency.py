@@ -72,6 +72,6 @@ def panel_costs(df: pd.DataFrame) -> list[str]:
 def plot(df: pd.DataFrame, path) -> None:
     """The panels, each titled with its sampler and its costs (:func:`panel_costs`)."""
     shown = df.copy()
-    shown.attrs = {**df.attrs, "images": [(f"{title.replace(' sampling', '')}: {costs}", image) for (title, image), costs
-                                          in zip(df.attrs["images"], panel_costs(df))]}
+    shown.attrs = {**df.attrs, "images": rf.SharedList((f"{title.replace(' sampling', '')}: {costs}", image)
+                                                       for (title, image), costs in zip(df.attrs["images"], panel_costs(df)))}
     rf.plot_panels(shown, path, "Fig. 4.9: three samplers at equal samples per pixel", columns=1)

@@ -13,7 +13,11 @@ status. The job process waits for that status and exits with it, so Snakemake se
 * Without the parent (a plain ``snakemake``, a single target, a cluster job) the script runs the job
   itself: :func:`run_in_zygote` returns False. Either way the outputs are the same bytes
   (``tests/pipeline/test_zygote.py``).
-* Renders never go through the parent: Dr.Jit's threads and LLVM state must not be forked.
+* Renders go through it too: the parent never imports Dr.Jit or Mitsuba (whose thread pool and LLVM
+  state must not be forked; ``import drjit`` alone starts threads), so a render's child starts them
+  itself, as its own process would. The parent also imports colour-science (through
+  :func:`brdfs.physics.spectral_colour.colour_module`, which keeps numpy's print options) and the
+  renders' shared module: about 2.5 CPU-s of each of the 12 render jobs' start-up (issue 42).
 * A child dies with its job: it watches the connection, and when the job process is gone (killed by
   Snakemake, by Ctrl-C or by SIGKILL) it exits at once, so no orphan writes an output after its job
   was cancelled. Outputs are written atomically (:mod:`brdfs.pipeline.io`), so nothing half-written
@@ -36,10 +40,12 @@ import traceback
 
 #: The environment variable that names the parent's socket for the jobs (set by ``make all``).
 ENV = "BRDFS_ZYGOTE"
-#: What the parent imports once: what nearly every non-render artifact imports (not mitsuba or drjit).
+#: What the parent imports once: what nearly every artifact imports, and the renders' shared module
+#: (which imports no mitsuba or drjit: they must never be imported here, module docstring).
 PRELOAD = ("numpy", "pandas", "matplotlib.pyplot", "scipy.special", "scipy.optimize", "scipy.integrate",
            "scipy.stats", "brdfs.physics.models", "brdfs.numerics.albedo", "brdfs.pipeline.io",
-           "brdfs.pipeline.registry", "brdfs.pipeline.plotting", "brdfs.pipeline.job")
+           "brdfs.pipeline.registry", "brdfs.pipeline.plotting", "brdfs.pipeline.job",
+           "brdfs.artifacts._render_figures")
 _HEADER = 8
 
 
@@ -124,7 +130,7 @@ def _die_with_the_build(parent: int) -> None:
 
 
 def preload() -> None:
-    """Import :data:`PRELOAD` (matplotlib with the Agg backend) into this process."""
+    """Import :data:`PRELOAD` (matplotlib with the Agg backend) and colour-science into this process."""
     import importlib
 
     import matplotlib
@@ -132,6 +138,9 @@ def preload() -> None:
     matplotlib.use("Agg")
     for module in PRELOAD:
         importlib.import_module(module)
+    from brdfs.physics.spectral_colour import colour_module
+
+    colour_module()
 
 
 def serve(path: str) -> None:
