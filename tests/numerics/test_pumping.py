@@ -186,22 +186,3 @@ def test_pump_refuses_an_exponent_beyond_its_tables_in_one_line_before_any_work(
     from brdfs.numerics.tables import pump
     with pytest.raises(ArgumentError, match=r"^pump\(\): n = 30000.0: the albedo table of phong reaches n <= 10000"):
         pump(model("phong", n=3e4))
-
-
-def test_the_same_pumping_asked_twice_builds_its_table_once(monkeypatch):
-    """Models are frozen values: equal models (n = 20 and 20.0) share one table; another model,
-    correction or target builds its own."""
-    from brdfs.numerics import tables
-    built = []
-    real = tables.tabulate
-    monkeypatch.setattr(tables, "tabulate", lambda request: built.append(request) or real(request))
-    tables.pump.cache_clear()
-    first = tables.pump(model("phong", n=20), "g1", target_rtol=1e-6, engine_rtol=1e-8)
-    again = tables.pump(model("phong", n=20.0), "g1", target_rtol=1e-6, engine_rtol=1e-8)
-    assert again is first and len(built) == 1
-    others = [tables.pump(model("phong", n=21), "g1", target_rtol=1e-6, engine_rtol=1e-8),
-              tables.pump(model("phong", n=20), "g2", target_rtol=1e-6, engine_rtol=1e-8),
-              tables.pump(model("phong", n=20), "g1", target_rtol=1e-7, engine_rtol=1e-8)]
-    assert len(built) == 4 and all(o is not first for o in others)
-    assert others[1].correction == "g2" and others[0].base.n == 21
-    tables.pump.cache_clear()

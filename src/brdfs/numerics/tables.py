@@ -16,8 +16,6 @@ the request, a value), and handed to the model:
 """
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
 from brdfs.numerics.arguments import ArgumentError, check_model_call
@@ -62,14 +60,10 @@ def build(name: str, **params):
     return plain_model(name, **{**params, **tables})
 
 
-@functools.lru_cache(maxsize=64)
 def pump(base, correction: str = "g1", target_rtol: float = 1e-9, engine_rtol: float = 1e-11) -> Pumped:
     """``base`` pumped once with ``correction`` (eq. 2.20 ``'g1'`` or 2.21 ``'g2'``), dividing by its
     albedo tabulated on [0, 1] in cos θ to ``target_rtol`` on engine values at ``engine_rtol``; a
-    parameter beyond the model's ``pumping_ranges`` is refused in one line before any work.
-
-    Models are frozen values, so the same pumping asked again (a scene loaded twice, the panels of a
-    figure, the plugin and its twin) returns the table built the first time."""
+    parameter beyond the model's ``pumping_ranges`` is refused in one line before any work."""
     for key, interval in base.pumping_ranges.items():
         value = getattr(base, key)
         if not interval.contains(value):
