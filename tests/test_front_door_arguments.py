@@ -229,3 +229,11 @@ def test_the_front_door_examples_still_hold():
 ])
 def test_albedo_table_refuses_a_bad_argument_with_one_line_naming_it(argument, shown, call):
     _refused(call, argument, shown)
+
+
+@pytest.mark.parametrize("argument, shown, theta", [
+    ("theta_deg", "[91.]", [0.0, 91.0]), ("theta_deg", "[nan]", [np.nan]), ("theta_deg", "'a'", "a")])
+def test_albedo_pairs_refuses_bad_angles_with_one_line_naming_it(argument, shown, theta):
+    from brdfs.numerics.albedo import albedo_pairs
+    message = _refused(lambda: albedo_pairs([PHONG] * np.size(theta), theta), argument, shown)
+    assert message.startswith("albedo_pairs()"), message

@@ -80,7 +80,8 @@ import numpy as np
 
 from brdfs.core.estimate import DIVERGED, STALLED
 from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
-from brdfs.numerics.arguments import DEFAULT_ATOL, DEFAULT_RTOL, Tolerance, check_albedo_call, check_table_call
+from brdfs.numerics.arguments import (DEFAULT_ATOL, DEFAULT_RTOL, Tolerance, check_albedo_call, check_angles,
+                                      check_table_call)
 from brdfs.numerics.integrate import azimuthal, polar
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
@@ -113,16 +114,6 @@ class NotConvergedError(RuntimeError):
 class EngineCannotIntegrate(ValueError):
     """The engine cannot integrate this model (no lobe and no route of its own, or not symmetric
     about the plane of incidence); ``auto`` then takes the disk for every value."""
-
-
-
-
-def _check_angles(theta_deg):
-    theta = np.asarray(theta_deg, float)
-    bad = ~((theta >= 0) & (theta <= 90))
-    if bad.any():
-        raise ValueError(f"incidence angles must lie in [0, 90] degrees, got {theta[bad][:5]!r}")
-    return theta
 
 
 # --- the plan: each group of elements on one route ----------------------------------------------
@@ -683,7 +674,7 @@ def albedo_table(models, theta_deg, rtol=None, atol=None) -> Estimate:
     models' evaluation error; no warning: read ``status``)."""
     tol = Tolerance.checked(rtol, atol, "albedo_table()")
     check_table_call(models, theta_deg)
-    theta = _check_angles(np.atleast_1d(theta_deg)).ravel()
+    theta = np.atleast_1d(np.asarray(theta_deg, float)).ravel()
     est = _answer([m for m in models for _ in theta], np.tile(theta, len(models)), tol, "engine")
     shape = (len(models), theta.size)
     return Estimate(est.value.reshape(shape), est.error.reshape(shape), est.evaluations,
@@ -696,5 +687,6 @@ def albedo_pairs(models, theta_deg, rtol=None, atol=None, as_evaluated=False) ->
     :func:`albedo`'s meaning element by element (no warning: read ``status``).  ``as_evaluated``:
     f as evaluated, without the models' ``evaluation_error`` (a table factory that carries it itself)."""
     tol = Tolerance.checked(rtol, atol, "albedo_pairs()")
-    theta = _check_angles(theta_deg).ravel()
+    check_angles("albedo_pairs()", theta_deg)
+    theta = np.asarray(theta_deg, float).ravel()
     return _answer(list(models), theta, tol, "engine", model_error=not as_evaluated)

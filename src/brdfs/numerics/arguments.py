@@ -179,7 +179,7 @@ def check_albedo_call(model, theta_deg, method, methods, options, strict=False, 
     if not isinstance(model, BRDF):
         _fail(where, "model", model, f"must be a model (brdfs.model(name, ...)), not {type(model).__name__}")
     _check_declared_ranges(where, model)
-    _check_angles(where, theta_deg)
+    check_angles(where, theta_deg)
     if not isinstance(method, str) or method not in methods:
         _fail(where, "method", method, f"unknown method; choose one of {', '.join(methods)}")
     for argument, value in (("strict", strict), ("warn", warn)):
@@ -207,10 +207,11 @@ def check_table_call(models, theta_deg) -> None:
     for k, m in enumerate(models):
         if not isinstance(m, BRDF):
             _fail(where, f"models[{k}]", m, f"must be a model (brdfs.model(name, ...)), not {type(m).__name__}")
-    _check_angles(where, theta_deg)
+    check_angles(where, theta_deg)
 
 
-def _check_angles(where, theta_deg):
+def check_angles(where, theta_deg) -> None:
+    """Refuse angles that are not real, finite and in [0, 90] degrees (``where`` names the call)."""
     if isinstance(theta_deg, float) and 0.0 <= theta_deg <= 90.0:
         return                                        # one angle, valid (NaN fails the comparison)
     try:
