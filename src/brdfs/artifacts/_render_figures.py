@@ -293,11 +293,8 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
             part = Panel(**{**panel.__dict__, "lights": lights})
             scene = msc.load(_scene(part, cfg, groups), camera, integrator, setup["sampler"])
             for p in range(passes):
-                for c, chunk in enumerate(launches(width, height, spp, setup["sampler"])):
-                    image = np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(cfg["seed"], p, c)))
-                    out[p] += chunk / spp * panel_channels(image, groups)
-                    if lost is not None:
-                        lost[p] += chunk / spp * clamped_channels(image, groups)
+                for chunk, image in _pass_launches(mi, scene, width, height, spp, setup["sampler"], cfg["seed"], p):
+                    _add_launch(out[p], None if lost is None else lost[p], chunk / spp, image, groups)
                     if first:
                         ids += chunk / (spp * passes) * image[..., 3]
                         cos_v += chunk / (spp * passes) * image[..., 4]
@@ -388,17 +385,31 @@ def _render_crop(mi, scene, camera, sampler: str, windows, seed: int, spp: int, 
         for i, ((x, y, w, h), sensor) in enumerate(zip(windows, sensors)):
             crop = np.zeros((h, w) + out.shape[3:])
             crop_lost = None if lost is None else np.zeros_like(crop)
-            for c, chunk in enumerate(launches(w, h, crop_spp, sampler)):
-                image = np.asarray(mi.render(scene, sensor=sensor, spp=chunk,
-                                             seed=pass_seed(seed, p, CROP_LAUNCH + 64 * i + c)))
-                crop += chunk / crop_spp * panel_channels(image, groups)
-                if lost is not None:
-                    crop_lost += chunk / crop_spp * clamped_channels(image, groups)
+            for chunk, image in _pass_launches(mi, scene, w, h, crop_spp, sampler, seed, p, CROP_LAUNCH + 64 * i, sensor):
+                _add_launch(crop, crop_lost, chunk / crop_spp, image, groups)
             crops.append(crop)
             crops_lost.append(crop_lost)
         out[p] = combine_crop(out[p], crops, windows, spp, crop_spp)
         if lost is not None:
             lost[p] = combine_crop(lost[p], crops_lost, windows, spp, crop_spp)
+
+
+def _pass_launches(mi, scene, width: int, height: int, spp: int, sampler: str, seed: int, p: int,
+                   first_launch: int = 0, sensor=None):
+    """Pass ``p`` of ``spp`` samples per pixel of a ``width`` × ``height`` film (or of ``sensor``'s crop
+    window) in its launches (:func:`launches`), launch c seeded ``pass_seed(seed, p, first_launch + c)``:
+    (samples of the launch, its image with the AOVs) for each."""
+    extra = {} if sensor is None else {"sensor": sensor}
+    for c, chunk in enumerate(launches(width, height, spp, sampler)):
+        yield chunk, np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(seed, p, first_launch + c), **extra))
+
+
+def _add_launch(radiance: np.ndarray, lost: np.ndarray | None, weight: float, image: np.ndarray, groups) -> None:
+    """``weight`` × a launch's radiance into ``radiance`` and, with a clamp, × the light it took into
+    ``lost`` (in place)."""
+    radiance += weight * panel_channels(image, groups)
+    if lost is not None:
+        lost += weight * clamped_channels(image, groups)
 
 
 @contextlib.contextmanager
