@@ -610,25 +610,25 @@ def _by_its_own_route(model, theta, tol) -> Estimate | None:
 
 
 def _by_its_engine_route(model, theta, tol, method, declined=False) -> Estimate | None:
-    """The short way of a single angle on one of the engine's routes, nothing to plan: the route's
-    answer where it converged; else the rest of the run (:func:`_run` of the one group the plan would
-    give, on the route's answer: the 1-D route's second try in two dimensions, ``auto``'s disk).  None
-    (the plan) where more applies: a route of the model's own (unless it ``declined``), tables' error,
-    a Dirac part, a declared end at 90°."""
+    """The short way of a single angle that the plan gives one of the engine's routes: the route's
+    answer where it converged; else the rest of the run (:func:`_run` of that one group, on the
+    route's answer: the 1-D route's second try in two dimensions, ``auto``'s disk).  None (the whole
+    plan, run and merge) where more applies: tables' error, a Dirac part, or a group on another route
+    (the model's own unless it ``declined``, a declared end at 90°, the disk)."""
     if (method not in ("auto", "engine") or theta.size != 1 or model.has_evaluation_error
-            or not declined and type(model).albedo_estimate is not BRDF.albedo_estimate
-            or type(model).delta_albedo is not BRDF.delta_albedo
-            or _declares_its_end(model) and (theta == 90.0).any()
-            or _refusal(model) is not None):
+            or type(model).delta_albedo is not BRDF.delta_albedo):
         return None
-    route, flat = _engine_route(model), theta.ravel()
+    flat = theta.ravel()
+    groups = _plan([model], flat, method, own=not declined)
+    if len(groups) != 1 or groups[0].route not in ENGINE_ROUTES or groups[0].limit:
+        return None
+    route = groups[0].route
     with counting_evaluations() as count:
         est = ENGINE_ROUTES[route]([model], flat, rtol=tol.rtol, atol=tol.atol)
         if _all_in(est.status, CONVERGED) and _PROGRESS.get() is None:
             own = int(est.evaluations) if route in _ONE_DIMENSIONAL else 0      # as _run counts them
             return Estimate(est.value, est.error, count[0] + own, est.status, np.full(1, f"engine/{route}"))
-        group = Group(model, model, np.zeros(1, np.intp), route, then_disk=method == "auto")
-        answer = _run([group], flat, tol, method, {}, ran={route: est})
+        answer = _run(groups, flat, tol, method, {}, ran={route: est})
     est = answer.estimate()
     return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)
 
