@@ -70,8 +70,18 @@ def pump(base, correction: str = "g1", target_rtol: float = 1e-9, engine_rtol: f
             raise ArgumentError(f"pump(): {key} = {value!r}: the albedo table of {base.name} reaches {key} <= "
                                 f"{interval.hi:g} at its target (pieces of degree 256 miss 1e-9 beyond); "
                                 f"pump a model with {key} <= {interval.hi:g}")
-    table = tabulate(TableRequest(base, pump_edges(base), target_rtol=target_rtol, engine_rtol=engine_rtol))
+    edges = pump_edges(base)
+    degree = _PIECE_DEGREE if len(edges) > 2 else TableRequest.degree
+    table = tabulate(TableRequest(base, edges, degree=degree, target_rtol=target_rtol, engine_rtol=engine_rtol))
     return Pumped(base, table, correction)
+
+
+#: The starting degree of each graded piece of :func:`pump_edges` (doubled where the check misses):
+#: a piece spans a factor 2 to 4 of the lobe's scale, where degree 16 overshoots the target by 20-40x.
+#: Against albedo() at rtol 1e-12 on 400 angles (Phong n = 512, 5000, 6210; Blinn n = 400, 730.5;
+#: targets 1e-6 and 1e-9) the tables' true error stays at 0.02-0.10 of the error they report, as at
+#: degree 16 (0.01-0.15), and they build in 0.5-0.6 of the time (Phong n = 512 at 1e-6: 0.69 -> 0.35 s).
+_PIECE_DEGREE = 8
 
 
 def pump_edges(base) -> tuple[float, ...]:
