@@ -468,6 +468,10 @@ LENS_KINK_GRADING = tuple(2.0 ** -k for k in range(1, 9))
 #: The widest interval of a single element's first partition: a generalized Lambertian's p(R) steepens
 #: toward its clip m_clip = 1.9 (its singularity at R = 2 is 0.1 away), and [1 + d, m_clip] took 2 more rounds.
 SINGLE_MAX_WIDTH = 0.25
+#: Cuts of a single element's first partition below each of the weight's ``points`` (the profile's
+#: breakpoints): a generalized Lambertian's p(R) steepens toward its clip m_clip, 0.1 from its singularity
+#: at R = 2, and the interval below m_clip took one or two more rounds at 1e-10.
+WEIGHT_POINT_GRADING = (0.5, 0.25, 0.125, 0.0625)
 _LAYERS = tuple((1.0 + LENS_LAYER_GRADING).tolist())
 
 
@@ -488,6 +492,10 @@ def _single_element_partition(points, d):
             cuts.update(lo + (above[0] - lo) * g for g in LENS_KINK_GRADING)
         if below:
             cuts.update(hi - (hi - below[-1]) * g for g in LENS_KINK_GRADING)
+    for point in points:                 # the weight's own features, graded toward from below
+        before = [p for p in row if p < point]
+        if before:
+            cuts.update(point - (point - before[-1]) * g for g in WEIGHT_POINT_GRADING)
     pts = sorted(cuts)
     out = pts[:1]
     for a, b in zip(pts[:-1], pts[1:]):
