@@ -465,22 +465,19 @@ def _r_breakpoints(points, d, single_graded=False):
 #: interval next to the kink.  The driver bisected those two intervals level by level, one round a level
 #: (a uniform mixture at 40°, rtol 1e-10: 8 rounds of 4 intervals).
 LENS_KINK_GRADING = tuple(2.0 ** -k for k in range(1, 9))
-#: The widest interval of a single element's first partition: a generalized Lambertian's p(R) steepens
-#: toward its clip m_clip = 1.9 (its singularity at R = 2 is 0.1 away), and [1 + d, m_clip] took 2 more rounds.
-SINGLE_MAX_WIDTH = 0.25
 #: Cuts of a single element's first partition below each of the weight's ``points`` (the profile's
-#: breakpoints): a generalized Lambertian's p(R) steepens toward its clip m_clip, 0.1 from its singularity
-#: at R = 2, and the interval below m_clip took one or two more rounds at 1e-10.
+#: breakpoints), by halves: a generalized Lambertian's p(R) steepens toward its clip m_clip = 1.9, 0.1 from
+#: its singularity at R = 2, and the interval below m_clip took one or two more rounds at 1e-10.
 WEIGHT_POINT_GRADING = (0.5, 0.25, 0.125, 0.0625)
 _LAYERS = tuple((1.0 + LENS_LAYER_GRADING).tolist())
 
 
 def _single_element_partition(points, d):
     """The first partition of one element at |L'_P| = ``d``, on Python floats: the points of
-    :func:`_r_breakpoints`, graded toward the lens's kinks (:data:`LENS_KINK_GRADING`) and cut to
-    :data:`SINGLE_MAX_WIDTH`, so that one evaluation meets the tolerance (a round of a single element
-    costs more than its nodes; a batch's elements share their rounds and keep :func:`_r_breakpoints`'s
-    partition, to the bit)."""
+    :func:`_r_breakpoints`, graded toward the lens's kinks (:data:`LENS_KINK_GRADING`) and toward the
+    weight's ``points`` from below (:data:`WEIGHT_POINT_GRADING`), so that one evaluation meets the
+    tolerance (a round of a single element costs more than its nodes; a batch's elements share their
+    rounds and keep :func:`_r_breakpoints`'s partition, to the bit)."""
     lo, hi = 1.0 - d, 1.0 + d
     row = sorted({p for p in (0.0, 1.0, 2.0, *points, lo, hi, *(lo * g for g in _LAYERS if lo * g < 1.0))
                   if 0.0 <= p <= 2.0})
@@ -496,13 +493,7 @@ def _single_element_partition(points, d):
         before = [p for p in row if p < point]
         if before:
             cuts.update(point - (point - before[-1]) * g for g in WEIGHT_POINT_GRADING)
-    pts = sorted(cuts)
-    out = pts[:1]
-    for a, b in zip(pts[:-1], pts[1:]):
-        k = math.ceil((b - a) / SINGLE_MAX_WIDTH)
-        out.extend(a + (b - a) * j / k for j in range(1, k))
-        out.append(b)
-    return np.array(out)
+    return np.array(sorted(cuts))
 
 
 def _mixture_integral(profile, C, per_element, d, rtol, atol):
