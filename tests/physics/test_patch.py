@@ -46,6 +46,25 @@ def test_trivial_lens_cases():
     np.testing.assert_allclose(lens.area, [np.pi * 0.25, np.pi, 0.0, np.pi], rtol=1e-15)
 
 
+def test_one_angles_lens_on_python_floats_gives_the_arrays_bits():
+    """A single angle's closed form (``patch_geometry._basic_albedo_of_one``, Python floats) gives the value
+    and the error bound of the array path to the bit: random and edge (θ, R) — the pole, 1e-6°, grazing
+    and 90°, radii at and next to the tangencies R = 1 ∓ sin θ, R = 1, 2 and tiny — with cos θ given and not."""
+    rng = np.random.default_rng(41)
+    theta = np.concatenate([rng.uniform(0.0, 90.0, 150), [0.0, 1e-6, 1e-3, 45.0, 89.9, 90.0 - 1e-9, 90.0]])
+    d, mu = np.sin(np.radians(theta)), np.sin(np.radians(90.0 - theta))
+    R = np.stack([rng.uniform(1e-6, 2.0, d.size), 10.0 ** rng.uniform(-8.0, 0.3, d.size), 1.0 - d, 1.0 + d,
+                  (1.0 - d) * (1.0 + 1e-9), np.ones_like(d), np.full_like(d, 2.0), np.full_like(d, 1e-7)])
+    R = np.where((R > 0) & (R <= 2.0), R, 0.5)
+    d, mu = np.broadcast_to(d, R.shape).ravel(), np.broadcast_to(mu, R.shape).ravel()
+    R = R.ravel()
+    for cos_theta in (mu, None):
+        batch = patch.basic_albedo_at(d, R, cos_theta)
+        for k in range(d.size):
+            one = patch.basic_albedo_at(d[k:k + 1], R[k:k + 1], None if cos_theta is None else cos_theta[k:k + 1])
+            assert (one.value[0], one.error[0]) == (batch.value[k], batch.error[k]), (d[k], R[k], cos_theta is None)
+
+
 def test_basic_albedo_bound_of_section_4_2_2():
     theta, R = np.meshgrid(np.linspace(0, 90, 181), np.linspace(0.01, 2, 200))
     a = patch.basic_albedo(theta, R).value

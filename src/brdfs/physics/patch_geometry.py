@@ -13,6 +13,7 @@ V ↦ V_P, and cos θ_V dω_V = dx dy, so an albedo is an area integral over the
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -442,10 +443,13 @@ def weight_integral(profiles, lo, hi, rtol=1e-10, atol=1e-14) -> Estimate:
 LENS_LAYER_GRADING = 4.0 ** np.arange(0.0, 27.0)
 
 
-def _r_breakpoints(points, d):
+def _r_breakpoints(points, d, single_graded=False):
     """Per element: 0, the kinks 1 − d, 1, 1 + d of a_R(d) in R, the cuts of :data:`LENS_LAYER_GRADING`,
-    the weight's ``points``, 2."""
+    the weight's ``points``, 2; with ``single_graded``, a single element's row graded further
+    (:func:`_single_element_partition`)."""
     d = np.atleast_1d(np.asarray(d, float))
+    if single_graded and d.size == 1:
+        return _single_element_partition(points, float(d[0]))[None]
     fixed = np.array([0.0, 1.0, 2.0, *points])
     layer = (1.0 - d)[:, None] * (1.0 + LENS_LAYER_GRADING)
     pts = np.concatenate([np.broadcast_to(fixed, (d.size, fixed.size)),
@@ -456,13 +460,49 @@ def _r_breakpoints(points, d):
     return np.sort(np.where(duplicate, np.nan, pts), axis=1)   # NaN padding last
 
 
+#: A single element's first partition is graded by halves toward the lens's kinks, R = 1 − d from above
+#: and R = 1 + d from below (where a_R(d) starts as (R − R₀)^{3/2}): cuts R₀ ± w 2^(−k), w the width of the
+#: interval next to the kink.  The driver bisected those two intervals level by level, one round a level
+#: (a uniform mixture at 40°, rtol 1e-10: 8 rounds of 4 intervals).
+LENS_KINK_GRADING = tuple(2.0 ** -k for k in range(1, 9))
+#: Cuts of a single element's first partition below each of the weight's ``points`` (the profile's
+#: breakpoints), by halves: a generalized Lambertian's p(R) steepens toward its clip m_clip = 1.9, 0.1 from
+#: its singularity at R = 2, and the interval below m_clip took one or two more rounds at 1e-10.
+WEIGHT_POINT_GRADING = (0.5, 0.25, 0.125, 0.0625)
+_LAYERS = tuple((1.0 + LENS_LAYER_GRADING).tolist())
+
+
+def _single_element_partition(points, d):
+    """The first partition of one element at |L'_P| = ``d``, on Python floats: the points of
+    :func:`_r_breakpoints`, graded toward the lens's kinks (:data:`LENS_KINK_GRADING`) and toward the
+    weight's ``points`` from below (:data:`WEIGHT_POINT_GRADING`), so that one evaluation meets the
+    tolerance (a round of a single element costs more than its nodes; a batch's elements share their
+    rounds and keep :func:`_r_breakpoints`'s partition, to the bit)."""
+    lo, hi = 1.0 - d, 1.0 + d
+    row = sorted({p for p in (0.0, 1.0, 2.0, *points, lo, hi, *(lo * g for g in _LAYERS if lo * g < 1.0))
+                  if 0.0 <= p <= 2.0})
+    cuts = set(row)
+    if lo < hi:
+        above = [p for p in row if p > lo]
+        below = [p for p in row if p < hi]
+        if above:
+            cuts.update(lo + (above[0] - lo) * g for g in LENS_KINK_GRADING)
+        if below:
+            cuts.update(hi - (hi - below[-1]) * g for g in LENS_KINK_GRADING)
+    for point in points:                 # the weight's own features, graded toward from below
+        before = [p for p in row if p < point]
+        if before:
+            cuts.update(point - (point - before[-1]) * g for g in WEIGHT_POINT_GRADING)
+    return np.array(sorted(cuts))
+
+
 def _mixture_integral(profile, C, per_element, d, rtol, atol):
     """:func:`_weighted_mixture_integral` of a profile's weight p(R) (eq. 4.41) and Dirac part (eq. 4.24)."""
     return _weighted_mixture_integral(lambda R: weight(profile, R, C), diffuse_weight(profile, C), per_element,
                                       d, rtol, atol, profile.breakpoints)
 
 
-def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=()):
+def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=(), single_graded=False):
     """∫₀² p(R) g(R, element) dR + p_Diffuse for g = ``per_element`` (an :class:`Estimate`),
     one element per |L'_P| = ``d`` (whose kinks 1 ∓ d split the range, with the weight's ``points``)."""
 
@@ -486,7 +526,7 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
                 return out
         return integrand(x, elem)
 
-    bp = _r_breakpoints(points, d)
+    bp = _r_breakpoints(points, d, single_graded)
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
@@ -496,7 +536,7 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
     return Estimate(est.value + p_diffuse, est.error + CLOSED_FORM_RTOL * abs(p_diffuse))
 
 
-def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14):
+def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_graded=False):
     """a^p(L) = ∫₀² p(R) a_R(L) dR + p_Diffuse  (eqs. 4.22, 4.24), vectorised over θ.
 
     Parameters
@@ -507,6 +547,9 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14):
         Incidence angles in [0°, 90°].
     C : float, optional
         The BRDF's constant; default the profile's ``c_max``.
+    single_graded : bool
+        A single angle starts from a graded partition (:func:`_single_element_partition`: fewer
+        rounds, other bits); the models' own routes ask for it, a batch is never graded.
 
     Returns
     -------
@@ -515,14 +558,14 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14):
     """
     C = profile.c_max if C is None else float(C)
     return weighted_mixture_albedo(lambda R: weight(profile, R, C), diffuse_weight(profile, C), theta_deg,
-                                   rtol, atol, profile.breakpoints)
+                                   rtol, atol, profile.breakpoints, single_graded)
 
 
-def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, points=()):
+def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, points=(), single_graded=False):
     """a^p(L) = ∫₀² p(R) a_R(L) dR + p_Diffuse  (eqs. 4.22, 4.24) of any weight: ``p`` a vectorised
     callable p(R) on [0, 2] (smooth between the kinks 1, 1 ∓ |L'_P| of a_R and its own ``points``),
     ``p_diffuse`` the Dirac weight at R = 2, whose a_2 = 1.  The error adds each lens area's rounding
-    bound, weighted by |p|, to the quadrature's.
+    bound, weighted by |p|, to the quadrature's.  ``single_graded``: as :func:`mixture_albedo`.
 
     Returns
     -------
@@ -533,7 +576,7 @@ def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, poi
     d = np.atleast_1d(sin_incidence(theta)).ravel()
     mu = np.atleast_1d(_cos_incidence_near_grazing(theta)).ravel()
     est = _weighted_mixture_integral(p, p_diffuse, lambda R, e: basic_albedo_at(d[e][:, None], R, mu[e][:, None]),
-                                     d, rtol, atol, points)
+                                     d, rtol, atol, points, single_graded)
     return Estimate(est.value.reshape(theta.shape), est.error.reshape(theta.shape))
 
 
@@ -545,6 +588,11 @@ def basic_albedo_at(d, R, cos_theta=None):
     cancellation in 1 + d² − R² where the circles are nearly tangent), plus the input's own
     rounding (2 ε relative in d = sin θ, or in cos θ, which moves d by 2 ε cos²θ/d) times
     |∂ area/∂d| = 2 sin α (the chord), plus c(R)'s rounding."""
+    if np.size(d) == 1 and np.size(R) == 1 and (cos_theta is None or np.size(cos_theta) == 1):
+        shape = np.broadcast_shapes(np.shape(d), np.shape(R), np.shape(cos_theta))
+        value, error = _basic_albedo_of_one(float(np.ravel(d)[0]), float(np.ravel(R)[0]),
+                                            None if cos_theta is None else float(np.ravel(cos_theta)[0]))
+        return Estimate(np.full(shape, value), np.full(shape, error))
     lens = circle_intersection(d, R, cos_theta)
     c = basic_constant(R)
     value = lens.area * c
@@ -553,6 +601,59 @@ def basic_albedo_at(d, R, cos_theta=None):
         moved = d if cos_theta is None else np.minimum(d, np.asarray(cos_theta, float) ** 2 / d)
     from_input = np.abs(np.sin(lens.alpha)) * (4 * _EPS) * moved      # 2 |sin α| · 2 ε: scalings by powers of 2
     return Estimate(value, c * (lens.area_error + from_input) + 3 * _EPS * value)
+
+
+def _basic_albedo_of_one(d, R, mu=None):
+    """(value, error) of :func:`basic_albedo_at` for one (d, R) on Python floats: a single angle's closed
+    form, where numpy's ~80 calls on 1-element arrays cost 4/5 of the call.  The same operations in the
+    same order as :func:`circle_intersection`, :func:`_lens_rounding` and :func:`basic_albedo_at`, the
+    transcendental ones by numpy once on both angles (a libm ulp could differ), give the same bits
+    (``tests/physics/test_patch.py`` holds the two paths together)."""
+    d2, one_minus_r, one_plus_r = d * d, 1.0 - R, 1.0 + R
+    product, gap = one_minus_r * one_plus_r, abs(one_minus_r)
+    x_alpha, alpha_abs = d2 + product, d2 + gap * one_plus_r
+    if mu is not None and d > 0.5:                       # the forms of _four_triangle_area_near_unit
+        mu2 = mu * mu
+        u = mu2 / (1.0 + d)
+        last = d - (R - 1.0) if R >= 0.5 else d + (1.0 - R)
+        four_delta = math.sqrt(max((R + u) * (1.0 + R + d) * (R - u) * last, 0.0))
+        x_beta, beta_abs = (R - mu) * (R + mu), R * R + mu2
+        y_rel = 16 * _EPS + (4 * _EPS * u / abs(R - u) if R != u else math.inf)
+    else:
+        four_delta = float(_four_triangle_area(np.ones(1), np.array([R]), np.array([d]))[0])
+        x_beta, beta_abs, y_rel = d2 - product, alpha_abs, 16 * _EPS
+    raw = np.arctan2(np.array([four_delta, four_delta]), np.array([x_alpha, x_beta]))
+    angles = raw
+    special = d <= gap or d >= one_plus_r
+    if d >= one_plus_r:
+        angles = np.zeros(2)
+    elif special:
+        angles = np.array([0.0, np.pi] if R <= 1.0 else [np.pi, 0.0])
+    seg_alpha, seg_beta = _segment(angles).tolist()
+    area = seg_alpha + R * R * seg_beta
+    sin_alpha, sin_beta = np.sin(angles).tolist()
+    if special:
+        area_error = _EPS * area
+    else:
+        d_alpha, d_beta = (_spread(y_rel, x, x_abs, four_delta) + _EPS * abs(t)
+                           for x, x_abs, t in zip((x_alpha, x_beta), (alpha_abs, beta_abs), raw.tolist()))
+        alpha, beta = angles.tolist()
+        rounding = [4 * _EPS * (seg if abs(t) < 0.125 else abs(t)) for t, seg in ((alpha, seg_alpha), (beta, seg_beta))]
+        propagated = 2 * (sin_alpha * sin_alpha) * d_alpha + 2 * R * R * (sin_beta * sin_beta) * d_beta
+        area_error = propagated + rounding[0] + R * R * rounding[1] + 2 * _EPS * area
+    area_of_patch = np.pi * min(1.0, R * R)
+    c = 1.0 / area_of_patch if area_of_patch else math.inf
+    value = area * c
+    moved = d if mu is None else min(d, mu * mu / d if d else math.inf)
+    from_input = abs(sin_alpha) * (4 * _EPS) * moved
+    return value, c * (area_error + from_input) + 3 * _EPS * value
+
+
+def _spread(y_rel, x, x_abs, y):
+    """:func:`_angle_rounding`'s first term for one row, on Python floats (0 where not finite)."""
+    denominator = x * x + y * y
+    spread = (abs(x) * y_rel * y + y * (4 * _EPS) * x_abs) / denominator if denominator else math.nan
+    return spread if math.isfinite(spread) else 0.0
 
 
 def mixture_mean_albedo(profile, C=None, rtol=1e-10, atol=1e-14):

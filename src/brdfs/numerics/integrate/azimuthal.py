@@ -102,11 +102,12 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     if bad:
         raise ValueError(f"albedo_azimuthal needs a model that declares closed_form_azimuth, "
                          f"got {bad[0].name!r}")
-    outside = ~((theta_deg >= 0) & (theta_deg <= 90))
-    if outside.any():
+    single = theta_deg.size == 1
+    # one angle checked as a Python float: the array's comparisons cost a single call more than its answer
+    if not (0.0 <= float(theta_deg[0]) <= 90.0) if single else not np.all((theta_deg >= 0) & (theta_deg <= 90)):
+        outside = ~((theta_deg >= 0) & (theta_deg <= 90))
         raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    single = theta_deg.size == 1
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
         tight = _tight(rtol)
         bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
@@ -115,7 +116,8 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     else:
         tight = False
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
-    kernels = {members[0]: _RadialKernel.of(models[members[0]]) for members in indices_by_model(models)}
+    kernels = ({0: _RadialKernel.of(models[0])} if single else
+               {members[0]: _RadialKernel.of(models[members[0]]) for members in indices_by_model(models)})
     if len(kernels) == 1:                  # one model: no regrouping of the nodes by model
         (kernel,) = kernels.values()
 

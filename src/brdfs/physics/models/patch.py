@@ -181,7 +181,7 @@ class PatchExponential(_MixtureSampling, BRDF):
 
     def albedo_estimate(self, theta_deg, rtol, atol):
         """∫ p(R) a_R(L) dR over the lens areas (eqs. 4.22, 4.24)."""
-        return patch.mixture_albedo(patch.ExponentialProfile(self.s), theta_deg, self.C, rtol, atol)
+        return patch.mixture_albedo(patch.ExponentialProfile(self.s), theta_deg, self.C, rtol, atol, single_graded=True)
 
     def _eval(self, L, V, nl, nv):
         return self.C * np.exp(-self.s * projected_distance(L, V))
@@ -322,7 +322,8 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
 
     def albedo_estimate(self, theta_deg, rtol, atol):
         """∫ p(R) a_R(L) dR + p_Diffuse over the lens areas (eqs. 4.22, 4.24)."""
-        return patch.mixture_albedo(patch.GeneralizedLambertProfile(self.d, self.m_clip), theta_deg, self.C, rtol, atol)
+        return patch.mixture_albedo(patch.GeneralizedLambertProfile(self.d, self.m_clip), theta_deg, self.C, rtol, atol,
+                                    single_graded=True)
 
     #: Its p(R) is negative (ξ increases), so it is no mixture to sample: the thesis samples it
     #: "with a cosine distribution ... and an appropriate multiplier correction factor for each
@@ -381,7 +382,7 @@ class PatchMixture(_MixtureSampling, BRDF):
         """∫₀² p(R) a_R(L) dR + p_Diffuse over the basic patches' lens areas (eqs. 4.8, 4.22, 4.24):
         one quadrature in R of closed forms, where the disk integrates f, itself an integral in R,
         at every point (14 sweep cells took 1,400 s)."""
-        return patch.weighted_mixture_albedo(self.weight, self.p_diffuse, theta_deg, rtol, atol)
+        return patch.weighted_mixture_albedo(self.weight, self.p_diffuse, theta_deg, rtol, atol, single_graded=True)
 
     def _eval(self, L, V, nl, nv):
         m = np.minimum(projected_distance(L, V), 2.0)
