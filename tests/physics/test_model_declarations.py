@@ -252,3 +252,19 @@ def test_the_base_class_refuses_a_parameter_outside_its_declared_range_or_choice
         with pytest.raises(ValueError, match="kind must be one of"):
             cls(kind="c")
     assert WithOwnInit(n=3).n == 3.0 and isinstance(WithOwnInit(n=3).n, float)
+
+
+def _class_body_names_assigned_twice(cls) -> list[str]:
+    import ast
+    import inspect
+    import textwrap
+    body = ast.parse(textwrap.dedent(inspect.getsource(cls))).body[0].body
+    names = [t.id for node in body if isinstance(node, (ast.Assign, ast.AnnAssign))
+             for t in (node.targets if isinstance(node, ast.Assign) else [node.target]) if isinstance(t, ast.Name)]
+    return sorted({n for n in names if names.count(n) > 1})
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_a_model_class_declares_each_fact_once(name):
+    """A second ``param_ranges`` (or any attribute) in one class body silently overrides the first."""
+    assert _class_body_names_assigned_twice(MODELS[name]) == []

@@ -96,7 +96,6 @@ class PatchBasic(_OnTheBasePlane, BRDF):
     name = "patch_basic"
     # --- what the model says about itself
     chapter = 4                  # eqs. 4.2, 4.7
-    param_ranges = {"R": Interval(0.0, 2.0, lo_open=True), "C": positive()}
     test_ranges = {"R": log_range(1e-2, 2.0), "C": log_range(1e-3, 1e3)}     # R = 0.2 and below: Figure 4.3
     param_ranges = {"R": Interval(RADIUS_MIN, 2.0), "C": positive()}
     examples = {"typical": {"R": 0.5}, "narrowest": {"R": 0.2}}     # R = 0.2: Figure 4.3
