@@ -12,7 +12,9 @@ commit)::
 
     PYTHONPATH=src .venv/bin/python tests/numerics/front_door_cells.py
 
-(the cells of this file were recorded with ``PYTHONPATH`` the source of cc756aa).
+(the cells of this file were recorded with ``PYTHONPATH`` the source of cc756aa, and recorded again
+after issue 41 (e)'s Beckmann series, :func:`brdfs.physics.distributions.kummer_half_integers`: its
+asymptotic bound and one Beckmann cell of a mixed call by an ulp, every other cell unchanged to the bit).
 """
 from __future__ import annotations
 
