@@ -128,3 +128,29 @@ def test_polar_route_counts_a_narrow_beckmann_lobes_tail_beyond_four_widths():
     Gauss missed it and Kronrod saw half: 3.80e-8 off at 3.72e-8 reported at rtol 1e-4 (1.02×)."""
     est = polar.albedo_many([model("cook_torrance", m=0.005, G="smith")], [90 - 1e-5], rtol=1e-4)
     assert abs(float(est.value[0]) - 0.265712391268189) <= float(est.error[0])
+
+
+@pytest.mark.parametrize("name, params", [("ggx", {"alpha": 0.3}), ("ggx", {"alpha": 0.01, "G2": "separable"}),
+                                          ("beckmann", {"alpha": 1.0}), ("cook_torrance", {"m": 0.3, "G": "smith"})])
+def test_the_polar_route_of_one_element_is_the_batch_integrand_on_its_breakpoints_to_the_bit(name, params):
+    """A single angle's short way (one (1, 1) θ_L broadcast over the nodes, its breakpoints as Python
+    floats) against the batch's pieces for that element: θ_L gathered per node, the breakpoints' row of
+    a two-model batch, the same driver."""
+    from brdfs.core.gauss_kronrod import FILL_CHEAP, NodeValues, integrate
+
+    brdf, other = model(name, **params), model("ggx", alpha=0.05)
+    factors = brdf.half_vector_factors()
+    for theta in (0.0, 1e-9, 30.0, 80.0, 89.9, 90.0 - 1e-7, 90.0):
+        theta_l = np.radians([theta])
+
+        def gathered(theta_v, elem):
+            value, rounding = polar.radial_integrand(*factors, theta_l[elem, None], theta_v)
+            return NodeValues(value, value, rounding)
+
+        row = polar.breakpoints([brdf, other], np.radians([theta, 60.0]))[0]
+        for rtol in (1e-10, 1e-6):
+            long = integrate(gathered, row[None, np.isfinite(row)], rtol=rtol, atol=1e-14, fill=FILL_CHEAP)
+            short = polar.albedo_many([brdf], [theta], rtol=rtol, atol=1e-14)
+            for field in ("value", "error", "status"):
+                np.testing.assert_array_equal(getattr(short, field), getattr(long, field), err_msg=(theta, rtol, field))
+            assert short.evaluations == long.evaluations

@@ -360,9 +360,10 @@ class GGX(_SmithVisibleNormals):
         """
         a2 = self.alpha ** 2
         k = 1.0 - a2
-        near, far = a2 + q, a2 + q + 2.0 * b
+        near = a2 + q
+        far = near + 2.0 * b                     # a2 + q + 2b, c: the same sums as written out
         r = np.sqrt(near * far)
-        c = a2 + q + b
+        c = near + b
         terms = (1.0, 2.0 * k / r, k * k * c / r ** 3)
         value = a2 * (terms[0] + terms[1] + terms[2])
         rounding = 16 * _EPS * a2 * (1.0 + np.abs(terms[1]) + terms[2])

@@ -39,6 +39,8 @@ the tests check it against both and against nested ``scipy.integrate.quad``.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, integrate
@@ -147,7 +149,7 @@ def breakpoints(models, theta_l, groups=None):
         distribution, _ = brdf.half_vector_factors()
         t = theta_l[idx]
         mu = np.cos(t)
-        cand = [t[:, None] + _LOBE_OFFSETS * (2.0 * np.arctan(distribution.alpha))]
+        cand = [t[:, None] + _lobe_offsets(distribution.alpha)]
         levels = brdf.nv_levels(mu)
         if levels:
             cand.append(_level_angles(levels, t.size))
@@ -162,12 +164,12 @@ def breakpoints(models, theta_l, groups=None):
 def _breakpoints_of_one(brdf, distribution, theta_l):
     """:func:`breakpoints` of one element (``theta_l`` of size 1), as one row: the same candidates by
     the same arithmetic, kept and ordered as Python floats."""
-    t = theta_l[0]
-    cand = (t + _LOBE_OFFSETS * (2.0 * np.arctan(distribution.alpha))).tolist()
+    cand = (theta_l[0] + _lobe_offsets(distribution.alpha)).tolist()
     mu = np.cos(theta_l)
     levels = brdf.nv_levels(mu)
     if levels:
-        cand += _level_angles(levels, 1)[0].tolist()
+        cand += (_constant_level_angles(tuple(levels)) if all(isinstance(c, float) for c in levels)
+                 else _level_angles(levels, 1)[0]).tolist()
     cand += [float(level[0]) for level in _grazing_levels(mu, distribution.alpha)]
     return np.array([sorted({0.0, _HALF_PI, *(c for c in cand if 0.0 < c < _HALF_PI)})])
 
@@ -175,11 +177,28 @@ def _breakpoints_of_one(brdf, distribution, theta_l):
 _HALF_PI = 0.5 * np.pi
 
 
+@functools.lru_cache(maxsize=256)
+def _lobe_offsets(alpha):
+    """The lobe's breakpoints about the mirror angle, :data:`_LOBE_OFFSETS` times its width 2 arctan α
+    (read only: kept for the next call of the same α)."""
+    offsets = _LOBE_OFFSETS * (2.0 * np.arctan(alpha))
+    offsets.flags.writeable = False
+    return offsets
+
+
+@functools.lru_cache(maxsize=256)
+def _constant_level_angles(levels):
+    """The polar angles of constant levels μ_V = c (a tuple of floats), one row (read only)."""
+    angles = np.arccos(np.clip(np.array(levels), 0.0, 1.0))
+    angles.flags.writeable = False
+    return angles
+
+
 def _level_angles(levels, size):
     """The polar angles of the levels μ_V = c (numbers, or arrays over the ``size`` elements), one
     column per level."""
     if all(isinstance(c, float) for c in levels):      # constants (GGX, Beckmann: multiples of α)
-        return np.broadcast_to(np.arccos(np.clip(np.array(levels), 0.0, 1.0)), (size, len(levels)))
+        return np.broadcast_to(_constant_level_angles(tuple(levels)), (size, len(levels)))
     return np.stack([np.broadcast_to(np.arccos(np.clip(c, 0.0, 1.0)), (size,)) for c in levels], 1)
 
 
