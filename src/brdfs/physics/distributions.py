@@ -96,6 +96,9 @@ class _SmithVisibleNormals:
         return np.where(wh > 0, pdf, 0.0)
 
 
+_TWO_SQRT_PI = 2.0 * np.sqrt(np.pi)
+
+
 def _beckmann_visible_slope_log_cdf(x, cos_t, sin_t):
     """log ∫_{−∞}^x (cos θ − s sin θ) e^{−s²}/√π ds (unnormalised), the marginal of the visible slopes
     of the α = 1 Beckmann surface seen from θ in the x–z plane; scaled to avoid underflow."""
@@ -245,8 +248,9 @@ class Beckmann(_SmithVisibleNormals):
         c = np.minimum(np.maximum(cos_theta, 0.0), 1.0)      # np.clip's values, without its wrapper's cost
         s = np.sqrt((1.0 - c) * (1.0 + c))
         with np.errstate(divide="ignore", invalid="ignore"):
-            a = c / (self.alpha * s)
-            lam = self.alpha * s * np.exp(-a * a) / (2.0 * np.sqrt(np.pi)) - 0.5 * c * erfc(a)
+            alpha_s = self.alpha * s
+            a = c / alpha_s
+            lam = alpha_s * np.exp(-a * a) / _TWO_SQRT_PI - 0.5 * c * erfc(a)
         return np.where(s > 0, lam, 0.0)
 
     def smith_g1_thesis(self, cos_theta):
@@ -504,24 +508,25 @@ def kummer_half_integers(x):
     """
     x = np.asarray(x, float)
     flat = x.ravel()
-    value, bound = np.empty((3, flat.size)), np.empty((3, flat.size))
     small = flat < _KUMMER_SWITCH
-    if small.all():
-        _series(flat, value, bound)
-    elif small.any():
-        part_value, part_bound = np.empty((3, int(small.sum()))), np.empty((3, int(small.sum())))
-        _series(flat[small], part_value, part_bound)
-        value[:, small], bound[:, small] = part_value, part_bound
-    if not small.all():
+    if flat.size == 0:
+        out = np.empty((6, 0))
+    elif small.all():
+        out = _series(flat)
+    elif not small.any():
+        out = _asymptotic(flat)
+    else:
+        out = np.empty((6, flat.size))
+        out[:, small] = _series(flat[small])
         large = ~small
-        part_value, part_bound = np.empty((3, int(large.sum()))), np.empty((3, int(large.sum())))
-        _asymptotic(flat[large], part_value, part_bound)
-        value[:, large], bound[:, large] = part_value, part_bound
-    return value.reshape((3,) + x.shape), bound.reshape((3,) + x.shape)
+        out[:, large] = _asymptotic(flat[large])
+    return out[:3].reshape((3,) + x.shape), out[3:].reshape((3,) + x.shape)
 
 
-def _series(xs, value, bound):
-    """:func:`kummer_half_integers` for x < 40 (1-D), into ``value`` and ``bound`` (3, xs.size)."""
+def _series(xs):
+    """:func:`kummer_half_integers` for x < 40 (1-D): rows F₀, F₁, F₂ and their bounds, (6, xs.size)."""
+    out = np.empty((6, xs.size))
+    value, bound = out[:3], out[3:]
     value[0] = i0e(0.5 * xs)
     bound[0] = 8 * _EPS * value[0]
     top = xs.max()
@@ -531,10 +536,13 @@ def _series(xs, value, bound):
         block = xs[s:s + _KUMMER_BLOCK]
         value[1:, s:s + _KUMMER_BLOCK] = np.exp(-block) * (coefficients @ _powers(block, terms))
     bound[1:] = (2 * terms + 4) * _EPS * value[1:]
+    return out
 
 
-def _asymptotic(xl, value, bound):
-    """:func:`kummer_half_integers` for x ≥ 40 (1-D), into ``value`` and ``bound`` (3, xl.size)."""
+def _asymptotic(xl):
+    """:func:`kummer_half_integers` for x ≥ 40 (1-D): rows F₀, F₁, F₂ and their bounds, (6, xl.size)."""
+    out = np.empty((6, xl.size))
+    value, bound = out[:3], out[3:]
     n = _KUMMER_ASYMPTOTIC_TERMS
     with np.errstate(divide="ignore"):
         y = 1.0 / xl
@@ -547,6 +555,7 @@ def _asymptotic(xl, value, bound):
         value[:, s:s + _KUMMER_BLOCK] = high
         rounding = n + 8 + 2 * _ASYMPTOTIC_POWER * np.abs(log_x)
         bound[:, s:s + _KUMMER_BLOCK] = high * (rounding * _EPS + omitted / total)
+    return out
 
 
 def kummer_half_integer(k, x):
