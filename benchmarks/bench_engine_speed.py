@@ -27,7 +27,8 @@ route is a closed form; the patch mixtures' own routes integrate, and have the r
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
 (BRDF or kernel values) of single calls at 1e-10 at 12 angles from 0° to 89.9° — median and maximum
-(target: median ≤ 5,000) — and the median time.  With ``--accuracy-grid`` it times instead the full
+(target: median ≤ 5,000) — and the median time.  ``--polar`` (also part of the default run) splits a single call of the polar-route models (GGX,
+Beckmann) into its parts (:func:`polar_parts`).  With ``--accuracy-grid`` it times instead the full
 3,726-cell accuracy grid (engine and disk certifier apart, CPU seconds; minutes).  Evaluation counts are exact; times are ratios on a
 shared machine, never absolute targets.  Writes results/benchmarks/engine_speed.csv.
 """
@@ -257,6 +258,75 @@ def smith_evaluations():
     return pd.DataFrame(rows)
 
 
+#: The models of the polar route timed part by part (issue 41 (e)): their ``typical`` examples.
+POLAR = ("ggx", "beckmann")
+
+
+def polar_parts(rounds=ROUNDS):
+    """Where a single call of a polar-route model goes (issue 41 (e)): CPU µs per call (mean over the
+    12 angles of ``SINGLE_THETA``, best of ``rounds``, rtol 1e-10) of the whole call (``call_us``), of
+    the route (``route_us``: ``polar.albedo_many`` of the one element), its breakpoints
+    (``breakpoints_us``), the driver's integration (``integrate_us``) and, in it, the radial integrand
+    at the nodes (``integrand_us``); the front door's share is call − route, the driver's own
+    integrate − integrand.  ``curve_point_us`` is a point of the 100-angle curve (the same arithmetic
+    on arrays of ~17,000 nodes instead of ~170), ``nodes`` the mean nodes of a single call.  The
+    integrand's and the driver's numpy calls on ~170-element arrays cost their dispatch (~0.5 µs each)
+    whatever the arithmetic: ``fixed_over_curve`` = (call − integrand) / curve point is the ratio a
+    single call would keep with an integrand of no cost."""
+    from brdfs.numerics import albedo as front_door
+    from brdfs.numerics.integrate import polar
+    from brdfs.physics.models import MODELS
+
+    spent = {k: [0.0] for k in ("route", "breakpoints", "integrate", "integrand")}
+
+    def timed(fn, into):
+        def run(*args, **kwargs):
+            start = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                into[0] += time.process_time() - start
+        return run
+
+    patched = [(front_door.ENGINE_ROUTES, "polar", "route"), (polar, "_breakpoints_of_one", "breakpoints"),
+               (polar, "integrate", "integrate"), (polar, "radial_integrand", "integrand")]
+    get = lambda owner, attr: owner[attr] if isinstance(owner, dict) else getattr(owner, attr)    # noqa: E731
+
+    def put(owner, attr, fn):
+        if isinstance(owner, dict):
+            owner[attr] = fn
+        else:
+            setattr(owner, attr, fn)
+
+    originals = [get(owner, name) for owner, name, _ in patched]
+    rows = []
+    try:
+        for name in POLAR:
+            brdf = MODELS[name].example("typical")
+            albedo(brdf, 30.0)
+            curve = min(_seconds(lambda: albedo(brdf, CURVE_THETA, rtol=TIGHT)) for _ in range(rounds))
+            nodes = np.mean([albedo(brdf, float(t), rtol=TIGHT).evaluations for t in SINGLE_THETA])
+            for (owner, attr, key), fn in zip(patched, originals):
+                put(owner, attr, timed(fn, spent[key]))
+            best = None
+            for _ in range(rounds):
+                for v in spent.values():
+                    v[0] = 0.0
+                call = _seconds(lambda: [albedo(brdf, float(t), rtol=TIGHT) for t in SINGLE_THETA])
+                parts = {"call": call, **{k: v[0] for k, v in spent.items()}}
+                best = parts if best is None or call < best["call"] else best
+            for (owner, attr, _), fn in zip(patched, originals):
+                put(owner, attr, fn)
+            per = {f"{k}_us": 1e6 * v / SINGLE_THETA.size for k, v in best.items()}
+            rows.append({"model": name, **per, "curve_point_us": 1e6 * curve / CURVE_THETA.size, "nodes": nodes,
+                         "single_over_curve": per["call_us"] / (1e6 * curve / CURVE_THETA.size),
+                         "fixed_over_curve": (per["call_us"] - per["integrand_us"]) / (1e6 * curve / CURVE_THETA.size)})
+    finally:
+        for (owner, attr, _), fn in zip(patched, originals):
+            put(owner, attr, fn)
+    return pd.DataFrame(rows)
+
+
 def accuracy_grid_seconds():
     """CPU seconds of the full accuracy grid (``accuracy_map: {grid: full}``, 3,726 cells): the
     engine (with the pumped families' tables) and the disk certifier, measured apart."""
@@ -287,6 +357,9 @@ def main():
     if "--accuracy-grid" in sys.argv:
         print(accuracy_grid_seconds().to_string(index=False, float_format=lambda x: f"{x:.1f}"), flush=True)
         return
+    if "--polar" in sys.argv:
+        print(polar_parts().to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
+        return
     only = next((a.split("=", 1)[1].split(",") for a in sys.argv if a.startswith("--only=")), None)
     models = model_ratios(only=only)
     print(models.to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
@@ -299,6 +372,7 @@ def main():
     print(curves.to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
     smith = smith_evaluations()
     print(smith.to_string(index=False, float_format=lambda x: f"{x:.4g}"), flush=True)
+    print(polar_parts().to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
     out = REPO_ROOT / "results" / "benchmarks" / "engine_speed.csv"
     out.parent.mkdir(parents=True, exist_ok=True)
     pd.concat([curves.assign(kind="curve"), smith.assign(kind="smith")]).to_csv(out, index=False, float_format="%.4g")

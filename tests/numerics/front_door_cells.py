@@ -12,7 +12,11 @@ commit)::
 
     PYTHONPATH=src .venv/bin/python tests/numerics/front_door_cells.py
 
-(the cells of this file were recorded with ``PYTHONPATH`` the source of cc756aa).
+(the cells of this file were recorded with ``PYTHONPATH`` the source of cc756aa, and recorded again
+after issue 41 (e)'s Beckmann series, :func:`brdfs.physics.distributions.kummer_half_integers`: its
+asymptotic bound and one Beckmann cell of a mixed call by an ulp, and after issue 41 (f)'s graded first
+partition of a patch mixture's single angle: the 8 single-angle cells of patch_mixture, patch_exponential
+and generalized_lambertian, within the two errors; every other cell unchanged to the bit).
 """
 from __future__ import annotations
 

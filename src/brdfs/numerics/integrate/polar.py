@@ -39,6 +39,8 @@ the tests check it against both and against nested ``scipy.integrate.quad``.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, integrate
@@ -68,6 +70,8 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     theta_deg = np.asarray(theta_deg, float).ravel()
     if len(models) != theta_deg.size:
         raise ValueError("albedo_many needs one model per angle")
+    if len(models) == 1:
+        return _albedo_one(models[0], theta_deg, rtol, atol)
     bad = [m for m in models if not supports(m)]
     if bad:
         raise ValueError(f"the polar route needs a model that declares half_vector_factors, got {bad[0].name!r}")
@@ -91,6 +95,24 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
             return NodeValues(value, value, rounding)
 
     return integrate(integrand, breakpoints(models, theta_l, groups), rtol=rtol, atol=atol, fill=FILL_CHEAP)
+
+
+def _albedo_one(brdf, theta_deg, rtol, atol) -> Estimate:
+    """:func:`albedo_many` of one element (a single angle): the same breakpoints, integrand and driver,
+    without the batch's grouping (:func:`_breakpoints_of_one`; θ_L as one (1, 1) array, broadcast over
+    the nodes, where the batch gathers it per node)."""
+    factors = brdf.half_vector_factors()
+    if factors is None:
+        raise ValueError(f"the polar route needs a model that declares half_vector_factors, got {brdf.name!r}")
+    theta_l = np.radians(theta_deg)
+    column = theta_l.reshape(1, 1)
+
+    def integrand(theta_v, elem):
+        value, rounding = radial_integrand(*factors, column, theta_v)
+        return NodeValues(value, value, rounding)
+
+    return integrate(integrand, _breakpoints_of_one(brdf, factors[0], theta_l), rtol=rtol, atol=atol,
+                     fill=FILL_CHEAP)
 
 
 def radial_integrand(distribution, S, theta_l, theta_v):
@@ -118,6 +140,8 @@ def breakpoints(models, theta_l, groups=None):
     (:data:`LOBE_WIDTHS`), the polar angles of the model's ``nv_levels`` (the Smith term's scale) and,
     near grazing incidence, of μ_V = μ_L · 8^k below α (:func:`_grazing_levels`).  ``groups``: the
     element indices of each model object (:func:`.grouping.indices_by_model`), if known."""
+    if len(models) == 1:
+        return _breakpoints_of_one(models[0], models[0].half_vector_factors()[0], theta_l)
     parts = []                                   # (element indices, candidates) of each model
     for members in groups or indices_by_model(models):
         idx = np.array(members)
@@ -125,7 +149,7 @@ def breakpoints(models, theta_l, groups=None):
         distribution, _ = brdf.half_vector_factors()
         t = theta_l[idx]
         mu = np.cos(t)
-        cand = [t[:, None] + _LOBE_OFFSETS * (2.0 * np.arctan(distribution.alpha))]
+        cand = [t[:, None] + _lobe_offsets(distribution.alpha)]
         levels = brdf.nv_levels(mu)
         if levels:
             cand.append(_level_angles(levels, t.size))
@@ -137,20 +161,50 @@ def breakpoints(models, theta_l, groups=None):
     return _ascending_distinct(parts, len(models))
 
 
+def _breakpoints_of_one(brdf, distribution, theta_l):
+    """:func:`breakpoints` of one element (``theta_l`` of size 1), as one row: the same candidates by
+    the same arithmetic, kept and ordered as Python floats."""
+    cand = (theta_l[0] + _lobe_offsets(distribution.alpha)).tolist()
+    mu = np.cos(theta_l)
+    levels = brdf.nv_levels(mu)
+    if levels:
+        cand += (_constant_level_angles(tuple(levels)) if all(isinstance(c, float) for c in levels)
+                 else _level_angles(levels, 1)[0]).tolist()
+    cand += [float(level[0]) for level in _grazing_levels(mu, distribution.alpha)]
+    return np.array([sorted({0.0, _HALF_PI, *(c for c in cand if 0.0 < c < _HALF_PI)})])
+
+
+_HALF_PI = 0.5 * np.pi
+
+
+@functools.lru_cache(maxsize=256)
+def _lobe_offsets(alpha):
+    """The lobe's breakpoints about the mirror angle, :data:`_LOBE_OFFSETS` times its width 2 arctan α
+    (read only: kept for the next call of the same α)."""
+    offsets = _LOBE_OFFSETS * (2.0 * np.arctan(alpha))
+    offsets.flags.writeable = False
+    return offsets
+
+
+@functools.lru_cache(maxsize=256)
+def _constant_level_angles(levels):
+    """The polar angles of constant levels μ_V = c (a tuple of floats), one row (read only)."""
+    angles = np.arccos(np.clip(np.array(levels), 0.0, 1.0))
+    angles.flags.writeable = False
+    return angles
+
+
 def _level_angles(levels, size):
     """The polar angles of the levels μ_V = c (numbers, or arrays over the ``size`` elements), one
     column per level."""
     if all(isinstance(c, float) for c in levels):      # constants (GGX, Beckmann: multiples of α)
-        return np.broadcast_to(np.arccos(np.clip(np.array(levels), 0.0, 1.0)), (size, len(levels)))
+        return np.broadcast_to(_constant_level_angles(tuple(levels)), (size, len(levels)))
     return np.stack([np.broadcast_to(np.arccos(np.clip(c, 0.0, 1.0)), (size,)) for c in levels], 1)
 
 
 def _ascending_distinct(parts, size):
     """Rows of breakpoints, each with 0 and π/2, ascending, without repeats, NaN-padded to the
     longest (``parts``: (element indices, candidate rows))."""
-    if size == 1:                                # one row: no padding
-        (_, cand), = parts
-        return np.array([sorted({0.0, 0.5 * np.pi, *cand[0].tolist()})])
     width = 2 + max(cand.shape[1] for _, cand in parts)
     out = np.full((size, width), np.nan)
     for idx, cand in parts:
@@ -168,6 +222,8 @@ def _grazing_levels(mu_l, alpha):
     """Polar angles of μ_V = μ_L · r^k, k ≥ 1, r = :data:`GRAZING_GRADING`, while below α (0 where
     not: dropped by :func:`breakpoints`), one array per k: S's layer of width μ_L at the horizon
     (module docstring).  None at μ_L = 0 (θ_L = 90°: no layer) or μ_L ≥ α/r."""
+    if mu_l.size == 1 and not (mu_l[0] > 0 and GRAZING_GRADING * mu_l[0] < alpha):    # one element, no layer
+        return []
     positive = mu_l[mu_l > 0]
     if positive.size == 0 or GRAZING_GRADING * positive.min() >= alpha:    # every level at or above α
         return []

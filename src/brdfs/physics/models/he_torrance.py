@@ -50,7 +50,7 @@ from functools import cached_property
 import numpy as np
 from scipy.special import erfc, gammaln
 
-from brdfs.physics.distributions import kummer_half_integer
+from brdfs.physics.distributions import kummer_half_integers
 from brdfs.physics.fresnel import unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.core.estimate import Estimate
@@ -265,7 +265,7 @@ def azimuthal_directional_diffuse(mu_l, s_l, mu_v, s_v, sigma0, tau, lam):
     def bracket(m, rows):
         pr, br, pp = (x[rows, None] for x in flat)
         x = np.multiply.outer(2.0 * kappa * br[:, 0], 1.0 / m)
-        f0, f1, f2 = (kummer_half_integer(k, x)[0] for k in range(3))
+        f0, f1, f2 = kummer_half_integers(x)[0]
         return (pr * pr * f0 + 2.0 * pr * br * f1 + 1.5 * br * br * f2) / pp
 
     series, tail = kirchhoff_series(g, h0, factor=bracket)

@@ -166,7 +166,7 @@ class _SmithMicrofacet(BRDF):
             object.__setattr__(self, "_energy_average", cosine_weighted_average(self.energy))
 
     # --- shape ---------------------------------------------------------------------------------
-    @property
+    @cached_property                 # a frozen model's distribution: built once (the polar route asks per call)
     def distribution(self):
         return self.distribution_type(self.alpha)
 
