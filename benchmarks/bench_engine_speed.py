@@ -27,8 +27,9 @@ route is a closed form; the patch mixtures' own routes integrate, and have the r
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
 (BRDF or kernel values) of single calls at 1e-10 at 12 angles from 0° to 89.9° — median and maximum
-(target: median ≤ 5,000) — and the median time.  ``--polar`` (also part of the default run) splits a single call of the polar-route models (GGX,
-Beckmann) into its parts (:func:`polar_parts`).  With ``--accuracy-grid`` it times instead the full
+(target: median ≤ 5,000) — and the median time.  ``--polar`` (also part of the default run; printed,
+not written to the CSV) splits a single call of the polar-route models (GGX, Beckmann) into its parts
+(:func:`polar_parts`).  With ``--accuracy-grid`` it times instead the full
 3,726-cell accuracy grid (engine and disk certifier apart, CPU seconds; minutes).  Evaluation counts are exact; times are ratios on a
 shared machine, never absolute targets.  Writes results/benchmarks/engine_speed.csv.
 """

@@ -11,7 +11,7 @@ from scipy.integrate import quad
 
 from brdfs import albedo
 from brdfs.numerics.integrate import polar
-from brdfs.physics.distributions import GGX, Beckmann, kummer_half_integer
+from brdfs.physics.distributions import GGX, Beckmann, kummer_half_integers
 from brdfs.physics.models import model
 from brdfs.physics.models.microfacet import CookTorranceFresnel
 
@@ -57,13 +57,16 @@ def test_kummer_functions_match_mpmath_within_their_bound():
     rng = np.random.default_rng(24)
     x = np.concatenate([[0.0], np.geomspace(1e-6, 1e5, 40), [39.999, 40.0, 40.001], rng.uniform(0.0, 80.0, 40),
                         np.geomspace(1e5, 1e200, 12)])
+    values, bounds = kummer_half_integers(x)
     with mpmath.workdps(30):
-        for k in range(3):
-            value, bound = kummer_half_integer(k, x)
+        for k, (value, bound) in enumerate(zip(values, bounds)):
             truth = np.array([float(mpmath.hyp1f1(k + 0.5, k + 1, -mpmath.mpf(v))) for v in x])
             assert np.all(np.abs(value - truth) <= bound), k
             assert np.all(bound[x <= 1e5] <= 300 * np.finfo(float).eps * truth[x <= 1e5])
-            assert np.all(bound <= 2000 * np.finfo(float).eps * truth)
+            assert np.all(bound <= 2000 * np.finfo(float).eps * truth + np.finfo(float).smallest_subnormal)   # F underflows
+    value, bound = kummer_half_integers(np.array([np.inf, 1e308]))
+    assert np.array_equal(value[:, 0], np.zeros(3)) and np.array_equal(bound[:, 0], np.zeros(3))   # F(−∞) = 0
+    assert np.all(np.isfinite(bound)) and np.all(value[:, 1] <= bound[:, 1] + value[:, 1])
 
 
 @pytest.mark.parametrize("name, params", [("ggx", {"alpha": 0.3}), ("beckmann", {"alpha": 0.3}),
@@ -154,3 +157,15 @@ def test_the_polar_route_of_one_element_is_the_batch_integrand_on_its_breakpoint
             for field in ("value", "error", "status"):
                 np.testing.assert_array_equal(getattr(short, field), getattr(long, field), err_msg=(theta, rtol, field))
             assert short.evaluations == long.evaluations
+
+
+@pytest.mark.parametrize("name", ["ggx", "beckmann"])
+def test_alpha_as_a_0d_array_or_a_numpy_float_is_alpha_by_its_value_whatever_came_before(name):
+    """The polar route keeps a lobe's breakpoints per α: keyed by α's value as a Python float, so a 0-d
+    array α (unhashable) answers as its float, and a float32 α before does not change a float α after."""
+    plain = float(np.float32(0.3))
+    first = albedo(model(name, alpha=plain), [30.0, 60.0]).value
+    assert np.array_equal(albedo(model(name, alpha=np.array(plain)), [30.0, 60.0]).value, first)
+    assert albedo(model(name, alpha=np.array(plain)), 30.0).value == first[0]
+    albedo(model(name, alpha=np.float32(0.3)), [30.0, 60.0])
+    assert np.array_equal(albedo(model(name, alpha=plain), [30.0, 60.0]).value, first)

@@ -77,7 +77,7 @@ def pump(base, correction: str = "g1", target_rtol: float = 1e-9, engine_rtol: f
 
 
 #: The starting degree of each graded piece of :func:`pump_edges` (doubled where the check misses):
-#: a piece spans a factor 2 to 4 of the lobe's scale, where degree 16 overshoots the target by 20-40x.
+#: a piece spans a factor 2 in x on the lobe's scale, where degree 16 overshoots the target by 20-40x.
 #: Against albedo() at rtol 1e-12 on 400 angles (Phong n = 512, 5000, 6210; Blinn n = 400, 730.5;
 #: targets 1e-6 and 1e-9) the tables' true error stays at 0.02-0.10 of the error they report, as at
 #: degree 16 (0.01-0.15), and they build in 0.5-0.6 of the time (Phong n = 512 at 1e-6: 0.69 -> 0.35 s).
@@ -86,7 +86,7 @@ _PIECE_DEGREE = 8
 
 def pump_edges(base) -> tuple[float, ...]:
     """The pieces in x = cos θ of ``base``'s albedo table: [0, 1] whole, or for a lobe narrower than
-    1/16 (its half-weight angle β½, from :attr:`lobe`) pieces at x = β½/4, β½, 4β½, 16β½, where a(x)
+    1/16 (its half-weight angle β½, from :attr:`lobe`) pieces at x = β½/4, β½/2, β½, 2β½, … 16β½, where a(x)
     turns toward grazing on the scale of the lobe (one piece of degree 256 missed 1e-9 for Blinn
     n = 373.8 and 730.5, and Phong n = 6210 ran past 120 s; in pieces they take 0.6–1.4 s).  The
     thesis's exponents (n ≤ 150) keep the single piece and their tables."""

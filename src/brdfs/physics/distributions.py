@@ -437,6 +437,8 @@ class GGX(_SmithVisibleNormals):
 # --- the azimuthal integral of the Beckmann distribution ---------------------------------------
 
 _EPS = np.finfo(float).eps
+#: Where F underflows to 0 at a finite x, its true value is below the smallest subnormal.
+_TINY = float(np.finfo(float).smallest_subnormal)
 #: x below which :func:`kummer_half_integers` sums the convergent series, above it the asymptotic one.
 _KUMMER_SWITCH = 40.0
 _KUMMER_SERIES_TERMS = 120
@@ -554,11 +556,8 @@ def _asymptotic(xl):
         high = np.exp(_ASYMPTOTIC_LOG_SCALE - _ASYMPTOTIC_POWER * log_x) * total
         value[:, s:s + _KUMMER_BLOCK] = high
         rounding = n + 8 + 2 * _ASYMPTOTIC_POWER * np.abs(log_x)
-        bound[:, s:s + _KUMMER_BLOCK] = high * (rounding * _EPS + omitted / total)
+        with np.errstate(invalid="ignore"):          # x = ∞: F = 0 exactly, 0 · ∞ in the bound
+            relative = high * (rounding * _EPS + omitted / total)
+        bound[:, s:s + _KUMMER_BLOCK] = np.where(high > 0, relative, np.where(np.isinf(log_x), 0.0, _TINY))
     return out
 
-
-def kummer_half_integer(k, x):
-    """(F, bound) of ₁F₁(k + ½; k + 1; −x), k = 0, 1 or 2: row k of :func:`kummer_half_integers`."""
-    value, bound = kummer_half_integers(x)
-    return value[k], bound[k]

@@ -91,6 +91,15 @@ def albedo_azimuthal(model, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                     est.evaluations, est.status.reshape(theta_deg.shape))
 
 
+def _check_incidence(theta_deg, single):
+    """Refuse angles outside [0, 90] degrees (NaN included); one angle is checked as a Python float,
+    since the array comparisons cost a single call more than its answer."""
+    inside = (0.0 <= float(theta_deg[0]) <= 90.0) if single else np.all((theta_deg >= 0) & (theta_deg <= 90))
+    if not inside:
+        outside = ~((theta_deg >= 0) & (theta_deg <= 90))
+        raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
+
+
 def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     """Albedo of ``models[i]`` at ``theta_deg[i]`` (as :func:`.hemisphere.albedo_many`), in one
     adaptive run; ``evaluations`` counts the kernel's radial nodes."""
@@ -103,10 +112,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
         raise ValueError(f"albedo_azimuthal needs a model that declares closed_form_azimuth, "
                          f"got {bad[0].name!r}")
     single = theta_deg.size == 1
-    # one angle checked as a Python float: the array's comparisons cost a single call more than its answer
-    if not (0.0 <= float(theta_deg[0]) <= 90.0) if single else not np.all((theta_deg >= 0) & (theta_deg <= 90)):
-        outside = ~((theta_deg >= 0) & (theta_deg <= 90))
-        raise ValueError(f"theta_deg must lie in [0, 90] degrees, got {theta_deg[outside][:5]!r}")
+    _check_incidence(theta_deg, single)
     mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
         tight = _tight(rtol)

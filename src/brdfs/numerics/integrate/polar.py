@@ -177,10 +177,15 @@ def _breakpoints_of_one(brdf, distribution, theta_l):
 _HALF_PI = 0.5 * np.pi
 
 
-@functools.lru_cache(maxsize=256)
 def _lobe_offsets(alpha):
     """The lobe's breakpoints about the mirror angle, :data:`_LOBE_OFFSETS` times its width 2 arctan α
-    (read only: kept for the next call of the same α)."""
+    (read only: kept for the next call of the same α, keyed by α as a Python float, so that a 0-d array
+    or a float32 α is cached by its value and computed in double precision)."""
+    return _lobe_offsets_of(float(alpha))
+
+
+@functools.lru_cache(maxsize=256)
+def _lobe_offsets_of(alpha: float):
     offsets = _LOBE_OFFSETS * (2.0 * np.arctan(alpha))
     offsets.flags.writeable = False
     return offsets
@@ -221,7 +226,7 @@ def _ascending_distinct(parts, size):
 def _grazing_levels(mu_l, alpha):
     """Polar angles of μ_V = μ_L · r^k, k ≥ 1, r = :data:`GRAZING_GRADING`, while below α (0 where
     not: dropped by :func:`breakpoints`), one array per k: S's layer of width μ_L at the horizon
-    (module docstring).  None at μ_L = 0 (θ_L = 90°: no layer) or μ_L ≥ α/r."""
+    (module docstring).  None (an empty list) at μ_L = 0 (θ_L = 90°: no layer) or μ_L ≥ α/r."""
     if mu_l.size == 1 and not (mu_l[0] > 0 and GRAZING_GRADING * mu_l[0] < alpha):    # one element, no layer
         return []
     positive = mu_l[mu_l > 0]
