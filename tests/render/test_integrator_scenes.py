@@ -331,3 +331,19 @@ def test_the_pilots_relative_variance_is_smoothed_and_dark_pixels_count_against_
     dark = np.ones((8, 20, 20))
     dark[:, :5, :5] = 1e-6 * np.where(np.arange(8) % 2, 2.0, 0.0)[:, None, None]    # 1e-6 +- 1e-6
     assert rf.pilot_relative_variance(dark)[0, 0] == pytest.approx(8 / 7 * 1e-12 / 0.01 ** 2, rel=1e-6)
+
+
+def test_a_count_the_sampler_does_not_take_is_rendered_as_counts_it_takes_and_stays_unbiased(mi):
+    """Multijitter takes 6 samples per pass, not 7 (``sampler_takes``): a map of 7 renders as 6 + 1 in two
+    launches, weighted 6/7 and 1/7, and agrees with ``mi.render`` at 32 spp pixel by pixel within its noise."""
+    from brdfs.artifacts import _render_figures as rf
+
+    scene = _lit_ball(mi, sampler="multijitter")
+    assert rf.launches(1, 1, 7, "multijitter") == [6, 1]
+    passes = 8
+    mapped = np.zeros((passes, 16, 24, 3))
+    rf._render_counts(mi, scene, np.full((16, 24), 7), passes, 1, 0, None, mapped, None)
+    reference = np.stack([np.asarray(mi.render(scene, spp=32, seed=rf.pass_seed(2, p)))[..., :3] for p in range(passes)])
+    se = np.sqrt(mapped.var(axis=0, ddof=1) / passes + reference.var(axis=0, ddof=1) / passes) + 1e-12
+    z = (mapped.mean(axis=0) - reference.mean(axis=0)) / se
+    assert abs(z.mean()) < 4.0 / np.sqrt(z.size) * 1.5 and np.mean(np.abs(z) > 3.5) < 0.02
