@@ -80,6 +80,11 @@ def reference_config(cfg: dict, name: str, factor: int) -> dict:
     preset["crop_spp"] = {key: int(spp) * factor for key, spp in (preset.get("crop_spp") or {}).items()}
     preset["passes"] = preset["passes"] * factor
     preset["spp"] = preset["spp"] * factor
+    # an adaptive figure: the same samples per pixel and pass (its pilot's and its map's), factor x the passes
+    preset["adaptive"] = {key: float(t) / np.sqrt(factor) for key, t in (preset.get("adaptive") or {}).items()}
+    for key in ("adaptive_pilot", "adaptive_max"):
+        if key in preset:
+            preset[key] = int(preset[key]) * factor
     out["seed"] = int(cfg["seed"]) + 7919
     return out
 

@@ -264,3 +264,23 @@ def test_a_figures_clamp_reaches_its_integrator_and_its_taken_light_maps_to_the_
     columns = rf._clamp_columns(taken, kept, np.ones((2, 2), bool))
     assert columns["clamp_bias"] == -0.2 and columns["clamp_bias_err"] == 0.0
     assert rf._clamp_columns(None, kept, np.ones((2, 2), bool)) == {"clamp_bias": 0.0, "clamp_bias_err": 0.0}
+
+
+def test_an_adaptive_render_is_the_uniform_one_in_expectation_spends_its_samples_unevenly_and_repeats_to_the_bit(tiny_cfg):
+    """``renders.<preset>.adaptive``: a pixel's samples from an independent pilot. Each object's mean
+    luminance agrees with a uniform render's at more samples within their errors (|z| < 4), the map is
+    uneven (the sky gets the fewest), ``object_spp`` is the fewest of an object's pixels, and a second
+    run gives the same bytes (the pilot is seeded from the config too)."""
+    cfg = copy.deepcopy(tiny_cfg)
+    name = "fig_3_12_plastics"                 # the cheapest figure: one rgb panel
+    preset = cfg["renders"][cfg["renders"]["preset"]]
+    uniform = registry.get_artifact(name).compute({**cfg, "renders": {**cfg["renders"], "preview": {**preset, "spp": 32}}}, {})
+    preset.update(adaptive={name: 0.05}, adaptive_pilot=8, adaptive_max=16)
+    first = registry.get_artifact(name).compute(cfg, {})
+    second = registry.get_artifact(name).compute(cfg, {})
+    pd.testing.assert_frame_equal(first, second)
+    assert np.array_equal(first.attrs[rf.RADIANCE][0], second.attrs[rf.RADIANCE][0])
+    z = (first["luminance"] - uniform["luminance"]) / np.hypot(first["luminance_err"], uniform["luminance_err"])
+    assert (z.abs() < 4.0).all(), z
+    assert first["object_spp"].min() >= 8 and first["object_spp"].max() <= 16 and first["spp"].iloc[0] < 16
+    assert first["object_spp"].nunique() > 1

@@ -238,35 +238,54 @@ def test_each_object_but_the_floor_gets_a_crop_window_with_its_margin_and_overla
     assert rf.crop_windows(np.ones((4, 4)), {1: "floor"}) == []
 
 
-def test_full_frame_passes_with_a_crop_pass_are_the_full_frame_render_in_expectation_and_quieter_in_the_window(mi):
-    """Eight passes of 4 spp over the film plus 12 spp in a crop window (Mitsuba's crop film) against
-    eight passes of 32 spp over the film: in the window, each pixel's pass mean agrees with the
-    reference within its noise (z over every window pixel), and the pass-to-pass standard deviation
-    falls as sqrt(4 / 16); outside, the passes are the 4-spp render's."""
-    from brdfs.artifacts import _render_figures as rf
+def _lit_ball(mi, width=24, height=16, sampler="independent"):
     from brdfs.render.mitsuba import scenes
 
     objects = (scenes.SceneObject("floor", scenes.floor(4.0), {"type": "brdfs_lambert"}),
                scenes.SceneObject("ball", scenes.sphere((0.0, 0.0, 1.0), 1.0), {"type": "brdfs_phong_cosmin", "n": 20.0}))
-    scene = scenes.load(scenes.Scene(objects, (scenes.Light((-3.0, -4.0, 6.0), 40.0),), sky=0.5),
-                        scenes.Camera((0.0, -7.0, 2.5), (0.0, 0.0, 0.8), 24, 16, 34.0), {"type": "brdfs_path"})
-    camera = scenes.Camera((0.0, -7.0, 2.5), (0.0, 0.0, 0.8), 24, 16, 34.0)
-    windows, passes = [(7, 3, 10, 9)], 8
-    full = np.stack([np.asarray(mi.render(scene, spp=4, seed=rf.pass_seed(1, p)))[..., :3] for p in range(passes)])
-    combined = full.copy()
-    rf._render_crop(mi, scene, camera, "independent", windows, 1, 4, 12, None, combined, None)
+    return scenes.load(scenes.Scene(objects, (scenes.Light((-3.0, -4.0, 6.0), 40.0),), sky=0.5),
+                       scenes.Camera((0.0, -7.0, 2.5), (0.0, 0.0, 0.8), width, height, 34.0), {"type": "brdfs_path"}, sampler)
+
+
+def test_one_pass_of_a_uniform_sample_map_is_mitsubas_own_render_to_the_bit(mi):
+    """The sample-map launches (every pass of every pixel of one count in one wavefront) give a pixel
+    the samples ``mi.render`` gives it: the same positions, rays, random sequences and box filter."""
+    from brdfs.artifacts import _render_figures as rf
+
+    scene = _lit_ball(mi, sampler="multijitter")
+    for count in (1, 6):
+        reference = np.asarray(mi.render(scene, spp=count, seed=rf.pass_seed(3, 0)))
+        out = np.zeros((1, 16, 24, 3))
+        ids, cos_v, _ = rf._render_counts(mi, scene, np.full((16, 24), count), 1, 3, 0, None, out, None)
+        assert np.array_equal(out[0], reference[..., :3]) and np.array_equal(ids, reference[..., 3])
+        assert np.array_equal(cos_v, reference[..., 4])
+
+
+def test_a_sample_map_is_the_uniform_render_in_expectation_and_a_pixels_noise_falls_as_one_over_root_its_samples(mi):
+    """16 passes of a map of 2 samples per pass (8 on the ball's left half, 4 on its right half) against
+    16 passes of 32 spp by ``mi.render``: each pixel's mean agrees with the reference within its noise
+    (z over every pixel), and the pass-to-pass standard deviation against the all-2 map's falls as
+    sqrt(2 / n) (independent sampler; per-pixel median within 20 %)."""
+    from brdfs.artifacts import _render_figures as rf
+
+    scene = _lit_ball(mi)
+    passes = 16
+    counts = np.full((16, 24), 2)
+    counts[3:12, 7:12] = 8
+    counts[3:12, 12:17] = 4
+    low = np.zeros((passes, 16, 24, 3))
+    rf._render_counts(mi, scene, np.full((16, 24), 2), passes, 1, 0, None, low, None)
+    mapped = np.zeros_like(low)
+    rf._render_counts(mi, scene, counts, passes, 1, 0, None, mapped, None)
     reference = np.stack([np.asarray(mi.render(scene, spp=32, seed=rf.pass_seed(2, p)))[..., :3] for p in range(passes)])
-    x, y, w, h = windows[0]
-    inside = (slice(None), slice(y, y + h), slice(x, x + w))
-    a, r = combined[inside], reference[inside]
-    se = np.sqrt(a.var(axis=0, ddof=1) / passes + r.var(axis=0, ddof=1) / passes) + 1e-12
-    z = (a.mean(axis=0) - r.mean(axis=0)) / se
+    se = np.sqrt(mapped.var(axis=0, ddof=1) / passes + reference.var(axis=0, ddof=1) / passes) + 1e-12
+    z = (mapped.mean(axis=0) - reference.mean(axis=0)) / se
     assert abs(z.mean()) < 4.0 / np.sqrt(z.size) * 1.5 and np.mean(np.abs(z) > 3.5) < 0.02
-    ratio = np.median(a.std(axis=0) / (full[inside].std(axis=0) + 1e-12))
-    assert 0.35 < ratio < 0.7, ratio                       # sqrt(4 / 16) = 0.5
-    outside = np.ones(full.shape[1:3], bool)
-    outside[y:y + h, x:x + w] = False
-    assert np.array_equal(combined[:, outside], full[:, outside])
+    noisy = low.std(axis=0) > 0
+    for n in (8, 4):
+        sel = (counts == n)[..., None] & noisy
+        ratio = np.median(mapped.std(axis=0)[sel] / low.std(axis=0)[sel])
+        assert abs(ratio - np.sqrt(2 / n)) < 0.2 * np.sqrt(2 / n), (n, ratio)
 
 
 def test_a_figures_crop_spp_reaches_its_panels_and_must_be_a_multiple_of_passes():
@@ -282,3 +301,49 @@ def test_a_figures_crop_spp_reaches_its_panels_and_must_be_a_multiple_of_passes(
     cfg["renders"]["preview"]["crop_spp"]["fig_3_9_metals_new_model"] = 20
     with pytest.raises(ValueError, match="crop_spp.fig_3_9_metals_new_model = 20"):
         rf.settings(cfg)
+
+
+def test_the_adaptive_ladder_holds_counts_the_sampler_takes_and_a_pixel_gets_the_first_that_reaches_its_target():
+    from brdfs.artifacts import _render_figures as rf
+
+    ladder = rf.count_ladder("multijitter", 1, 120, 1.3)
+    assert ladder[0] == 1 and ladder[-1] == 120
+    assert all(rf.sampler_takes("multijitter", int(n)) for n in ladder)
+    assert np.all(ladder[1:-1] >= 1.3 * ladder[:-2])                     # each step at least the ratio
+    # relative variance v of one pass of 2 samples, 8 passes, target t: needs v * 2 / (8 t^2) samples per pass
+    variance = np.array([[0.0, 8 * 0.05 ** 2 / 2 * 3.5, 1e9]])
+    assert rf.pixel_counts(variance, 2, 8, 0.05, ladder).tolist() == [[1, 4, 120]]
+    assert rf.pixel_counts(variance * 4, 2, 8, 0.1, ladder).tolist() == [[1, 4, 120]]   # v / t^2 is what counts
+
+
+def test_the_pilots_relative_variance_is_smoothed_and_dark_pixels_count_against_the_panels_brightness():
+    """A single noisy pixel spreads over the 5 x 5 box (the map must not follow the pilot's noise); a pixel
+    darker than 1 % of the 99th percentile is measured against that level, not its own mean."""
+    from brdfs.artifacts import _render_figures as rf
+
+    rng = np.random.default_rng(1)
+    passes = np.ones((8, 20, 20)) + 0.01 * rng.standard_normal((8, 20, 20))
+    passes[:, 10, 10] = np.where(np.arange(8) % 2, 1.5, 0.5)             # relative variance 0.286
+    out = rf.pilot_relative_variance(passes)
+    window = passes[:, 8:13, 8:13]
+    assert np.isclose(out[10, 10], (window.var(axis=0, ddof=1) / window.mean(axis=0) ** 2).mean(), rtol=1e-9)
+    assert out[10, 10] == pytest.approx(0.286 / 25, rel=0.02) and out[0, 0] < 2e-4
+    dark = np.ones((8, 20, 20))
+    dark[:, :5, :5] = 1e-6 * np.where(np.arange(8) % 2, 2.0, 0.0)[:, None, None]    # 1e-6 +- 1e-6
+    assert rf.pilot_relative_variance(dark)[0, 0] == pytest.approx(8 / 7 * 1e-12 / 0.01 ** 2, rel=1e-6)
+
+
+def test_a_count_the_sampler_does_not_take_is_rendered_as_counts_it_takes_and_stays_unbiased(mi):
+    """Multijitter takes 6 samples per pass, not 7 (``sampler_takes``): a map of 7 renders as 6 + 1 in two
+    launches, weighted 6/7 and 1/7, and agrees with ``mi.render`` at 32 spp pixel by pixel within its noise."""
+    from brdfs.artifacts import _render_figures as rf
+
+    scene = _lit_ball(mi, sampler="multijitter")
+    assert rf.launches(1, 1, 7, "multijitter") == [6, 1]
+    passes = 8
+    mapped = np.zeros((passes, 16, 24, 3))
+    rf._render_counts(mi, scene, np.full((16, 24), 7), passes, 1, 0, None, mapped, None)
+    reference = np.stack([np.asarray(mi.render(scene, spp=32, seed=rf.pass_seed(2, p)))[..., :3] for p in range(passes)])
+    se = np.sqrt(mapped.var(axis=0, ddof=1) / passes + reference.var(axis=0, ddof=1) / passes) + 1e-12
+    z = (mapped.mean(axis=0) - reference.mean(axis=0)) / se
+    assert abs(z.mean()) < 4.0 / np.sqrt(z.size) * 1.5 and np.mean(np.abs(z) > 3.5) < 0.02

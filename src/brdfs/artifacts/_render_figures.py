@@ -11,12 +11,16 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   passes they are split into (≥ 8; the noise figures of :mod:`brdfs.render.mitsuba.metrics` are
   taken over them). A panel is at least ``min_width``
   columns and ``min_height`` rows, at its aspect ratio; its PNG shows it at native resolution.
-* **Launches**: every pass is its own ``mi.render`` launch with its own seed (:func:`pass_seed`),
-  so that Mitsuba's stratified sampler ``renders.sampler`` (multijitter) stratifies each pass
-  alone and the passes stay independent (measured on Fig. 3.9 at 64 spp: multijitter p95 0.070,
-  independent 0.078 at equal time; ldsampler takes only powers of 4). Dr.Jit traces the
-  integrator per launch (0.14 CPU-s) and compiles its kernel once. A launch holds at most
-  :data:`MAX_LANES` samples and a count the sampler takes exactly (:func:`launches`).
+* **Launches** (:func:`render_panel`): a panel's samples are a map of samples per pixel and pass, the
+  same in every pass; the pixels of one count are one wavefront of all passes (:func:`_launch_counts`),
+  a pixel's pass one sequence of Mitsuba's stratified sampler ``renders.sampler`` (multijitter: it
+  stratifies each pass of each pixel alone, and the passes stay independent; measured on Fig. 3.9 at
+  64 spp: multijitter p95 0.070, independent 0.078 at equal time; ldsampler takes only powers of 4),
+  with ``mi.render``'s rays and box filter (one pass and one count give ``mi.render``'s image to the bit).
+  Dr.Jit traces the integrator per launch and compiles its kernel once per count. A launch holds at
+  most :data:`MAX_LANES` samples and a count the sampler takes exactly (:func:`launches`). The map is
+  uniform, or larger in crop windows around the objects (``crop_spp``), or chosen per pixel from an
+  independent pilot (``adaptive``, :func:`adaptive_counts`).
 * **Caustics** (``renders.caustics``): off, the paths diffuse → metal → light are not traced
   (:mod:`brdfs.render.mitsuba.integrator`); a figure listed in ``renders.clamp`` has its indirect
   light clamped (Figs. 3.10, 3.11: their sparkles), the bias reported per object.
@@ -30,7 +34,7 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   error over the passes, the scene's parameters, and the panel's noise figures ``p95_relative_se``,
   ``fireflies``, ``object_pixels``, the object's own ``object_p95_relative_se``,
   ``object_fireflies``, ``object_sparkles``, ``object_noise_pixels`` (:func:`~brdfs.render.mitsuba.metrics.object_noise`),
-  with ``spp``, ``passes``, ``preset``, ``variant``,
+  with ``spp`` (an adaptive panel's mean over the film), ``object_spp``, ``passes``, ``preset``, ``variant``,
   ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1) and
   ``clamp`` with each object's ``clamp_bias`` and ``clamp_bias_err`` (``renders.clamp.<figure>``:
   the integrator's clamp of indirect light; the bias is the light it took, measured in the same passes). The
@@ -103,6 +107,15 @@ def settings(cfg: dict) -> dict:
         if not isinstance(spp, int) or spp < 0 or spp % setup["passes"]:
             raise ValueError(f"renders.{preset}.crop_spp.{name} = {spp!r}: must be a whole multiple of passes = "
                              f"{setup['passes']}, >= 0")
+    setup["figure_adaptive"] = setup.pop("adaptive", None) or {}
+    for name, target in setup["figure_adaptive"].items():
+        if not isinstance(target, (int, float)) or not 0.0 < target < 1.0:
+            raise ValueError(f"renders.{preset}.adaptive.{name} = {target!r}: must be a relative standard error in (0, 1)")
+    if setup["figure_adaptive"]:
+        for key in ("adaptive_pilot", "adaptive_max"):
+            value = setup.get(key)
+            if not isinstance(value, int) or value < setup["passes"] or value % setup["passes"]:
+                raise ValueError(f"renders.{preset}.{key} = {value!r}: must be a whole multiple of passes = {setup['passes']}")
     return setup
 
 
@@ -110,6 +123,7 @@ def figure_setup(setup: dict, name: str) -> dict:
     """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp`` (an
     integer, or a list with one entry per panel, :func:`panel_setups`)."""
     return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"]), "crop_spp": int(setup["figure_crop_spp"].get(name, 0)),
+            "adaptive": float(setup["figure_adaptive"].get(name, 0.0)),
             "clamp": float(setup["figure_clamp"].get(name, 0.0))}
 
 
@@ -214,6 +228,14 @@ class RenderedPanel:
     lost: np.ndarray | None = None       # (P, H, W, C): the light the clamp took, per pass (clamp > 0)
     crop_spp: int = 0                    # more samples per pixel in the crop window (render_panel)
     windows: tuple = ()                  # the crop windows (x, y, width, height), one per object but the floor
+    samples: np.ndarray | None = None    # (H, W) samples per pixel of all passes where they differ (adaptive)
+    target: float = 0.0                  # the adaptive sampling's per-pixel relative SE target (0: uniform)
+
+    def sample_map(self) -> np.ndarray:
+        """(H, W) samples per pixel over all passes: the adaptive map, or spp plus crop_spp in the windows."""
+        if self.samples is not None:
+            return self.samples
+        return window_samples(self.ids.shape, self.windows, self.spp, self.crop_spp)
 
     @property
     def radiance(self):
@@ -258,18 +280,24 @@ def launches(width: int, height: int, spp: int, sampler: str = "independent") ->
 def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, count: bool = False) -> RenderedPanel:
     """Render ``panel``: ``passes`` independently seeded passes of ``spp / passes`` samples per pixel.
 
-    Each pass is its own ``mi.render`` launch (or a few, :func:`launches`) with its own seed
-    (:func:`pass_seed`), so that a stratified sampler (``renders.sampler``) stratifies each pass
-    alone and the passes stay independent; Dr.Jit traces the integrator anew per launch but
-    compiles its kernel once (the kernel cache). A spectral panel's eight wavelengths ride along one
-    path as three colour groups (:data:`~brdfs.render.mitsuba.spectral.WAVELENGTH_PASSES`): the
-    image carries the first, the integrator's ``c<g>_*`` AOVs the others.
+    A panel's samples are a map of samples per pixel and pass (:func:`_panel_counts`), the same in every
+    pass, rendered by :func:`_render_counts`: all passes of all pixels with the same count in one
+    wavefront (:func:`_launch_counts`), where a pixel's pass is one sequence of Mitsuba's stratified
+    sampler ``renders.sampler`` (multijitter stratifies each pass of each pixel alone) and the passes stay
+    independent. Dr.Jit traces the integrator per launch and compiles its kernel once per count (the
+    kernel cache). A spectral panel's eight wavelengths ride along one path as three colour groups
+    (:data:`~brdfs.render.mitsuba.spectral.WAVELENGTH_PASSES`): the image carries the first, the
+    integrator's ``c<g>_*`` AOVs the others.
 
-    ``setup["crop_spp"]`` > 0 spends samples where the noise is: each pass also renders a crop
-    window around each object but the floor (:func:`crop_windows`, Mitsuba's film crop) at
-    ``crop_spp / passes`` more samples per pixel (seeds :data:`CROP_LAUNCH` on), and a pixel gets the
-    spp-weighted mean of the parts that cover it, pass by pass (:func:`combine_crop`): the passes
-    stay independent and alike, so the 8-pass noise estimate holds pixel by pixel.
+    Spending samples where the noise is (the map; either, not both):
+
+    * ``setup["crop_spp"]`` > 0: the pixels of a crop window around each object but the floor
+      (:func:`crop_windows` of the objects seen by the pixels' centres, :func:`center_ids`) get
+      ``crop_spp / passes`` more samples in each pass, one stratified set with the film's;
+    * ``setup["adaptive"]`` > 0, a relative standard error: each pixel's count from an independent pilot
+      (:func:`adaptive_counts`).
+
+    The 8-pass noise estimate holds pixel by pixel: every pass of a pixel has the same samples.
     """
     mi = _mitsuba(setup["variant"])
     cam = panel.camera
@@ -278,41 +306,64 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     passes = setup["passes"]
     spp = max((setup["spp"] if panel.spp is None else panel.spp) // passes, 1)
     crop_spp = int(setup.get("crop_spp", 0)) // passes if panel.spp is None else 0
+    target = float(setup.get("adaptive", 0.0)) if panel.spp is None else 0.0
+    if target > 0 and crop_spp:
+        raise ValueError(f"renders: panel {panel.title!r}: adaptive sampling and crop_spp exclude each other")
     out = np.zeros((passes, height, width, SPECTRAL if groups else 3))
-    # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a pixel's
-    # ID is an object's only where all its samples hit that object
-    ids, ids_sq, cos_v = np.zeros((height, width)), np.zeros((height, width)), np.zeros((height, width))
-    labels, first, windows = None, True, []
     clamp = float(setup.get("clamp", 0.0))
     integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1, clamp)
     lost = np.zeros_like(out) if clamp > 0 else None
-    # point lights: one scene per light (an emitter sample then picks no light at random)
+    # point lights: one scene per light (an emitter sample then picks no light at random), the same samples
     light_sets = [[light] for light in panel.lights] if panel.point_lights else [panel.lights]
+    counts = windows = None
     with one_thread():   # the same bytes in every run (one_thread)
         for lights in light_sets:
             part = Panel(**{**panel.__dict__, "lights": lights})
             scene = msc.load(_scene(part, cfg, groups), camera, integrator, setup["sampler"])
-            for p in range(passes):
-                for chunk, image in _pass_launches(mi, scene, width, height, spp, setup["sampler"], cfg["seed"], p):
-                    _add_launch(out[p], None if lost is None else lost[p], chunk / spp, image, groups)
-                    if first:
-                        ids += chunk / (spp * passes) * image[..., 3]
-                        cos_v += chunk / (spp * passes) * image[..., 4]
-                        ids_sq += chunk / (spp * passes) * image[..., -1]
-            if first:
-                labels, first = msc.object_labels(scene), False
-                ids = pure_ids(ids, ids_sq, spp * passes)
-                windows = crop_windows(ids, labels) if crop_spp else []
-            if windows:
-                _render_crop(mi, scene, camera, setup["sampler"], windows, cfg["seed"], spp, crop_spp, groups, out, lost)
+            if counts is None:
+                counts, windows = _panel_counts(mi, scene, setup, cfg["seed"], groups, spp, crop_spp, target)
+                # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a
+                # pixel's ID is an object's only where all its samples hit that object
+                ids, cos_v, ids_sq = _render_counts(mi, scene, counts, passes, cfg["seed"], 0, groups, out, lost)
+                labels = msc.object_labels(scene)
+            else:
+                _render_counts(mi, scene, counts, passes, cfg["seed"], 0, groups, out, lost)
+    samples = counts * passes
     costs = _plugin_costs(scene) if count else {}
     rays = int(np.asarray(scene.integrator().rays)[0]) if count else None
-    return RenderedPanel(out, ids, labels, spp * passes, costs, rays, cos_v, lost,
-                         crop_spp * passes if windows else 0, tuple(windows))
+    return RenderedPanel(out, pure_ids(ids, ids_sq, samples), labels, int(round(samples.mean())) if target else spp * passes,
+                         costs, rays, cos_v, lost, crop_spp * passes if windows else 0, tuple(windows), samples, target)
 
 
-#: The first launch index of the crop passes' seeds (:func:`pass_seed`): above any full-frame launch.
-CROP_LAUNCH = 4096
+def _panel_counts(mi, scene, setup: dict, seed: int, groups, spp: int, crop_spp: int, target: float):
+    """A panel's (H, W) samples per pixel and pass and its crop windows (:func:`render_panel`)."""
+    width, height = scene.sensors()[0].film().crop_size()
+    if target > 0:
+        return adaptive_counts(mi, scene, setup, seed, groups, target), []
+    counts = np.full((height, width), spp)
+    windows = crop_windows(center_ids(mi, scene), msc.object_labels(scene)) if crop_spp else []
+    for x, y, w, h in windows:
+        counts[y:y + h, x:x + w] += crop_spp
+    return counts, windows
+
+
+def center_ids(mi, scene) -> np.ndarray:
+    """The (H, W) object ID (:func:`~brdfs.render.mitsuba.integrator.scene_bsdfs` index + 1, 0: nothing)
+    that the ray through each pixel's centre meets first (the crop windows' objects, before any sample)."""
+    import drjit as dr
+
+    from brdfs.render.mitsuba.integrator import _object_index
+
+    sensor = scene.sensors()[0]
+    width, height = sensor.film().crop_size()
+    pixel = dr.arange(mi.UInt32, width * height)
+    row = pixel // width
+    position = (mi.Vector2f(mi.Float(pixel - row * width), mi.Float(row)) + 0.5) / mi.ScalarVector2f(width, height)
+    ray, _ = sensor.sample_ray(0.0, 0.0, position, mi.Point2f(0.5))
+    ids = _object_index(scene, scene.ray_intersect(ray))
+    return np.asarray(ids).reshape(height, width)
+
+
 #: Pixels around the crop window's objects (their mixed edge pixels, the floor's contact shadows).
 CROP_MARGIN = 4
 
@@ -374,42 +425,6 @@ def window_samples(shape, windows, spp_full: int, spp_crop: int) -> np.ndarray:
     for x, y, w, h in windows:
         out[y:y + h, x:x + w] += int(spp_crop)
     return out
-
-
-def _render_crop(mi, scene, camera, sampler: str, windows, seed: int, spp: int, crop_spp: int, groups, out, lost) -> None:
-    """Add ``crop_spp`` samples per pixel of each pass in each of ``windows`` to ``out`` (and ``lost``)
-    in place (:func:`combine_crop`); window i's launches are seeded from CROP_LAUNCH + 64 i."""
-    sensors = [mi.load_dict(msc.camera_dict(camera, sampler=sampler, crop=window)) for window in windows]
-    for p in range(out.shape[0]):
-        crops, crops_lost = [], []
-        for i, ((x, y, w, h), sensor) in enumerate(zip(windows, sensors)):
-            crop = np.zeros((h, w) + out.shape[3:])
-            crop_lost = None if lost is None else np.zeros_like(crop)
-            for chunk, image in _pass_launches(mi, scene, w, h, crop_spp, sampler, seed, p, CROP_LAUNCH + 64 * i, sensor):
-                _add_launch(crop, crop_lost, chunk / crop_spp, image, groups)
-            crops.append(crop)
-            crops_lost.append(crop_lost)
-        out[p] = combine_crop(out[p], crops, windows, spp, crop_spp)
-        if lost is not None:
-            lost[p] = combine_crop(lost[p], crops_lost, windows, spp, crop_spp)
-
-
-def _pass_launches(mi, scene, width: int, height: int, spp: int, sampler: str, seed: int, p: int,
-                   first_launch: int = 0, sensor=None):
-    """Pass ``p`` of ``spp`` samples per pixel of a ``width`` × ``height`` film (or of ``sensor``'s crop
-    window) in its launches (:func:`launches`), launch c seeded ``pass_seed(seed, p, first_launch + c)``:
-    (samples of the launch, its image with the AOVs) for each."""
-    extra = {} if sensor is None else {"sensor": sensor}
-    for c, chunk in enumerate(launches(width, height, spp, sampler)):
-        yield chunk, np.asarray(mi.render(scene, spp=chunk, seed=pass_seed(seed, p, first_launch + c), **extra))
-
-
-def _add_launch(radiance: np.ndarray, lost: np.ndarray | None, weight: float, image: np.ndarray, groups) -> None:
-    """``weight`` × a launch's radiance into ``radiance`` and, with a clamp, × the light it took into
-    ``lost`` (in place)."""
-    radiance += weight * panel_channels(image, groups)
-    if lost is not None:
-        lost += weight * clamped_channels(image, groups)
 
 
 @contextlib.contextmanager
@@ -474,6 +489,127 @@ def pass_seed(seed: int, pass_index: int, launch: int = 0) -> int:
     return (int(seed) * 1009 + pass_index * 65537 + launch) % 2 ** 32
 
 
+# --- adaptive sampling: samples per pixel from an independent pilot ------------------------------------
+
+#: The first launch index (:func:`pass_seed`) of an adaptive panel's pilot: apart from the result's launches.
+PILOT_LAUNCH = 1 << 20
+#: Pixels of the box filter that smooths the pilot's relative variances (the map must not follow its noise).
+PILOT_SMOOTHING = 5
+
+
+def count_ladder(sampler: str, low: int, high: int, ratio: float) -> np.ndarray:
+    """Samples per pixel and pass the adaptive map uses: from ``low`` to ``high``, each a count the
+    sampler takes exactly (:func:`sampler_takes`), each step at least ``ratio`` × the last (a level is a
+    launch)."""
+    out = [low]
+    for n in range(low + 1, high + 1):
+        if sampler_takes(sampler, n) and (n >= ratio * out[-1] or n == high):
+            out.append(n)
+    return np.asarray(out)
+
+
+def pixel_counts(relative_variance: np.ndarray, pilot_spp: int, passes: int, target: float, ladder) -> np.ndarray:
+    """(H, W) samples per pixel and pass that bring each pixel's relative standard error over ``passes``
+    passes to ``target``, from its relative variance of one pass of ``pilot_spp`` samples (variance as
+    1/spp), rounded up to the ``ladder`` (its first and last entries bound it)."""
+    ladder = np.asarray(ladder)
+    need = relative_variance * pilot_spp / (passes * target ** 2)
+    return ladder[np.minimum(np.searchsorted(ladder, need), ladder.size - 1)]
+
+
+def pilot_relative_variance(passes: np.ndarray) -> np.ndarray:
+    """Per pixel, the pilot's variance of a pass's luminance over its (P, H, W) ``passes``, relative to the
+    square of its mean, or of :data:`~brdfs.render.mitsuba.metrics.DARK_FRACTION` × the 99th percentile
+    where darker (the noise figures leave those pixels out), box-filtered over :data:`PILOT_SMOOTHING` px."""
+    from scipy import ndimage
+
+    mean = passes.mean(axis=0)
+    floor = metrics.DARK_FRACTION * np.percentile(mean, 99.0)
+    relative = passes.var(axis=0, ddof=1) / np.maximum(mean, floor) ** 2
+    return ndimage.uniform_filter(relative, size=PILOT_SMOOTHING, mode="nearest")
+
+
+def adaptive_counts(mi, scene, setup: dict, seed: int, groups, target: float) -> np.ndarray:
+    """The (H, W) samples per pixel and pass of an adaptive panel: a pilot of ``passes`` passes of
+    ``adaptive_pilot / passes`` samples (seeded apart from every pass of the result, :data:`PILOT_LAUNCH`,
+    so the map is independent of the result and its pass-wise noise estimate stays unbiased),
+    :func:`pilot_relative_variance`, :func:`pixel_counts` on :func:`count_ladder` from 1 to
+    ``adaptive_max / passes``."""
+    passes = setup["passes"]
+    width, height = scene.sensors()[0].film().crop_size()
+    per_pass = setup["adaptive_pilot"] // passes
+    pilot = np.zeros((passes, height, width, SPECTRAL if groups else 3))
+    _render_counts(mi, scene, np.full((height, width), per_pass), passes, seed, PILOT_LAUNCH, groups, pilot, None)
+    y = pilot @ spectrum.luminance_weights(pilot.shape[-1])
+    ladder = count_ladder(setup["sampler"], 1, setup["adaptive_max"] // passes, setup.get("adaptive_ratio", 1.3))
+    return pixel_counts(pilot_relative_variance(y), per_pass, passes, target, ladder)
+
+
+def _render_counts(mi, scene, counts: np.ndarray, passes: int, seed: int, first_launch: int, groups, out, lost):
+    """Add ``counts[i, j]`` samples per pass at pixel (i, j), in each of ``passes`` passes, to ``out``
+    (P, H, W, C: each pass's mean; ``lost``: the clamp's, if any): the pixels of one count in one wavefront
+    (split at :data:`MAX_LANES`, and a count the sampler does not take into ones it takes,
+    :func:`launches`), launch k seeded ``pass_seed(seed, 0, first_launch + k)``. A pass of a pixel is one
+    sequence of the sampler, as Mitsuba's ``mi.render`` gives a pixel its samples (same rays, the film's
+    box filter: with one pass and one count, ``mi.render``'s image). Returns the (H, W) means of the AOVs
+    ``id``, ``cos_v`` and ``id_sq`` over all samples."""
+    height, width = counts.shape
+    flat = counts.ravel()
+    sampler = scene.sensors()[0].sampler().class_name().lower()
+    aovs = np.zeros((height * width, 3))
+    launch = first_launch
+    for count in np.unique(flat[flat > 0]):
+        pixels = np.flatnonzero(flat == count)
+        step = max(MAX_LANES // (int(count) * passes), 1)
+        for start in range(0, pixels.size, step):
+            chunk = pixels[start:start + step]
+            rows, cols = np.divmod(chunk, width)
+            for part in launches(1, 1, int(count), _SAMPLERS.get(sampler, "independent")):
+                image = _launch_counts(mi, scene, chunk, part, passes, pass_seed(seed, 0, launch), width, height)
+                launch += 1
+                weight = part / count
+                for p in range(passes):
+                    out[p, rows, cols] += weight * panel_channels(image[:, p], groups)
+                    if lost is not None:
+                        lost[p, rows, cols] += weight * clamped_channels(image[:, p], groups)
+                aovs[chunk] += weight * image[:, :, [3, 4, -1]].mean(axis=1)
+    return tuple(a.reshape(height, width) for a in aovs.T)
+
+
+#: Mitsuba's sampler classes by their names in ``renders.sampler``.
+_SAMPLERS = {"multijittersampler": "multijitter", "stratifiedsampler": "stratified", "ldsampler": "ldsampler",
+             "independentsampler": "independent"}
+
+
+def _launch_counts(mi, scene, pixels: np.ndarray, count: int, passes: int, seed: int, width: int, height: int) -> np.ndarray:
+    """One wavefront of ``count`` samples in each of ``passes`` passes at the flat ``pixels``: lanes ordered
+    (pixel, pass, sample), sequences of ``count`` lanes (Mitsuba's ``render_sample``: position, ray, the
+    integrator's ``sample``), each sample added into its (pixel, pass) in the same kernel (one thread:
+    in lane order); returns (pixels, passes, channels) means, channels r, g, b then the AOVs."""
+    import drjit as dr
+
+    sensor = scene.sensors()[0]
+    lanes = pixels.size * passes * count
+    sampler = sensor.sampler().clone()
+    sampler.set_sample_count(count)
+    if sampler.sample_count() != count:
+        raise ValueError(f"renders: {sampler.class_name()} takes {sampler.sample_count()} samples, not {count}")
+    sampler.set_samples_per_wavefront(count)
+    sampler.seed(seed, lanes)
+    sequence = dr.arange(mi.UInt32, lanes) // count
+    pixel = dr.gather(mi.UInt32, mi.UInt32(pixels.astype(np.uint32)), sequence // passes)
+    row = pixel // width
+    position = mi.Vector2f(mi.Float(pixel - row * width), mi.Float(row)) + sampler.next_2d()
+    ray, weight = sensor.sample_ray_differential(0.0, 0.0, position / mi.ScalarVector2f(width, height), mi.Point2f(0.5))
+    radiance, _, aovs = scene.integrator().sample(scene, sampler, ray, None, True)
+    channels = [radiance[c] * weight[c] for c in range(3)] + list(aovs)
+    sums = [dr.zeros(mi.Float, pixels.size * passes) for _ in channels]
+    for total, channel in zip(sums, channels):
+        dr.scatter_reduce(dr.ReduceOp.Add, total, channel, sequence)
+    dr.eval(sums)
+    return np.stack([np.asarray(v) for v in sums], axis=-1).reshape(pixels.size, passes, len(channels)) / count
+
+
 def _plugin_costs(scene) -> dict:
     """{label: (samples, tries, evaluations)} of the plugins that count (``count = True``)."""
     out = {}
@@ -534,7 +670,7 @@ def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict, lost: np.nd
     (P, H, W) luminance the clamp took, :func:`_clamp_columns`); ``object_spp``: the fewest samples per
     pixel of its pixels (``spp``, plus ``crop_spp`` inside the crop windows)."""
     rows = []
-    samples = window_samples(rendered.ids.shape, rendered.windows, rendered.spp, rendered.crop_spp)
+    samples = rendered.sample_map()
     for k, label in sorted(rendered.labels.items()):
         sel = rendered.ids == k
         if label == "light" or not sel.any():
