@@ -92,6 +92,30 @@ def test_a_stale_result_is_reported_as_stale_not_compared(built):
     assert result.problems == [] and sorted(result.stale) == [RENDER, TABLE] and result.compared == 0
 
 
+def _touch(path: Path, when: float) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.touch()
+    os.utime(path, (when, when))
+
+
+def test_a_whole_make_all_after_a_config_change_vouches_for_the_results_it_did_not_rewrite(built):
+    """A comment of config.yaml changed, then a whole ``make all`` that rebuilt nothing (Snakemake judged
+    by the values): the CSVs are compared, not stale; a config change after that build makes them stale."""
+    now = time.time()
+    _touch(built / "config.yaml", now + 100)
+    _touch(built / io.BUILD_COMPLETE, now + 200)
+    result = check(built)
+    assert result.stale == [] and result.compared == 2 and result.problems == []
+    _touch(built / "config.yaml", now + 300)
+    assert sorted(check(built).stale) == [RENDER, TABLE]
+
+
+def test_make_all_marks_a_whole_build_where_the_package_looks_for_it():
+    makefile = (REPO_ROOT / "Makefile").read_text()
+    assert f"BUILD_COMPLETE := {io.BUILD_COMPLETE}\n" in makefile
+    assert "$(MARK_COMPLETE))" in makefile.split("\nall:", 1)[1].split("\n\n", 1)[0]
+
+
 def test_a_damaged_result_is_refused_by_the_check_and_by_a_job_with_one_line_and_listed_for_make_all(built):
     path = built / TABLE
     path.write_text(path.read_text()[:-8])                                  # truncated by hand

@@ -45,6 +45,10 @@ DIGESTS = ".digests"
 CHECKED_RESULTS = ("results/tables", "results/figures", "results/checks")
 
 
+#: Touched by a whole ``make all`` that succeeded (the Makefile's BUILD_COMPLETE): every result was up to
+#: date by Snakemake's judgement (content: code, params, inputs) at that time.
+BUILD_COMPLETE = ".snakemake/complete_build"
+
 #: What :func:`damage` says of a result without a recorded digest.
 NO_RECORD = "no record of its writing (an older build, or not written by the workflow)"
 

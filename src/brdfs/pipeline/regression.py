@@ -19,8 +19,8 @@ runs it when ``results/`` exists): its published comparison against that baselin
 numbers against ``tests/data/results_baseline/`` (the CSVs of a build, gzipped; ``--write-results``,
 which ``make baseline`` runs after ``make all``). A number may move by 4 times its row's own error
 (column ``<x>_err``; ``luminance_err`` for a render's luminance), else by 1e-9 relative; columns,
-texts and row counts may not change. A CSV older than the code it comes from is stale, reported as
-such and not compared.
+texts and row counts may not change. A CSV older than the code it comes from (and than the last whole
+``make all``, :data:`brdfs.pipeline.io.BUILD_COMPLETE`) is stale, reported as such and not compared.
 """
 
 from __future__ import annotations
@@ -179,8 +179,10 @@ def _sources(root: Path) -> dict[str, list[str]]:
 
 
 def _is_stale(root: Path, relative: str, sources: dict[str, list[str]]) -> bool:
-    """Older than ``config.yaml`` or than any source file it comes from."""
-    made = (root / relative).stat().st_mtime
+    """Older than ``config.yaml`` or than any source file it comes from, and than the last whole ``make all``
+    that succeeded (:data:`io.BUILD_COMPLETE`: Snakemake reran what a changed value or file needed then)."""
+    complete = root / io.BUILD_COMPLETE
+    made = max((root / relative).stat().st_mtime, complete.stat().st_mtime if complete.is_file() else 0.0)
     code = [root / "config.yaml", *(root / s for s in sources.get(relative, ()))]
     return any(p.exists() and p.stat().st_mtime > made for p in code)
 
