@@ -1,6 +1,8 @@
 """The pre-loaded parent of the artifact jobs (brdfs.pipeline.zygote): the same bytes as a job run in
-its own process, a failing job's status and traceback on the job's side, a job killed while its child
-runs takes the child with it, and no parent means the job runs itself."""
+its own process (a table-like figure, and a render: CSV, PNG and OpenEXR), a parent that holds no Dr.Jit
+or Mitsuba (its forked child starts them itself: ``import drjit`` starts threads, which must not be
+forked), a failing job's status and traceback on the job's side, a job killed while its child runs takes
+the child with it, and no parent means the job runs itself."""
 
 from __future__ import annotations
 
@@ -19,6 +21,8 @@ from brdfs.pipeline import job, registry, zygote
 
 ROOT = Path(__file__).resolve().parents[2]
 NAME = "fig_4_2_base_circle_relations"  # no inputs, ~0.3 s
+#: The cheapest render (direct light from point lights), at a tiny preset (:func:`_job`).
+RENDER = "fig_4_18_generalized_lambert"
 
 
 @pytest.fixture(scope="module")
@@ -38,14 +42,16 @@ def parent(tmp_path_factory):
     proc.wait()
 
 
-def _job(where: Path) -> dict:
-    artifact = registry.get_artifact(NAME)
+def _job(where: Path, name: str = NAME) -> dict:
+    artifact = registry.get_artifact(name)
     config = yaml.safe_load((ROOT / "config.yaml").read_text())
-    return dict(name=NAME, log=str(where / "job.log"), outputs=list(artifact.outputs), tables=[], config=config)
+    config["renders"]["preview"].update(min_width=48, min_height=32, spp=8)
+    return dict(name=name, log=str(where / "job.log"), outputs=list(artifact.outputs), tables=[], config=config)
 
 
 def _outputs(where: Path) -> dict[str, bytes]:
-    return {str(p.relative_to(where)): p.read_bytes() for p in sorted((where / "results").rglob("*")) if p.is_file()}
+    return {str(p.relative_to(where)): p.read_bytes() for p in sorted((where / "results").rglob("*"))
+            if p.is_file() and p.name != "timing.json"}
 
 
 def _client(where: Path, sock: Path, job_: dict) -> subprocess.Popen:
@@ -61,19 +67,36 @@ def _client(where: Path, sock: Path, job_: dict) -> subprocess.Popen:
                             stderr=subprocess.PIPE, text=True)
 
 
-def test_a_job_in_the_parent_writes_the_same_bytes_as_a_job_in_its_own_process(parent, tmp_path, monkeypatch):
+@pytest.mark.parametrize("name, suffixes", [(NAME, {".csv", ".png"}), (RENDER, {".csv", ".png", ".exr"})])
+def test_a_job_in_the_parent_writes_the_same_bytes_as_a_job_in_its_own_process(parent, tmp_path, monkeypatch,
+                                                                               name, suffixes):
+    if name == RENDER:
+        _mitsuba_or_skip()
     alone, forked = tmp_path / "alone", tmp_path / "forked"
     alone.mkdir()
     forked.mkdir()
-    monkeypatch.chdir(alone)
-    job.run(**_job(alone))
-    client = _client(forked, parent[0], _job(forked))
+    client = _client(forked, parent[0], _job(forked, name))
     out, err = client.communicate(timeout=120)
     assert client.returncode == 0, err
     assert out.strip() == "ran in the parent"
+    monkeypatch.chdir(alone)
+    job.run(**_job(alone, name))
     expected = _outputs(alone)
-    assert any(path.endswith(".csv") for path in expected) and any(path.endswith(".png") for path in expected)
+    assert {Path(path).suffix for path in expected} >= suffixes
     assert _outputs(forked) == expected
+
+
+def _mitsuba_or_skip() -> None:
+    from brdfs.render.mitsuba import MissingLLVM, use_variant
+    try:
+        use_variant("llvm_ad_rgb")
+    except MissingLLVM as exc:
+        pytest.skip(str(exc))
+
+
+def test_the_parent_holds_no_drjit_nor_mitsuba(parent):
+    maps = Path(f"/proc/{parent[1].pid}/maps").read_text()
+    assert "drjit" not in maps and "mitsuba" not in maps, "the parent loaded Dr.Jit or Mitsuba"
 
 
 def test_a_failing_job_in_the_parent_fails_its_job_with_the_traceback_on_the_jobs_stderr(parent, tmp_path):
