@@ -53,9 +53,11 @@ def test_one_angles_lens_on_python_floats_gives_the_arrays_bits():
     rng = np.random.default_rng(41)
     theta = np.concatenate([rng.uniform(0.0, 90.0, 150), [0.0, 1e-6, 1e-3, 45.0, 89.9, 90.0 - 1e-9, 90.0]])
     d, mu = np.sin(np.radians(theta)), np.sin(np.radians(90.0 - theta))
+    tangent = mu * mu / (1.0 + d)        # R = 1 − d as the near-unit form computes it (its R == u branch)
     R = np.stack([rng.uniform(1e-6, 2.0, d.size), 10.0 ** rng.uniform(-8.0, 0.3, d.size), 1.0 - d, 1.0 + d,
-                  (1.0 - d) * (1.0 + 1e-9), np.ones_like(d), np.full_like(d, 2.0), np.full_like(d, 1e-7)])
-    R = np.where((R > 0) & (R <= 2.0), R, 0.5)
+                  (1.0 - d) * (1.0 + 1e-9), np.ones_like(d), np.full_like(d, 2.0), np.full_like(d, 1e-7),
+                  tangent, np.nextafter(tangent, 0.0), np.nextafter(tangent, 2.0)])
+    R = np.where((R >= 1e-8) & (R <= 2.0), R, 0.5)              # radii of the declared range (RADIUS_MIN)
     d, mu = np.broadcast_to(d, R.shape).ravel(), np.broadcast_to(mu, R.shape).ravel()
     R = R.ravel()
     for cos_theta in (mu, None):
@@ -212,3 +214,30 @@ def test_elliptical_constant_gives_unit_albedo_at_normal_incidence(b, ratio):
 def test_bad_parameters_are_named(name, params):
     with pytest.raises(ValueError, match=str(list(params.values())[-1])):
         model(name, **params)
+
+
+def test_the_generalized_lambertian_weight_keeps_its_relative_accuracy_next_to_m_equal_2():
+    """ξ(m) and ξ'(m) from 1 − m²/4 = (1 − m/2)(1 + m/2), 1 − m/2 exact (Sterbenz): a few ε relative
+    against 40 digits where 1 − 0.25 m² lost ε/(2 − m) (2e-8 relative at 2 − m = 1e-8)."""
+    import mpmath as mp
+
+    profile = patch.GeneralizedLambertProfile(1.0, float(np.nextafter(2.0, 0.0)))
+    m = 2.0 - np.array([1e-3, 3e-6, 1e-8, 7e-11, 1e-13])
+    with mp.workdps(40):
+        w = [1 - mp.mpf(float(x)) ** 2 / 4 for x in m]
+        xi = np.array([float(v ** -0.5) for v in w])
+        dxi = np.array([float(mp.mpf(float(x)) / 4 * v ** -1.5) for x, v in zip(m, w)])
+    np.testing.assert_allclose(profile.xi(m), xi, rtol=8 * patch._EPS, atol=0)
+    np.testing.assert_allclose(profile.dxi(m), dxi, rtol=8 * patch._EPS, atol=0)
+
+
+def test_the_generalized_lambertians_m_clip_ends_where_its_albedo_is_honest():
+    """m_clip beyond M_CLIP_MAX = 1.99 is refused in one line: there the quadrature nodes' rounding, amplified
+    by p(R)'s steepness at m_clip and the cancellation of ∫p with p_Diffuse, exceeds the reported error
+    (m_clip = 1.999999, d = 1: up to 27× against 40-digit truths)."""
+    from brdfs import model
+    from brdfs.physics.models.patch import M_CLIP_MAX
+
+    assert model("generalized_lambertian", d=1.0, m_clip=M_CLIP_MAX).m_clip == M_CLIP_MAX
+    with pytest.raises(Exception, match=r"m_clip = 1\.999999: must be in"):
+        model("generalized_lambertian", d=1.0, m_clip=1.999999)

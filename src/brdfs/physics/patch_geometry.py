@@ -22,7 +22,7 @@ import numpy as np
 from brdfs.physics.geometry import sin_incidence
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 
-_EPS = np.finfo(float).eps
+_EPS = float(np.finfo(float).eps)     # a Python float: the one-value path stays on Python floats
 #: Relative rounding bound of the closed forms of this module (sums of non-negative terms,
 #: each a few correctly rounded operations away from its inputs).
 CLOSED_FORM_RTOL = 64 * _EPS
@@ -353,8 +353,7 @@ class GeneralizedLambertProfile:
             raise ValueError(f"generalized Lambertian: m_clip must lie in (0, 2), got {self.m_clip!r}")
 
     def _unclipped(self, m):
-        w = 1.0 - 0.25 * np.asarray(m, float) ** 2
-        return w ** (-0.5 * self.d)
+        return _one_minus_quarter_square(m) ** (-0.5 * self.d)
 
     @property
     def xi_max(self) -> float:
@@ -370,7 +369,7 @@ class GeneralizedLambertProfile:
         """ξ'(m) = (d m / 4)(1 − m²/4)^{−d/2 − 1} below m_clip, 0 above."""
         m = np.asarray(m, float)
         mc = np.minimum(m, self.m_clip)
-        slope = 0.25 * self.d * mc * (1.0 - 0.25 * mc * mc) ** (-0.5 * self.d - 1.0)
+        slope = 0.25 * self.d * mc * _one_minus_quarter_square(mc) ** (-0.5 * self.d - 1.0)
         return np.where(m < self.m_clip, slope, 0.0)
 
     def disk_integral(self, rho):
@@ -378,12 +377,19 @@ class GeneralizedLambertProfile:
         rho = np.asarray(rho, float)
         if np.any(rho > self.m_clip):
             raise ValueError(f"disk_integral is closed-form only up to m_clip = {self.m_clip}")
-        w = 1.0 - 0.25 * rho * rho
+        w = _one_minus_quarter_square(rho)
         return 4.0 / (2.0 - self.d) * -np.expm1(0.5 * (2.0 - self.d) * np.log(w))
 
     @property
     def breakpoints(self) -> tuple[float, ...]:
         return (self.m_clip,)
+
+
+def _one_minus_quarter_square(m):
+    """1 − m²/4 as (1 − m/2)(1 + m/2): 1 − m/2 is exact for m in [1, 2] (Sterbenz), so the product carries
+    2 ε relative where 1 − 0.25 m² lost ε/(1 − m/2) to cancellation near m = 2."""
+    half = 0.5 * np.asarray(m, float)
+    return (1.0 - half) * (1.0 + half)
 
 
 def weight(profile, R, C):
@@ -482,6 +488,7 @@ def _single_element_partition(points, d):
     row = sorted({p for p in (0.0, 1.0, 2.0, *points, lo, hi, *(lo * g for g in _LAYERS if lo * g < 1.0))
                   if 0.0 <= p <= 2.0})
     cuts = set(row)
+    inside = [p for p in points if 0.0 < p <= 2.0]       # the points _r_breakpoints keeps (a point past 2: none)
     if lo < hi:
         above = [p for p in row if p > lo]
         below = [p for p in row if p < hi]
@@ -489,7 +496,7 @@ def _single_element_partition(points, d):
             cuts.update(lo + (above[0] - lo) * g for g in LENS_KINK_GRADING)
         if below:
             cuts.update(hi - (hi - below[-1]) * g for g in LENS_KINK_GRADING)
-    for point in points:                 # the weight's own features, graded toward from below
+    for point in inside:                 # the weight's own features, graded toward from below
         before = [p for p in row if p < point]
         if before:
             cuts.update(point - (point - before[-1]) * g for g in WEIGHT_POINT_GRADING)
