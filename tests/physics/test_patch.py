@@ -231,13 +231,27 @@ def test_the_generalized_lambertian_weight_keeps_its_relative_accuracy_next_to_m
     np.testing.assert_allclose(profile.dxi(m), dxi, rtol=8 * patch._EPS, atol=0)
 
 
-def test_the_generalized_lambertians_m_clip_ends_where_its_albedo_is_honest():
-    """m_clip beyond M_CLIP_MAX = 1.99 is refused in one line: there the quadrature nodes' rounding, amplified
-    by p(R)'s steepness at m_clip and the cancellation of ∫p with p_Diffuse, exceeds the reported error
-    (m_clip = 1.999999, d = 1: up to 27× against 40-digit truths)."""
-    from brdfs import model
-    from brdfs.physics.models.patch import M_CLIP_MAX
+#: 40-digit albedos of the generalized Lambertian, d = 1, C = 1, near the end of m_clip's declared range
+#: (``sweep.patch_mp.radial_albedo`` of ``generalized_lambert_phi``; it imports nothing of the package):
+#: m_clip, θ, albedo, its error.  At 30° (m ≤ 1.5) the clip is not reached; near grazing it is.
+CLIP_NEAR_2_TRUTHS = [(1.99999, 30.0, 3.5335736250836796, 9.7e-17), (1.99999, 89.9, 4.566324197604253, 6.1e-17),
+                      (1.99999, 89.95, 4.566348988087285, 6.0e-17), (1.99999, 90.0, 4.566357281052507, 3.8e-16),
+                      (1.999999, 30.0, 3.5335736250836796, 9.7e-17), (1.999999, 89.9, 4.566330504255446, 2.3e-16),
+                      (1.999999, 89.95, 4.566359302325445, 3.5e-16), (1.999999, 90.0, 4.566369281026106, 1.4e-16)]
 
-    assert model("generalized_lambertian", d=1.0, m_clip=M_CLIP_MAX).m_clip == M_CLIP_MAX
-    with pytest.raises(Exception, match=r"m_clip = 1\.999999: must be in"):
-        model("generalized_lambertian", d=1.0, m_clip=1.999999)
+
+@pytest.mark.parametrize("rtol", [1e-6, 1e-8])
+def test_the_generalized_lambertian_is_honest_with_its_clip_next_to_m_equal_2(rtol):
+    """m_clip = 2 − 1e-5, 2 − 1e-6: ξ_max = C π ξ(m_clip) ≈ 1000 C cancelled ∫₁² p, and p(R) ∝ (1 − R²/4)^(−3/2)
+    took the nodes' rounding into it (d = 1, 1e-8: up to 27× the reported error).  The single angle (graded
+    partition) and the batch hold the 40-digit truths within their errors (``patch_geometry.covered_weight``)."""
+    for m_clip in sorted({m for m, _, _, _ in CLIP_NEAR_2_TRUTHS}):
+        rows = [(t, a, e) for m, t, a, e in CLIP_NEAR_2_TRUTHS if m == m_clip]
+        theta = np.array([t for t, _, _ in rows])
+        truth, truth_err = np.array([a for _, a, _ in rows]), np.array([e for _, _, e in rows])
+        profile = patch.GeneralizedLambertProfile(1.0, m_clip)
+        batch = patch.mixture_albedo(profile, theta, 1.0, rtol=rtol)
+        assert np.all(np.abs(batch.value - truth) <= batch.error + truth_err), (m_clip, batch.value - truth, batch.error)
+        for t, a, e in rows:
+            one = patch.mixture_albedo(profile, t, 1.0, rtol=rtol, single_graded=True)
+            assert abs(float(one.value) - a) <= float(one.error) + e, (m_clip, t, float(one.value) - a, float(one.error))
