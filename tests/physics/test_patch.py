@@ -53,9 +53,11 @@ def test_one_angles_lens_on_python_floats_gives_the_arrays_bits():
     rng = np.random.default_rng(41)
     theta = np.concatenate([rng.uniform(0.0, 90.0, 150), [0.0, 1e-6, 1e-3, 45.0, 89.9, 90.0 - 1e-9, 90.0]])
     d, mu = np.sin(np.radians(theta)), np.sin(np.radians(90.0 - theta))
+    tangent = mu * mu / (1.0 + d)        # R = 1 − d as the near-unit form computes it (its R == u branch)
     R = np.stack([rng.uniform(1e-6, 2.0, d.size), 10.0 ** rng.uniform(-8.0, 0.3, d.size), 1.0 - d, 1.0 + d,
-                  (1.0 - d) * (1.0 + 1e-9), np.ones_like(d), np.full_like(d, 2.0), np.full_like(d, 1e-7)])
-    R = np.where((R > 0) & (R <= 2.0), R, 0.5)
+                  (1.0 - d) * (1.0 + 1e-9), np.ones_like(d), np.full_like(d, 2.0), np.full_like(d, 1e-7),
+                  tangent, np.nextafter(tangent, 0.0), np.nextafter(tangent, 2.0)])
+    R = np.where((R >= 1e-8) & (R <= 2.0), R, 0.5)              # radii of the declared range (RADIUS_MIN)
     d, mu = np.broadcast_to(d, R.shape).ravel(), np.broadcast_to(mu, R.shape).ravel()
     R = R.ravel()
     for cos_theta in (mu, None):
@@ -212,3 +214,44 @@ def test_elliptical_constant_gives_unit_albedo_at_normal_incidence(b, ratio):
 def test_bad_parameters_are_named(name, params):
     with pytest.raises(ValueError, match=str(list(params.values())[-1])):
         model(name, **params)
+
+
+def test_the_generalized_lambertian_weight_keeps_its_relative_accuracy_next_to_m_equal_2():
+    """ξ(m) and ξ'(m) from 1 − m²/4 = (1 − m/2)(1 + m/2), 1 − m/2 exact (Sterbenz): a few ε relative
+    against 40 digits where 1 − 0.25 m² lost ε/(2 − m) (2e-8 relative at 2 − m = 1e-8)."""
+    import mpmath as mp
+
+    profile = patch.GeneralizedLambertProfile(1.0, float(np.nextafter(2.0, 0.0)))
+    m = 2.0 - np.array([1e-3, 3e-6, 1e-8, 7e-11, 1e-13])
+    with mp.workdps(40):
+        w = [1 - mp.mpf(float(x)) ** 2 / 4 for x in m]
+        xi = np.array([float(v ** -0.5) for v in w])
+        dxi = np.array([float(mp.mpf(float(x)) / 4 * v ** -1.5) for x, v in zip(m, w)])
+    np.testing.assert_allclose(profile.xi(m), xi, rtol=8 * patch._EPS, atol=0)
+    np.testing.assert_allclose(profile.dxi(m), dxi, rtol=8 * patch._EPS, atol=0)
+
+
+#: 40-digit albedos of the generalized Lambertian, d = 1, C = 1, near the end of m_clip's declared range
+#: (``sweep.patch_mp.radial_albedo`` of ``generalized_lambert_phi``; it imports nothing of the package):
+#: m_clip, θ, albedo, its error.  At 30° (m ≤ 1.5) the clip is not reached; near grazing it is.
+CLIP_NEAR_2_TRUTHS = [(1.99999, 30.0, 3.5335736250836796, 9.7e-17), (1.99999, 89.9, 4.566324197604253, 6.1e-17),
+                      (1.99999, 89.95, 4.566348988087285, 6.0e-17), (1.99999, 90.0, 4.566357281052507, 3.8e-16),
+                      (1.999999, 30.0, 3.5335736250836796, 9.7e-17), (1.999999, 89.9, 4.566330504255446, 2.3e-16),
+                      (1.999999, 89.95, 4.566359302325445, 3.5e-16), (1.999999, 90.0, 4.566369281026106, 1.4e-16)]
+
+
+@pytest.mark.parametrize("rtol", [1e-6, 1e-8])
+def test_the_generalized_lambertian_is_honest_with_its_clip_next_to_m_equal_2(rtol):
+    """m_clip = 2 − 1e-5, 2 − 1e-6: ξ_max = C π ξ(m_clip) ≈ 1000 C cancelled ∫₁² p, and p(R) ∝ (1 − R²/4)^(−3/2)
+    took the nodes' rounding into it (d = 1, 1e-8: up to 27× the reported error).  The single angle (graded
+    partition) and the batch hold the 40-digit truths within their errors (``patch_geometry.covered_weight``)."""
+    for m_clip in sorted({m for m, _, _, _ in CLIP_NEAR_2_TRUTHS}):
+        rows = [(t, a, e) for m, t, a, e in CLIP_NEAR_2_TRUTHS if m == m_clip]
+        theta = np.array([t for t, _, _ in rows])
+        truth, truth_err = np.array([a for _, a, _ in rows]), np.array([e for _, _, e in rows])
+        profile = patch.GeneralizedLambertProfile(1.0, m_clip)
+        batch = patch.mixture_albedo(profile, theta, 1.0, rtol=rtol)
+        assert np.all(np.abs(batch.value - truth) <= batch.error + truth_err), (m_clip, batch.value - truth, batch.error)
+        for t, a, e in rows:
+            one = patch.mixture_albedo(profile, t, 1.0, rtol=rtol, single_graded=True)
+            assert abs(float(one.value) - a) <= float(one.error) + e, (m_clip, t, float(one.value) - a, float(one.error))

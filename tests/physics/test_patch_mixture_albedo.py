@@ -76,3 +76,20 @@ def test_a_single_angle_of_a_mixture_meets_1e_10_on_its_first_evaluation_and_agr
             assert str(one.status) == "converged" and str(one.route) == "engine/own"
             assert abs(float(one.value) - batch.value[k]) <= float(one.error) + batch.error[k]
             assert rounds[0] == 2, (t, rtol, rounds[0])
+
+
+@pytest.mark.parametrize("points", [(2.5,), (-0.5, 1.3), (0.0, 2.0)])
+def test_a_single_angle_grades_only_toward_weight_points_inside_the_range_of_R(points):
+    """A weight's point outside (0, 2] is no feature of ∫₀² p(R) a_R dR: the batch's partition drops it
+    (``patch_geometry._r_breakpoints``), and a single angle's graded partition drops it too.  Grading
+    toward R = 2.5 once put cuts past 2 into the single angle's partition (a uniform weight at 30°:
+    1.1613 ± 4e-13 where the batch gives 0.92695 ± 1e-11)."""
+    from brdfs.physics import patch_geometry as patch
+
+    theta = np.array([30.0, 75.0])
+    batch = patch.weighted_mixture_albedo(_uniform, 0.0, theta, 1e-10, 1e-14, points)
+    for k, t in enumerate(theta):
+        one = patch.weighted_mixture_albedo(_uniform, 0.0, [t], 1e-10, 1e-14, points, single_graded=True)
+        partition = patch._single_element_partition(points, float(np.sin(np.radians(t))))
+        assert partition.min() == 0.0 and partition.max() == 2.0
+        assert abs(one.value[0] - batch.value[k]) <= one.error[0] + batch.error[k]

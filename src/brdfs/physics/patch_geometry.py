@@ -22,7 +22,7 @@ import numpy as np
 from brdfs.physics.geometry import sin_incidence
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 
-_EPS = np.finfo(float).eps
+_EPS = float(np.finfo(float).eps)     # a Python float: the one-value path stays on Python floats
 #: Relative rounding bound of the closed forms of this module (sums of non-negative terms,
 #: each a few correctly rounded operations away from its inputs).
 CLOSED_FORM_RTOL = 64 * _EPS
@@ -353,8 +353,7 @@ class GeneralizedLambertProfile:
             raise ValueError(f"generalized Lambertian: m_clip must lie in (0, 2), got {self.m_clip!r}")
 
     def _unclipped(self, m):
-        w = 1.0 - 0.25 * np.asarray(m, float) ** 2
-        return w ** (-0.5 * self.d)
+        return _one_minus_quarter_square(m) ** (-0.5 * self.d)
 
     @property
     def xi_max(self) -> float:
@@ -370,7 +369,7 @@ class GeneralizedLambertProfile:
         """ξ'(m) = (d m / 4)(1 − m²/4)^{−d/2 − 1} below m_clip, 0 above."""
         m = np.asarray(m, float)
         mc = np.minimum(m, self.m_clip)
-        slope = 0.25 * self.d * mc * (1.0 - 0.25 * mc * mc) ** (-0.5 * self.d - 1.0)
+        slope = 0.25 * self.d * mc * _one_minus_quarter_square(mc) ** (-0.5 * self.d - 1.0)
         return np.where(m < self.m_clip, slope, 0.0)
 
     def disk_integral(self, rho):
@@ -378,12 +377,19 @@ class GeneralizedLambertProfile:
         rho = np.asarray(rho, float)
         if np.any(rho > self.m_clip):
             raise ValueError(f"disk_integral is closed-form only up to m_clip = {self.m_clip}")
-        w = 1.0 - 0.25 * rho * rho
+        w = _one_minus_quarter_square(rho)
         return 4.0 / (2.0 - self.d) * -np.expm1(0.5 * (2.0 - self.d) * np.log(w))
 
     @property
     def breakpoints(self) -> tuple[float, ...]:
         return (self.m_clip,)
+
+
+def _one_minus_quarter_square(m):
+    """1 − m²/4 as (1 − m/2)(1 + m/2): 1 − m/2 is exact for m in [1, 2] (Sterbenz), so the product carries
+    2 ε relative where 1 − 0.25 m² lost ε/(1 − m/2) to cancellation near m = 2."""
+    half = 0.5 * np.asarray(m, float)
+    return (1.0 - half) * (1.0 + half)
 
 
 def weight(profile, R, C):
@@ -482,6 +488,7 @@ def _single_element_partition(points, d):
     row = sorted({p for p in (0.0, 1.0, 2.0, *points, lo, hi, *(lo * g for g in _LAYERS if lo * g < 1.0))
                   if 0.0 <= p <= 2.0})
     cuts = set(row)
+    inside = [p for p in points if 0.0 < p <= 2.0]       # the points _r_breakpoints keeps (a point past 2: none)
     if lo < hi:
         above = [p for p in row if p > lo]
         below = [p for p in row if p < hi]
@@ -489,7 +496,7 @@ def _single_element_partition(points, d):
             cuts.update(lo + (above[0] - lo) * g for g in LENS_KINK_GRADING)
         if below:
             cuts.update(hi - (hi - below[-1]) * g for g in LENS_KINK_GRADING)
-    for point in points:                 # the weight's own features, graded toward from below
+    for point in inside:                 # the weight's own features, graded toward from below
         before = [p for p in row if p < point]
         if before:
             cuts.update(point - (point - before[-1]) * g for g in WEIGHT_POINT_GRADING)
@@ -499,17 +506,30 @@ def _single_element_partition(points, d):
 def _mixture_integral(profile, C, per_element, d, rtol, atol):
     """:func:`_weighted_mixture_integral` of a profile's weight p(R) (eq. 4.41) and Dirac part (eq. 4.24)."""
     return _weighted_mixture_integral(lambda R: weight(profile, R, C), diffuse_weight(profile, C), per_element,
-                                      d, rtol, atol, profile.breakpoints)
+                                      d, rtol, atol, profile.breakpoints, covered=covered_weight(profile, C))
 
 
-def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=(), single_graded=False):
+def covered_weight(profile, C):
+    """p_Diffuse + ∫₁² p(R) dR = C π ξ(1) in closed form (p = −C π ξ' for R ≥ 1, eq. 4.41; p_Diffuse = C π ξ(2),
+    eq. 4.24): the weight of patches that would cover the unit disk.  A profile's albedo integrates
+    p (g − 1) on [1, 2] and adds this, where ∫ p g cancelled p_Diffuse: a generalized Lambertian's p_Diffuse
+    = C π ξ_max is ~1000 C at m_clip = 2 − 1e-6, and its p(R), steep at m_clip on the scale 2 − m_clip, took
+    the rounding of the nodes R (relative (d/2 + 1) ε R/(2 − R)) into that cancellation, past the error."""
+    return float(C * np.pi * profile.xi(1.0))
+
+
+def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=(), single_graded=False,
+                               covered=None):
     """∫₀² p(R) g(R, element) dR + p_Diffuse for g = ``per_element`` (an :class:`Estimate`),
-    one element per |L'_P| = ``d`` (whose kinks 1 ∓ d split the range, with the weight's ``points``)."""
+    one element per |L'_P| = ``d`` (whose kinks 1 ∓ d split the range, with the weight's ``points``).
+    With ``covered`` = p_Diffuse + ∫₁² p in closed form (:func:`covered_weight`): ∫₀² p (g − [R ≥ 1]) dR + covered
+    (g − 1 is exact, Sterbenz, for g in [1/2, 2]; its rounding below 1/2 is ε/2, within the final term)."""
 
     def integrand(x, elem):
         g = per_element(x, elem)
         w = p(x)
-        return NodeValues(w * g.value, w * g.value, w * g.error)
+        value = g.value if covered is None else g.value - (x >= 1.0)
+        return NodeValues(w * value, w * value, w * g.error)
 
     kept = []                     # the rough pass's first evaluation: (nodes, elements, values)
 
@@ -531,9 +551,11 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
     rough = integrate(rough_integrand, bp, rtol=1e-4, atol=atol)
-    target = np.maximum(0.5 * rtol * np.abs(rough.value + p_diffuse), atol)
+    constant = p_diffuse if covered is None else covered
+    target = np.maximum(0.5 * rtol * np.abs(rough.value + constant), atol)
     est = integrate(final_integrand, bp, rtol=0.0, atol=target)
-    return Estimate(est.value + p_diffuse, est.error + CLOSED_FORM_RTOL * abs(p_diffuse))
+    rounding = abs(p_diffuse) if covered is None else abs(covered) + abs(p_diffuse)   # ≥ ∫₁²|p| (p of one sign)
+    return Estimate(est.value + constant, est.error + CLOSED_FORM_RTOL * rounding)
 
 
 def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_graded=False):
@@ -558,14 +580,16 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_gr
     """
     C = profile.c_max if C is None else float(C)
     return weighted_mixture_albedo(lambda R: weight(profile, R, C), diffuse_weight(profile, C), theta_deg,
-                                   rtol, atol, profile.breakpoints, single_graded)
+                                   rtol, atol, profile.breakpoints, single_graded, covered_weight(profile, C))
 
 
-def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, points=(), single_graded=False):
+def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, points=(), single_graded=False,
+                            covered=None):
     """a^p(L) = ∫₀² p(R) a_R(L) dR + p_Diffuse  (eqs. 4.22, 4.24) of any weight: ``p`` a vectorised
     callable p(R) on [0, 2] (smooth between the kinks 1, 1 ∓ |L'_P| of a_R and its own ``points``),
     ``p_diffuse`` the Dirac weight at R = 2, whose a_2 = 1.  The error adds each lens area's rounding
-    bound, weighted by |p|, to the quadrature's.  ``single_graded``: as :func:`mixture_albedo`.
+    bound, weighted by |p|, to the quadrature's.  ``single_graded``: as :func:`mixture_albedo`; ``covered``: p_Diffuse
+    + ∫₁² p in closed form, as :func:`_weighted_mixture_integral` takes it.
 
     Returns
     -------
@@ -576,7 +600,7 @@ def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, poi
     d = np.atleast_1d(sin_incidence(theta)).ravel()
     mu = np.atleast_1d(_cos_incidence_near_grazing(theta)).ravel()
     est = _weighted_mixture_integral(p, p_diffuse, lambda R, e: basic_albedo_at(d[e][:, None], R, mu[e][:, None]),
-                                     d, rtol, atol, points, single_graded)
+                                     d, rtol, atol, points, single_graded, covered)
     return Estimate(est.value.reshape(theta.shape), est.error.reshape(theta.shape))
 
 
@@ -665,8 +689,14 @@ def mixture_mean_albedo(profile, C=None, rtol=1e-10, atol=1e-14):
 
 def generalized_lambert_c_max(profile, rtol=1e-10, atol=1e-14):
     """C_max = 1 / a^ξ(90°) of the clipped profile (Table 4.3): the albedo of ξ is largest at
-    grazing incidence (see the thesis below eq. 4.59; checked in the tests)."""
-    a90 = mixture_albedo(profile, 90.0, C=1.0, rtol=rtol, atol=atol)
+    grazing incidence (see the thesis below eq. 4.59; checked in the tests).
+
+    Summed as ∫₀² p a_R dR + p_Diffuse, without :func:`covered_weight`: C is the model's constant, and the
+    stored truths of the sweep and the regression baselines were computed with these bits (the covered sum
+    moves C by ~1e-11 relative, within its error).  Near m_clip → 2 this sum's error is not to be trusted
+    (the albedo's is: it takes the covered sum for whatever C)."""
+    a90 = weighted_mixture_albedo(lambda R: weight(profile, R, 1.0), diffuse_weight(profile, 1.0), 90.0, rtol, atol,
+                                  profile.breakpoints)
     return Estimate(1.0 / a90.value, a90.error / a90.value**2)
 
 

@@ -298,7 +298,8 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
     chapter = 4                  # eqs. 4.58, 4.59 (Table 4.3)
     param_ranges = {"d": Interval(0.0, 1.0), "m_clip": Interval(RADIUS_MIN, 2.0, hi_open=True),
                     "C": positive()}
-    test_ranges = {"m_clip": log_range(5e-2, 1.99), "C": log_range(1e-3, 1e3)}
+    #: m_clip to 2 − 1e-6, toward the end of its declared range (ξ_max ≈ 1000 at d = 1)
+    test_ranges = {"m_clip": log_range(5e-2, 2.0 - 1e-6), "C": log_range(1e-3, 1e3)}
     examples = {"typical": {"d": 0.5}, "narrowest": {"d": 1.0}}
     conserves_energy = True      # C = 1/max a by default
     accuracy_families = {"generalized_lambertian": ("d", {})}
