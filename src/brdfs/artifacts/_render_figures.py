@@ -228,14 +228,8 @@ class RenderedPanel:
     lost: np.ndarray | None = None       # (P, H, W, C): the light the clamp took, per pass (clamp > 0)
     crop_spp: int = 0                    # more samples per pixel in the crop window (render_panel)
     windows: tuple = ()                  # the crop windows (x, y, width, height), one per object but the floor
-    samples: np.ndarray | None = None    # (H, W) samples per pixel of all passes where they differ (adaptive)
+    samples: np.ndarray | None = None    # (H, W) samples per pixel over all passes (render_panel's map)
     target: float = 0.0                  # the adaptive sampling's per-pixel relative SE target (0: uniform)
-
-    def sample_map(self) -> np.ndarray:
-        """(H, W) samples per pixel over all passes: the adaptive map, or spp plus crop_spp in the windows."""
-        if self.samples is not None:
-            return self.samples
-        return window_samples(self.ids.shape, self.windows, self.spp, self.crop_spp)
 
     @property
     def radiance(self):
@@ -324,10 +318,10 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                 counts, windows = _panel_counts(mi, scene, setup, cfg["seed"], groups, spp, crop_spp, target)
                 # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a
                 # pixel's ID is an object's only where all its samples hit that object
-                ids, cos_v, ids_sq = _render_counts(mi, scene, counts, passes, cfg["seed"], 0, groups, out, lost)
+                ids, cos_v, ids_sq = _render_counts(mi, scene, setup["sampler"], counts, passes, cfg["seed"], 0, groups, out, lost)
                 labels = msc.object_labels(scene)
             else:
-                _render_counts(mi, scene, counts, passes, cfg["seed"], 0, groups, out, lost)
+                _render_counts(mi, scene, setup["sampler"], counts, passes, cfg["seed"], 0, groups, out, lost)
     samples = counts * passes
     costs = _plugin_costs(scene) if count else {}
     rays = int(np.asarray(scene.integrator().rays)[0]) if count else None
@@ -340,11 +334,8 @@ def _panel_counts(mi, scene, setup: dict, seed: int, groups, spp: int, crop_spp:
     width, height = scene.sensors()[0].film().crop_size()
     if target > 0:
         return adaptive_counts(mi, scene, setup, seed, groups, target), []
-    counts = np.full((height, width), spp)
     windows = crop_windows(center_ids(mi, scene), msc.object_labels(scene)) if crop_spp else []
-    for x, y, w, h in windows:
-        counts[y:y + h, x:x + w] += crop_spp
-    return counts, windows
+    return window_samples((height, width), windows, spp, crop_spp), windows
 
 
 def center_ids(mi, scene) -> np.ndarray:
@@ -407,20 +398,8 @@ def merge_windows(windows) -> list[tuple]:
     return sorted(((x0, y0, x1 - x0, y1 - y0) for x0, y0, x1, y1 in boxes), key=lambda b: (b[1], b[0]))
 
 
-def combine_crop(full: np.ndarray, crops, windows, spp_full: int, spp_crop: int) -> np.ndarray:
-    """``full`` (H, W, ...) of ``spp_full`` samples per pixel with ``crops[i]`` (h, w, ...) of
-    ``spp_crop`` more in ``windows[i]`` = (x, y, w, h): each pixel's mean over all of its samples, the
-    spp-weighted mean of the parts that cover it (windows may overlap); outside every window ``full``."""
-    total = spp_full * np.asarray(full, float)
-    weight = np.full(full.shape[:2], float(spp_full))
-    for crop, (x, y, w, h) in zip(crops, windows):
-        total[y:y + h, x:x + w] += spp_crop * np.asarray(crop)
-        weight[y:y + h, x:x + w] += spp_crop
-    return total / weight.reshape(weight.shape + (1,) * (total.ndim - 2))
-
-
 def window_samples(shape, windows, spp_full: int, spp_crop: int) -> np.ndarray:
-    """(H, W) samples per pixel of all passes' parts: ``spp_full`` plus ``spp_crop`` per window over it."""
+    """(H, W) samples per pixel: ``spp_full`` plus ``spp_crop`` in each window over it (overlaps add)."""
     out = np.full(shape, int(spp_full))
     for x, y, w, h in windows:
         out[y:y + h, x:x + w] += int(spp_crop)
@@ -539,13 +518,15 @@ def adaptive_counts(mi, scene, setup: dict, seed: int, groups, target: float) ->
     width, height = scene.sensors()[0].film().crop_size()
     per_pass = setup["adaptive_pilot"] // passes
     pilot = np.zeros((passes, height, width, SPECTRAL if groups else 3))
-    _render_counts(mi, scene, np.full((height, width), per_pass), passes, seed, PILOT_LAUNCH, groups, pilot, None)
+    _render_counts(mi, scene, setup["sampler"], np.full((height, width), per_pass), passes, seed, PILOT_LAUNCH, groups,
+                   pilot, None)
     y = pilot @ spectrum.luminance_weights(pilot.shape[-1])
     ladder = count_ladder(setup["sampler"], 1, setup["adaptive_max"] // passes, setup.get("adaptive_ratio", 1.3))
     return pixel_counts(pilot_relative_variance(y), per_pass, passes, target, ladder)
 
 
-def _render_counts(mi, scene, counts: np.ndarray, passes: int, seed: int, first_launch: int, groups, out, lost):
+def _render_counts(mi, scene, sampler: str, counts: np.ndarray, passes: int, seed: int, first_launch: int, groups, out,
+                   lost):
     """Add ``counts[i, j]`` samples per pass at pixel (i, j), in each of ``passes`` passes, to ``out``
     (P, H, W, C: each pass's mean; ``lost``: the clamp's, if any): the pixels of one count in one wavefront
     (split at :data:`MAX_LANES`, and a count the sampler does not take into ones it takes,
@@ -555,7 +536,6 @@ def _render_counts(mi, scene, counts: np.ndarray, passes: int, seed: int, first_
     ``id``, ``cos_v`` and ``id_sq`` over all samples."""
     height, width = counts.shape
     flat = counts.ravel()
-    sampler = scene.sensors()[0].sampler().class_name().lower()
     aovs = np.zeros((height * width, 3))
     launch = first_launch
     for count in np.unique(flat[flat > 0]):
@@ -564,7 +544,7 @@ def _render_counts(mi, scene, counts: np.ndarray, passes: int, seed: int, first_
         for start in range(0, pixels.size, step):
             chunk = pixels[start:start + step]
             rows, cols = np.divmod(chunk, width)
-            for part in launches(1, 1, int(count), _SAMPLERS.get(sampler, "independent")):
+            for part in launches(1, 1, int(count), sampler):
                 image = _launch_counts(mi, scene, chunk, part, passes, pass_seed(seed, 0, launch), width, height)
                 launch += 1
                 weight = part / count
@@ -574,11 +554,6 @@ def _render_counts(mi, scene, counts: np.ndarray, passes: int, seed: int, first_
                         lost[p, rows, cols] += weight * clamped_channels(image[:, p], groups)
                 aovs[chunk] += weight * image[:, :, [3, 4, -1]].mean(axis=1)
     return tuple(a.reshape(height, width) for a in aovs.T)
-
-
-#: Mitsuba's sampler classes by their names in ``renders.sampler``.
-_SAMPLERS = {"multijittersampler": "multijitter", "stratifiedsampler": "stratified", "ldsampler": "ldsampler",
-             "independentsampler": "independent"}
 
 
 def _launch_counts(mi, scene, pixels: np.ndarray, count: int, passes: int, seed: int, width: int, height: int) -> np.ndarray:
@@ -670,7 +645,7 @@ def object_rows(rendered: RenderedPanel, y: np.ndarray, noise: dict, lost: np.nd
     (P, H, W) luminance the clamp took, :func:`_clamp_columns`); ``object_spp``: the fewest samples per
     pixel of its pixels (``spp``, plus ``crop_spp`` inside the crop windows)."""
     rows = []
-    samples = rendered.sample_map()
+    samples = rendered.samples
     for k, label in sorted(rendered.labels.items()):
         sel = rendered.ids == k
         if label == "light" or not sel.any():
