@@ -73,6 +73,7 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import warnings
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -619,18 +620,45 @@ def _by_its_engine_route(model, theta, tol, method, declined=False) -> Estimate 
             or type(model).delta_albedo is not BRDF.delta_albedo):
         return None
     flat = theta.ravel()
-    groups = _plan([model], flat, method, own=not declined)
-    if len(groups) != 1 or groups[0].route not in ENGINE_ROUTES or groups[0].limit:
+    if flat[0] == 90.0 and _declares_its_end(model):
         return None
-    route = groups[0].route
+    route = _single_route(model, method, own=not declined)
+    if route not in ENGINE_ROUTES:
+        return None
     with counting_evaluations() as count:
         est = ENGINE_ROUTES[route]([model], flat, rtol=tol.rtol, atol=tol.atol)
         if _all_in(est.status, CONVERGED) and _PROGRESS.get() is None:
             own = int(est.evaluations) if route in _ONE_DIMENSIONAL else 0      # as _run counts them
-            return Estimate(est.value, est.error, count[0] + own, est.status, np.full(1, f"engine/{route}"))
-        answer = _run(groups, flat, tol, method, {}, ran={route: est})
+            return Estimate(est.value, est.error, count[0] + own, est.status, _ROUTE_OF_ONE[route].copy())
+        answer = _run(_plan([model], flat, method, own=not declined), flat, tol, method, {}, ran={route: est})
     est = answer.estimate()
     return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)
+
+
+#: The route column of a single angle's answer on each engine route (copied, never handed out).
+_ROUTE_OF_ONE = {route: np.full(1, f"engine/{route}") for route in ENGINE_ROUTES}
+#: :func:`_single_route`'s answers: (id of the model, method, own) -> (a weak reference to the model, route).
+_SINGLE_ROUTES: dict = {}
+
+
+def _single_route(model, method, own) -> str:
+    """The route :func:`_plan` gives ``model`` below 90° for ``method`` (``own``: its own route asked), kept
+    while the model object lives: a model is a frozen value, and the route depends on it alone (its
+    class's routes, its lobe, what it declares), where finding it again cost a single call ~4 µs."""
+    key = (id(model), method, own)
+    kept = _SINGLE_ROUTES.get(key)
+    if kept is not None and kept[0]() is model:
+        return kept[1]
+    route = _routed(model, model, _NO_ROWS, method, own=own).route
+    try:
+        ref = weakref.ref(model, lambda _, key=key: _SINGLE_ROUTES.pop(key, None))
+    except TypeError:                     # a model that takes no weak reference: found every time
+        return route
+    _SINGLE_ROUTES[key] = (ref, route)
+    return route
+
+
+_NO_ROWS = np.zeros(0, np.intp)
 
 
 def _declares_its_end(model) -> bool:

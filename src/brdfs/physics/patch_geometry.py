@@ -67,8 +67,14 @@ def _segment(t):
 
 
 def _segment_series(x):
-    """x − sin x by its Taylor series (:func:`_segment`), for |x| < 1/4."""
-    return sum(sign * x ** power / factorial for sign, power, factorial in _SEGMENT_TERMS)
+    """x − sin x by its Taylor series (:func:`_segment`), for |x| < 1/4: an array's terms in one pass (a
+    row per term), summed in order as they were added one by one (``np.cumsum`` is sequential): the
+    same bits as term by term, for a seventh of the numpy calls."""
+    if np.ndim(x) == 0:        # a number's power is not the array loop's (an ulp apart): term by term
+        return sum(sign * x ** power / factorial for sign, power, factorial in _SEGMENT_TERMS)
+    x = np.asarray(x, float)
+    terms = _SEGMENT_SIGNS * x.reshape(1, -1) ** _SEGMENT_POWERS / _SEGMENT_FACTORIALS
+    return np.cumsum(terms, axis=0)[-1].reshape(x.shape)
 
 
 def _factorial(n):
@@ -78,6 +84,7 @@ def _factorial(n):
 #: The terms of :func:`_segment`'s series, (−1)^(k+1), 2k + 1 and (2k + 1)!, k = 1 … 7, computed once
 #: (a single angle's albedo computed the factorials 28 times).
 _SEGMENT_TERMS = tuple(((-1) ** (k + 1), 2 * k + 1, _factorial(2 * k + 1)) for k in range(1, 8))
+_SEGMENT_SIGNS, _SEGMENT_POWERS, _SEGMENT_FACTORIALS = (np.array(column, float)[:, None] for column in zip(*_SEGMENT_TERMS))
 
 
 def _four_triangle_area(a, b, c):
