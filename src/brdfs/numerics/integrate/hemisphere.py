@@ -216,6 +216,8 @@ def square_root_onset(integrand, lo, hi):
     with np.errstate(invalid="ignore"):
         # sinh² W = (hi − lo) / lo from the difference, which is exact next to t = 1 (hi / lo is not)
         span = np.arcsinh(np.sqrt((hi - lo) / lo))
+    if lo.size == 1:
+        return _square_root_onset_of_one(integrand, float(lo[0]), float(hi[0]), float(span[0]))
 
     def substituted(s, elem):
         # an interval lies inside [lo, hi] or outside it (lo and hi are breakpoints): its middle node says which
@@ -225,20 +227,42 @@ def square_root_onset(integrand, lo, hi):
         if not rows.size:
             return integrand(s, elem)
         a, b = start[rows, None], stop[rows, None]
-        scale = span[elem[rows], None] / (b - a)
-        w = (s[rows] - a) * scale
-        t = s.copy()
-        t[rows] = a + a * np.sinh(w) ** 2
-        jac = a * np.sinh(2.0 * w) * scale
-        out = node_values(integrand(t, elem))
+        return _mapped(integrand, s, elem, rows, a, span[elem[rows], None] / (b - a))
+    return substituted
 
-        def scaled(values):
-            values = np.array(values, float)
-            values[rows] *= jac
-            return values
-        high = scaled(out.high)
-        low = high if out.low is out.high else scaled(out.low)
-        return NodeValues(high, low, None if out.extra_err is None else scaled(out.extra_err))
+
+def _mapped(integrand, s, elem, rows, a, scale):
+    """``integrand`` at the nodes ``s``, those of the intervals ``rows`` mapped by t = a cosh² w,
+    w = (s − a) · ``scale`` (:func:`square_root_onset`), with the Jacobian."""
+    w = (s[rows] - a) * scale
+    t = s.copy()
+    t[rows] = a + a * np.sinh(w) ** 2
+    jac = a * np.sinh(2.0 * w) * scale
+    out = node_values(integrand(t, elem))
+
+    def scaled(values):
+        values = np.array(values, float)
+        values[rows] *= jac
+        return values
+    high = scaled(out.high)
+    low = high if out.low is out.high else scaled(out.low)
+    return NodeValues(high, low, None if out.extra_err is None else scaled(out.extra_err))
+
+
+def _square_root_onset_of_one(integrand, lo, hi, span):
+    """:func:`square_root_onset` of a single element (``lo``, ``hi``, ``span`` = W as Python floats):
+    the same arithmetic, with the element's numbers as numbers instead of gathered per interval (IEEE
+    operations give the same bits either way), in fewer numpy calls."""
+    scale = span / (hi - lo)
+
+    def substituted(s, elem):
+        middle = s[:, s.shape[1] // 2]
+        rows = np.flatnonzero((middle > lo) & (middle < hi))
+        if not rows.size:
+            return integrand(s, elem)
+        if rows[-1] - rows[0] == rows.size - 1:         # consecutive (the onset interval, or its pieces)
+            rows = slice(int(rows[0]), int(rows[-1]) + 1)    # a view, where an index array gathers and scatters
+        return _mapped(integrand, s, elem, rows, lo, scale)
     return substituted
 
 
