@@ -104,6 +104,18 @@ def _four_triangle_area(a, b, c):
     return out
 
 
+def _four_triangle_area_of_one(a, b, c):
+    """:func:`_four_triangle_area` of one triangle, on Python floats: the same operations in the same
+    order (sums, products, correctly rounded square roots), the same bits."""
+    a, b, c = sorted((a, b, c), reverse=True)
+    factors = (a + (b + c)), (c - (a - b)), (c + (a - b)), (a + (b - c))
+    prod = factors[0] * factors[1] * factors[2] * factors[3]
+    if prod < _UNDERFLOWING:
+        return (math.sqrt(max(factors[0], 0.0)) * math.sqrt(max(factors[1], 0.0))
+                * math.sqrt(max(factors[2], 0.0)) * math.sqrt(max(factors[3], 0.0)))
+    return math.sqrt(max(prod, 0.0))
+
+
 #: Below this Heron's product is near or past underflow (:func:`_four_triangle_area`).
 _UNDERFLOWING = 1e-280
 
@@ -632,7 +644,7 @@ def basic_albedo_at(d, R, cos_theta=None):
     rounding (2 ε relative in d = sin θ, or in cos θ, which moves d by 2 ε cos²θ/d) times
     |∂ area/∂d| = 2 sin α (the chord), plus c(R)'s rounding."""
     if np.size(d) == 1 and np.size(R) == 1 and (cos_theta is None or np.size(cos_theta) == 1):
-        shape = np.broadcast_shapes(np.shape(d), np.shape(R), np.shape(cos_theta))
+        shape = (1,) * max(np.ndim(d), np.ndim(R), np.ndim(cos_theta))     # their broadcast: every size is 1
         value, error = _basic_albedo_of_one(float(np.ravel(d)[0]), float(np.ravel(R)[0]),
                                             None if cos_theta is None else float(np.ravel(cos_theta)[0]))
         return Estimate(np.full(shape, value), np.full(shape, error))
@@ -663,7 +675,7 @@ def _basic_albedo_of_one(d, R, mu=None):
         x_beta, beta_abs = (R - mu) * (R + mu), R * R + mu2
         y_rel = 16 * _EPS + (4 * _EPS * u / abs(R - u) if R != u else math.inf)
     else:
-        four_delta = float(_four_triangle_area(np.ones(1), np.array([R]), np.array([d]))[0])
+        four_delta = _four_triangle_area_of_one(1.0, R, d)
         x_beta, beta_abs, y_rel = d2 - product, alpha_abs, 16 * _EPS
     raw = np.arctan2(np.array([four_delta, four_delta]), np.array([x_alpha, x_beta]))
     angles = raw
