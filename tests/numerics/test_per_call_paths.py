@@ -1,7 +1,8 @@
 """The short ways of a single call (issue 41, "per-call cost") give the answers of the long ways, to the
 bit: a single angle on an engine route without the plan, the polar route's breakpoints of one row, the
 lens of one element, a patch mixture's second pass that takes its first intervals' values from the
-rough pass or is not run where the rough pass met the target at once.  Their speed is ``benchmarks/bench_engine_speed.py --models``'s; here only their answers."""
+rough pass or is not run where the rough pass met the target at once.  Their speed is
+``benchmarks/bench_engine_speed.py --models``'s; here only their answers."""
 import numpy as np
 import pytest
 

@@ -84,7 +84,8 @@ def _factorial(n):
 #: The terms of :func:`_segment`'s series, (−1)^(k+1), 2k + 1 and (2k + 1)!, k = 1 … 7, computed once
 #: (a single angle's albedo computed the factorials 28 times).
 _SEGMENT_TERMS = tuple(((-1) ** (k + 1), 2 * k + 1, _factorial(2 * k + 1)) for k in range(1, 8))
-_SEGMENT_SIGNS, _SEGMENT_POWERS, _SEGMENT_FACTORIALS = (np.array(column, float)[:, None] for column in zip(*_SEGMENT_TERMS))
+_SEGMENT_SIGNS, _SEGMENT_POWERS, _SEGMENT_FACTORIALS = (np.array(column, float)[:, None]
+                                                        for column in zip(*_SEGMENT_TERMS))
 
 
 def _four_triangle_area(a, b, c):
