@@ -136,3 +136,29 @@ def test_a_mixtures_single_angle_met_at_once_skips_the_second_pass_with_its_answ
                 twice = patch.mixture_albedo(profile, np.array([theta]), rtol=rtol, single_graded=True)
             assert len(runs) == 3
             assert once.value[0] == twice.value[0] and once.error[0] == twice.error[0]
+
+
+def test_facts_kept_per_model_object_are_its_own_and_go_with_it():
+    """The front doors keep a model object's facts (its declared ranges checked, its single angle's
+    route) by identity while it lives: an equal model is another object, a dead one's facts are gone,
+    and a fact whose finding raised is looked for again."""
+    import gc
+
+    from brdfs.numerics.arguments import PerModel
+
+    kept, found = PerModel(), []
+    first, second = brdfs.model("phong", n=20), brdfs.model("phong", n=20)
+    assert kept.get(first, "k", lambda: found.append(1) or "first") == "first"
+    assert kept.get(first, "k", lambda: found.append(2) or "again") == "first"
+    assert kept.get(second, "k", lambda: found.append(3) or "second") == "second" and found == [1, 3]
+
+    def refused():
+        found.append(4)
+        raise ValueError("bad")
+    for _ in range(2):
+        with pytest.raises(ValueError):
+            kept.get(second, "bad", refused)
+    assert found == [1, 3, 4, 4]
+    del first
+    gc.collect()
+    assert [at[0] for at in kept._kept] == [id(second)]

@@ -73,7 +73,6 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import warnings
-import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -81,8 +80,8 @@ import numpy as np
 
 from brdfs.core.estimate import DIVERGED, STALLED
 from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
-from brdfs.numerics.arguments import (DEFAULT_ATOL, DEFAULT_RTOL, Tolerance, check_albedo_call, check_angles,
-                                      check_table_call)
+from brdfs.numerics.arguments import (DEFAULT_ATOL, DEFAULT_RTOL, PER_MODEL, Tolerance, check_albedo_call,
+                                      check_angles, check_table_call)
 from brdfs.numerics.integrate import azimuthal, polar
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
@@ -637,25 +636,15 @@ def _by_its_engine_route(model, theta, tol, method, declined=False) -> Estimate 
 
 #: The route column of a single angle's answer on each engine route (copied, never handed out).
 _ROUTE_OF_ONE = {route: np.full(1, f"engine/{route}") for route in ENGINE_ROUTES}
-#: :func:`_single_route`'s answers: (id of the model, method, own) -> (a weak reference to the model, route).
-_SINGLE_ROUTES: dict = {}
 
 
 def _single_route(model, method, own) -> str:
     """The route :func:`_plan` gives ``model`` below 90° for ``method`` (``own``: its own route asked), kept
-    while the model object lives: a model is a frozen value, and the route depends on it alone (its
-    class's routes, its lobe, what it declares), where finding it again cost a single call ~4 µs."""
-    key = (id(model), method, own)
-    kept = _SINGLE_ROUTES.get(key)
-    if kept is not None and kept[0]() is model:
-        return kept[1]
-    route = _routed(model, model, _NO_ROWS, method, own=own).route
-    try:
-        ref = weakref.ref(model, lambda _, key=key: _SINGLE_ROUTES.pop(key, None))
-    except TypeError:                     # a model that takes no weak reference: found every time
-        return route
-    _SINGLE_ROUTES[key] = (ref, route)
-    return route
+    while the model object lives (:data:`~brdfs.numerics.arguments.PER_MODEL`): the route depends on the
+    model alone (its class's routes, its lobe, what it declares), where finding it again cost a single
+    call ~4 µs."""
+    return PER_MODEL.get(model, ("single route", method, own),
+                         lambda: _routed(model, model, _NO_ROWS, method, own=own).route)
 
 
 _NO_ROWS = np.zeros(0, np.intp)
