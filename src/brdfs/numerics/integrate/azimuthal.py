@@ -113,7 +113,12 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                          f"got {bad[0].name!r}")
     single = theta_deg.size == 1
     _check_incidence(theta_deg, single)
-    mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
+    if single:       # cos θ = sin(90° − θ) and sin θ in one call, the angles in radians on floats: the same bits
+        t = float(theta_deg[0])
+        both = np.sin(np.array([math.radians(90.0 - t), math.radians(t)]))
+        mu, st = both[:1], both[1:]
+    else:
+        mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
         tight = _tight(rtol)
         bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
