@@ -22,7 +22,11 @@ machine's load hits all alike:
 same way (issue 41, "per-call cost"): ``curve_ms_per_point`` and ``single_ms`` at rtol 1e-10 and 1e-6,
 their ratio ``single_over_curve`` (target ≤ 3 for a model on an integral route), and the single call's
 CPU ms (target ≤ 0.1 ms for a model whose single calls need no integration, ``closed_form``: its own
-route is a closed form; the patch mixtures' own routes integrate, and have the ratio's target).
+route is a closed form; the patch mixtures' own routes integrate, and have the ratio's target).  It
+also times the curve points of commit ``e0ba585`` (:data:`BEFORE`; ``--before=REV`` another, ``--before=``
+none) in a child process on that commit's ``src``, between its own timings (:class:`_CurveAt`):
+``curve_ms_before``, ``curve_vs_before`` and ``curve_not_slower`` (the target: no curve point slower
+than at e0ba585, within :data:`SLOWER_BEYOND` for the machine's noise).
 
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
@@ -190,34 +194,111 @@ def curve_ratios():
 RATIO_TARGET, OWN_MS_TARGET = 3.0, 0.1
 
 
-def model_ratios(rounds=ROUNDS, only=None):
+#: The commit whose curve points no curve point may be slower than (issue 41: "with no curve point slower
+#: than at e0ba585"), timed in the same run by :class:`_CurveAt`.
+BEFORE = "e0ba585"
+#: A curve point counts as slower than at :data:`BEFORE` beyond this ratio of the two best times (the
+#: best of ``ROUNDS`` on a machine shared with other jobs still moves by a few per cent).
+SLOWER_BEYOND = 1.10
+
+
+def _curve_seconds(brdf, rtol, rounds):
+    """Best CPU seconds per point of the 100-angle curve over ``rounds`` (used here and in :class:`_CurveAt`'s child)."""
+    return min(_seconds(lambda: albedo(brdf, CURVE_THETA, rtol=rtol)) for _ in range(rounds)) / CURVE_THETA.size
+
+
+class _CurveAt:
+    """The curve points of another commit's code, timed by a child process on that commit's ``src``
+    (``git archive``) one request at a time, between this run's own timings, so that both see the same
+    load: ``seconds(name, rtol, rounds)`` per point of the model's ``typical`` example, NaN where that
+    commit has no such model or example."""
+
+    CHILD = (
+        "import sys, warnings\n"
+        "warnings.simplefilter('ignore')\n"
+        "sys.path.insert(0, sys.argv[1])\n"
+        "import bench_engine_speed as bench\n"
+        "from brdfs.physics.models import MODELS\n"
+        "for line in sys.stdin:\n"
+        "    name, rtol, rounds = line.split()\n"
+        "    try:\n"
+        "        brdf = MODELS[name].example('typical')\n"
+        "        bench.albedo(brdf, 30.0)\n"
+        "        out = bench._curve_seconds(brdf, float(rtol), int(rounds))\n"
+        "    except Exception:\n"
+        "        out = float('nan')\n"
+        "    print(repr(out), flush=True)\n")
+
+    def __init__(self, rev):
+        import pathlib
+        import subprocess
+        import tempfile
+        self.dir = tempfile.TemporaryDirectory(prefix=f"bench-{rev}-")
+        archive = subprocess.run(["git", "-C", str(REPO_ROOT), "archive", rev, "src"], check=True, capture_output=True)
+        subprocess.run(["tar", "-x", "-C", self.dir.name], input=archive.stdout, check=True)
+        env = {**__import__("os").environ, "PYTHONPATH": str(pathlib.Path(self.dir.name) / "src")}
+        self.child = subprocess.Popen([sys.executable, "-c", self.CHILD, str(pathlib.Path(__file__).parent)],
+                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
+
+    def seconds(self, name, rtol, rounds):
+        self.child.stdin.write(f"{name} {rtol!r} {rounds}\n")
+        self.child.stdin.flush()
+        return float(self.child.stdout.readline())
+
+    def close(self):
+        self.child.stdin.close()
+        self.child.wait()
+        self.dir.cleanup()
+
+
+def model_ratios(rounds=ROUNDS, only=None, before=BEFORE):
     """Every registered model (or those named in ``only``) at its ``typical`` example: CPU ms per
     curve point (100 angles) and per single call (12 angles), best of ``rounds``, at both tolerances,
-    interleaved model by model."""
+    interleaved model by model; with ``before`` (a commit; None: not timed), that commit's curve point
+    timed between them (:class:`_CurveAt`), ``curve_vs_before`` = ours / its, and ``curve_not_slower``
+    (within :data:`SLOWER_BEYOND`).  ``meets_target``: the single call's target and, where timed, the
+    curve's."""
     import warnings
 
     from brdfs.physics.models import MODELS
     rows = []
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for name, cls in MODELS.items():
-            if only and name not in only:
-                continue
-            brdf = cls.example("typical")
-            route = str(np.ravel(albedo(brdf, 30.0).route)[0])
-            for rtol in (TIGHT, LOOSE):
-                curve = lambda: albedo(brdf, CURVE_THETA, rtol=rtol)                        # noqa: E731
-                single = lambda: [albedo(brdf, float(t), rtol=rtol) for t in SINGLE_THETA]  # noqa: E731
-                best_curve = best_single = np.inf
-                for _ in range(rounds):
-                    best_curve = min(best_curve, _seconds(curve) / CURVE_THETA.size)
-                    best_single = min(best_single, _seconds(single) / SINGLE_THETA.size)
-                ratio = best_single / best_curve
-                closed = _closed_form(brdf, rtol)
-                rows.append({"model": name, "route": route, "rtol": rtol, "curve_ms_per_point": 1e3 * best_curve,
-                             "single_ms": 1e3 * best_single, "single_over_curve": ratio, "closed_form": closed,
-                             "meets_target": bool(1e3 * best_single <= OWN_MS_TARGET if closed else ratio <= RATIO_TARGET)})
+    other = _CurveAt(before) if before else None
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            for name, cls in MODELS.items():
+                if not only or name in only:
+                    rows += _model_rows(name, cls.example("typical"), rounds, other)
+    finally:
+        if other is not None:
+            other.close()
     return pd.DataFrame(rows)
+
+
+def _model_rows(name, brdf, rounds, other):
+    """:func:`model_ratios`' two rows of one model (rtol 1e-10 and 1e-6)."""
+    route = str(np.ravel(albedo(brdf, 30.0).route)[0])
+    rows = []
+    for rtol in (TIGHT, LOOSE):
+        single = lambda: [albedo(brdf, float(t), rtol=rtol) for t in SINGLE_THETA]  # noqa: E731
+        best_curve = best_single = best_before = np.inf
+        for _ in range(rounds):
+            best_curve = min(best_curve, _curve_seconds(brdf, rtol, 1))
+            best_single = min(best_single, _seconds(single) / SINGLE_THETA.size)
+            if other is not None:
+                best_before = min(best_before, other.seconds(name, rtol, 1))
+        ratio = best_single / best_curve
+        closed = _closed_form(brdf, rtol)
+        meets = bool(1e3 * best_single <= OWN_MS_TARGET if closed else ratio <= RATIO_TARGET)
+        row = {"model": name, "route": route, "rtol": rtol, "curve_ms_per_point": 1e3 * best_curve,
+               "single_ms": 1e3 * best_single, "single_over_curve": ratio, "closed_form": closed}
+        if other is not None:
+            row["curve_ms_before"] = 1e3 * best_before
+            row["curve_vs_before"] = best_curve / best_before
+            row["curve_not_slower"] = bool(not best_curve > SLOWER_BEYOND * best_before)    # NaN: no such model then
+            meets = meets and row["curve_not_slower"]
+        rows.append(row | {"meets_target": meets})
+    return rows
 
 
 def _closed_form(brdf, rtol):
@@ -362,7 +443,8 @@ def main():
         print(polar_parts().to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
         return
     only = next((a.split("=", 1)[1].split(",") for a in sys.argv if a.startswith("--only=")), None)
-    models = model_ratios(only=only)
+    before = next((a.split("=", 1)[1] or None for a in sys.argv if a.startswith("--before=")), BEFORE)
+    models = model_ratios(only=only, before=before)
     print(models.to_string(index=False, float_format=lambda x: f"{x:.3g}"), flush=True)
     out = REPO_ROOT / "results" / "benchmarks" / "engine_speed_models.csv"
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -1,7 +1,8 @@
 """The short ways of a single call (issue 41, "per-call cost") give the answers of the long ways, to the
 bit: a single angle on an engine route without the plan, the polar route's breakpoints of one row, the
 lens of one element, a patch mixture's second pass that takes its first intervals' values from the
-rough pass.  Their speed is ``benchmarks/bench_engine_speed.py --models``'s; here only their answers."""
+rough pass or is not run where the rough pass met the target at once.  Their speed is
+``benchmarks/bench_engine_speed.py --models``'s; here only their answers."""
 import numpy as np
 import pytest
 
@@ -116,3 +117,48 @@ def test_a_mixtures_second_pass_takes_the_values_it_would_compute(monkeypatch):
     monkeypatch.setattr(patch, "basic_albedo_at", lambda *a: (kept.append(1), basic(*a))[1])
     patch.mixture_albedo(profile, theta, rtol=1e-10)
     assert len(kept) == len(calls) - 1
+
+
+def test_a_mixtures_single_angle_met_at_once_skips_the_second_pass_with_its_answer(monkeypatch):
+    """A graded single angle that meets its target on the first evaluation runs the driver once, and
+    answers what the second pass (forced: no intervals match) would have, to the bit."""
+    profile = patch.ExponentialProfile(4.0)
+    runs = []
+    integrate = patch.integrate
+    monkeypatch.setattr(patch, "integrate", lambda *a, **k: (runs.append(1), integrate(*a, **k))[1])
+    for rtol in (1e-10, 1e-6):
+        for theta in (0.0, 30.0, 89.9):
+            runs.clear()
+            once = patch.mixture_albedo(profile, np.array([theta]), rtol=rtol, single_graded=True)
+            assert len(runs) == 1
+            with monkeypatch.context() as forced:
+                forced.setattr(patch, "_intervals", lambda bp: -1)
+                twice = patch.mixture_albedo(profile, np.array([theta]), rtol=rtol, single_graded=True)
+            assert len(runs) == 3
+            assert once.value[0] == twice.value[0] and once.error[0] == twice.error[0]
+
+
+def test_facts_kept_per_model_object_are_its_own_and_go_with_it():
+    """The front doors keep a model object's facts (its declared ranges checked, its single angle's
+    route) by identity while it lives: an equal model is another object, a dead one's facts are gone,
+    and a fact whose finding raised is looked for again."""
+    import gc
+
+    from brdfs.numerics.arguments import PerModel
+
+    kept, found = PerModel(), []
+    first, second = brdfs.model("phong", n=20), brdfs.model("phong", n=20)
+    assert kept.get(first, "k", lambda: found.append(1) or "first") == "first"
+    assert kept.get(first, "k", lambda: found.append(2) or "again") == "first"
+    assert kept.get(second, "k", lambda: found.append(3) or "second") == "second" and found == [1, 3]
+
+    def refused():
+        found.append(4)
+        raise ValueError("bad")
+    for _ in range(2):
+        with pytest.raises(ValueError):
+            kept.get(second, "bad", refused)
+    assert found == [1, 3, 4, 4]
+    del first
+    gc.collect()
+    assert [at[0] for at in kept._kept] == [id(second)]

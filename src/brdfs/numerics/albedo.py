@@ -80,8 +80,8 @@ import numpy as np
 
 from brdfs.core.estimate import DIVERGED, STALLED
 from brdfs.core.gauss_kronrod import BUDGET_EXHAUSTED, CONVERGED, Estimate
-from brdfs.numerics.arguments import (DEFAULT_ATOL, DEFAULT_RTOL, Tolerance, check_albedo_call, check_angles,
-                                      check_table_call)
+from brdfs.numerics.arguments import (DEFAULT_ATOL, DEFAULT_RTOL, PER_MODEL, Tolerance, check_albedo_call,
+                                      check_angles, check_table_call)
 from brdfs.numerics.integrate import azimuthal, polar
 from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
@@ -619,18 +619,35 @@ def _by_its_engine_route(model, theta, tol, method, declined=False) -> Estimate 
             or type(model).delta_albedo is not BRDF.delta_albedo):
         return None
     flat = theta.ravel()
-    groups = _plan([model], flat, method, own=not declined)
-    if len(groups) != 1 or groups[0].route not in ENGINE_ROUTES or groups[0].limit:
+    if flat[0] == 90.0 and _declares_its_end(model):
         return None
-    route = groups[0].route
+    route = _single_route(model, method, own=not declined)
+    if route not in ENGINE_ROUTES:
+        return None
     with counting_evaluations() as count:
         est = ENGINE_ROUTES[route]([model], flat, rtol=tol.rtol, atol=tol.atol)
         if _all_in(est.status, CONVERGED) and _PROGRESS.get() is None:
             own = int(est.evaluations) if route in _ONE_DIMENSIONAL else 0      # as _run counts them
-            return Estimate(est.value, est.error, count[0] + own, est.status, np.full(1, f"engine/{route}"))
-        answer = _run(groups, flat, tol, method, {}, ran={route: est})
+            return Estimate(est.value, est.error, count[0] + own, est.status, _ROUTE_OF_ONE[route].copy())
+        answer = _run(_plan([model], flat, method, own=not declined), flat, tol, method, {}, ran={route: est})
     est = answer.estimate()
     return Estimate(est.value, est.error, count[0] + est.evaluations, est.status, est.route)
+
+
+#: The route column of a single angle's answer on each engine route (copied, never handed out).
+_ROUTE_OF_ONE = {route: np.full(1, f"engine/{route}") for route in ENGINE_ROUTES}
+
+
+def _single_route(model, method, own) -> str:
+    """The route :func:`_plan` gives ``model`` below 90° for ``method`` (``own``: its own route asked), kept
+    while the model object lives (:data:`~brdfs.numerics.arguments.PER_MODEL`): the route depends on the
+    model alone (its class's routes, its lobe, what it declares), where finding it again cost a single
+    call ~4 µs."""
+    return PER_MODEL.get(model, ("single route", method, own),
+                         lambda: _routed(model, model, _NO_ROWS, method, own=own).route)
+
+
+_NO_ROWS = np.zeros(0, np.intp)
 
 
 def _declares_its_end(model) -> bool:

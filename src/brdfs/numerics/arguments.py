@@ -26,6 +26,7 @@ import inspect
 import math
 import numbers
 import typing
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -91,6 +92,33 @@ def _describe_interval(interval) -> str:
     return ("in (" if interval.lo_open else "in [") + f"{interval.lo:g}, {interval.hi:g}" + (")" if interval.hi_open else "]")
 
 
+class PerModel:
+    """Facts of a model object that depend on its values alone (a model is a frozen value), found once
+    and kept while the object lives: looked up by its identity, a weak reference telling that it is the
+    same object (a model that takes none is asked every time).  A fact whose finding raises is not kept."""
+
+    def __init__(self):
+        self._kept: dict = {}
+
+    def get(self, model, key, find):
+        """The fact ``key`` of ``model``: kept, or ``find()`` (then kept)."""
+        at = (id(model), key)
+        kept = self._kept.get(at)
+        if kept is not None and kept[0]() is model:
+            return kept[1]
+        fact = find()
+        try:
+            ref = weakref.ref(model, lambda _, at=at: self._kept.pop(at, None))
+        except TypeError:
+            return fact
+        self._kept[at] = (ref, fact)
+        return fact
+
+
+#: The front doors' facts of model objects (their declared ranges checked, their single angle's route).
+PER_MODEL = PerModel()
+
+
 # --- brdfs.model -------------------------------------------------------------------------------
 
 def check_model_call(name, params) -> None:
@@ -154,7 +182,14 @@ class Tolerance:
 
     @classmethod
     def checked(cls, rtol=None, atol=None, where="albedo()") -> "Tolerance":
-        """The tolerance of a call (None: the default), or :class:`ArgumentError` naming the bad one."""
+        """The tolerance of a call (None: the default), or :class:`ArgumentError` naming the bad one
+        (floats checked once per value and kept: :func:`_checked_floats`)."""
+        if (rtol is None or type(rtol) is float) and (atol is None or type(atol) is float):
+            return _checked_floats(cls, rtol, atol, where)
+        return cls._checked(rtol, atol, where)
+
+    @classmethod
+    def _checked(cls, rtol, atol, where):
         for argument, value in (("rtol", rtol), ("atol", atol)):
             if value is not None:
                 _check_real(where, argument, value)
@@ -165,6 +200,13 @@ class Tolerance:
     def target(self, value):
         """max(rtol |value|, atol), element by element."""
         return np.maximum(self.rtol * np.abs(value), self.atol)
+
+
+@functools.lru_cache(maxsize=64)
+def _checked_floats(cls, rtol, atol, where):
+    """:meth:`Tolerance.checked` of floats (or None), kept per value: a frozen value, shared (a bad one
+    raises every time: nothing is kept)."""
+    return cls._checked(rtol, atol, where)
 
 
 def check_albedo_call(model, theta_deg, method, methods, options, strict=False, warn=True) -> None:
@@ -190,12 +232,18 @@ def check_albedo_call(model, theta_deg, method, methods, options, strict=False, 
 
 def _check_declared_ranges(where, model):
     """A model built past its declared ranges (its class called directly, which brdfs.model would
-    have refused): beyond them the model or the engine cannot cope, so no work starts."""
+    have refused): beyond them the model or the engine cannot cope, so no work starts.  A model found
+    within them is not checked again (:data:`PER_MODEL`)."""
+    PER_MODEL.get(model, "within its declared ranges", lambda: _within_declared_ranges(where, model))
+
+
+def _within_declared_ranges(where, model) -> bool:
     for key, interval in type(model).param_ranges.items():
         value = getattr(model, key, None)
         if _is_real(value) and not interval.contains(value):
             _fail(where, f"model.{key}", value, f"outside the range {model.name} declares: must be "
                   f"{_describe_interval(interval)}")
+    return True
 
 
 def check_table_call(models, theta_deg) -> None:

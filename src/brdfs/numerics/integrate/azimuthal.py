@@ -113,7 +113,12 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                          f"got {bad[0].name!r}")
     single = theta_deg.size == 1
     _check_incidence(theta_deg, single)
-    mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
+    if single:       # cos θ = sin(90° − θ) and sin θ in one call, the angles in radians on floats: the same bits
+        t = float(theta_deg[0])
+        both = np.sin(np.array([math.radians(90.0 - t), math.radians(t)]))
+        mu, st = both[:1], both[1:]
+    else:
+        mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
         tight = _tight(rtol)
         bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
@@ -299,7 +304,7 @@ def _mirror_nv(cb, sb, mu, st):
 def _mirror_nv_over_max(cb, sb, mu, st):
     """∫₀^{2π} [N·V]₊ / max(N·L, N·V) dφ = (J(A, B) − J(A − cos θ, B)) / cos θ."""
     a, b = cb * mu, sb * st
-    full, low = positive_part_azimuth(np.stack(np.broadcast_arrays(a, a - mu)), b)    # both in one pass
+    full, low = positive_part_azimuth(np.stack((a, a - mu)), b)    # both in one pass (a − mu has a's shape)
     with np.errstate(divide="ignore", invalid="ignore"):
         quotient = (full - low) / mu
         rounding = 8 * _EPS * (np.abs(full) + np.abs(low)) / mu
@@ -342,7 +347,7 @@ def _half_nv_over_max(cb, sb, mu, st):
     # evaluated by the same operations on nearly equal angles (their roundings cancel): sin φ as
     # √(1 − cos² φ), exact for the exact angle, lost that (1e-6 relative at 90° − 1e-9, within the
     # ε / cos θ bound but 1e4 times the error of these same operations).
-    phis = level_azimuth(a, b, np.stack(np.broadcast_arrays(0.0 * mu, mu)))
+    phis = level_azimuth(a, b, np.stack((0.0 * mu, mu)))
     sines = np.sin(phis)
     i2_h, i2_mu = _i2(p, q, a, b, phis, sines)
     i1_h, i1_mu = p * phis + q * sines

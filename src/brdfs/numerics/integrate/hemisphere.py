@@ -216,6 +216,8 @@ def square_root_onset(integrand, lo, hi):
     with np.errstate(invalid="ignore"):
         # sinh² W = (hi − lo) / lo from the difference, which is exact next to t = 1 (hi / lo is not)
         span = np.arcsinh(np.sqrt((hi - lo) / lo))
+    if lo.size == 1:
+        return _square_root_onset_of_one(integrand, float(lo[0]), float(hi[0]), float(span[0]))
 
     def substituted(s, elem):
         # an interval lies inside [lo, hi] or outside it (lo and hi are breakpoints): its middle node says which
@@ -225,20 +227,42 @@ def square_root_onset(integrand, lo, hi):
         if not rows.size:
             return integrand(s, elem)
         a, b = start[rows, None], stop[rows, None]
-        scale = span[elem[rows], None] / (b - a)
-        w = (s[rows] - a) * scale
-        t = s.copy()
-        t[rows] = a + a * np.sinh(w) ** 2
-        jac = a * np.sinh(2.0 * w) * scale
-        out = node_values(integrand(t, elem))
+        return _mapped(integrand, s, elem, rows, a, span[elem[rows], None] / (b - a))
+    return substituted
 
-        def scaled(values):
-            values = np.array(values, float)
-            values[rows] *= jac
-            return values
-        high = scaled(out.high)
-        low = high if out.low is out.high else scaled(out.low)
-        return NodeValues(high, low, None if out.extra_err is None else scaled(out.extra_err))
+
+def _mapped(integrand, s, elem, rows, a, scale):
+    """``integrand`` at the nodes ``s``, those of the intervals ``rows`` mapped by t = a cosh² w,
+    w = (s − a) · ``scale`` (:func:`square_root_onset`), with the Jacobian."""
+    w = (s[rows] - a) * scale
+    t = s.copy()
+    t[rows] = a + a * np.sinh(w) ** 2
+    jac = a * np.sinh(2.0 * w) * scale
+    out = node_values(integrand(t, elem))
+
+    def scaled(values):
+        values = np.array(values, float)
+        values[rows] *= jac
+        return values
+    high = scaled(out.high)
+    low = high if out.low is out.high else scaled(out.low)
+    return NodeValues(high, low, None if out.extra_err is None else scaled(out.extra_err))
+
+
+def _square_root_onset_of_one(integrand, lo, hi, span):
+    """:func:`square_root_onset` of a single element (``lo``, ``hi``, ``span`` = W as Python floats):
+    the same arithmetic, with the element's numbers as numbers instead of gathered per interval (IEEE
+    operations give the same bits either way), in fewer numpy calls."""
+    scale = span / (hi - lo)
+
+    def substituted(s, elem):
+        middle = s[:, s.shape[1] // 2]
+        rows = np.flatnonzero((middle > lo) & (middle < hi))
+        if not rows.size:
+            return integrand(s, elem)
+        if rows[-1] - rows[0] == rows.size - 1:         # consecutive (the onset interval, or its pieces)
+            rows = slice(int(rows[0]), int(rows[-1]) + 1)    # a view, where an index array gathers and scatters
+        return _mapped(integrand, s, elem, rows, lo, scale)
     return substituted
 
 
@@ -317,14 +341,15 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
     functions (numpy's, each once on all of its few arguments, so that no libm ulp differs), give
     the same row to the bit (``test_single_angle``)."""
     lobe = model.lobe
-    theta = float(np.radians(theta_deg[0]))
+    theta = math.radians(float(theta_deg[0]))           # x (π/180), as np.radians: the same bits
     scale = 0.5 if lobe.frame is HALF else 1.0
     beta_max = scale * (np.pi / 2 + theta)
     m = float(mu[0])
-    declared = [float(np.broadcast_to(c, (1,))[0]) for c in model.nv_levels(np.asarray(mu, float))]
+    declared = [float(c) if isinstance(c, float) else float(np.ravel(c)[0])
+                for c in model.nv_levels(np.asarray(mu, float))]
     through_centre = any(c == m for c in declared)
     levels = [0.0] + declared
-    a = np.arccos(np.minimum(np.maximum(np.array(levels), -1.0), 1.0)).tolist()
+    a = np.arccos(np.array([min(max(c, -1.0), 1.0) for c in levels])).tolist()
     cand = ([scale * (x - theta) for x in a] + [scale * (theta - x) for x in a] + [scale * (x + theta) for x in a]
             + [beta_max])
     cand = [c if 0.0 < c <= beta_max else beta_max for c in cand]
@@ -337,9 +362,9 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
     t_all = lobe.t_of(np.array([beta_max] + cand + ends + graded_pts + cone + layers)).tolist()
     t_max, t_cand = t_all[0], t_all[1:1 + len(cand)]
     t_end, t_rest = t_all[1 + len(cand):1 + len(cand) + len(ends)], t_all[1 + len(cand) + len(ends):]
-    points = [0.0] + t_cand + (1.0 - tail).tolist() + t_rest
+    points = [0.0] + t_cand + [1.0 - x for x in tail.tolist()] + t_rest
     if through_centre:
-        points += (t_max * HEAD).tolist()
+        points += [t_max * h for h in _HEAD]
     if (graded or 1.0 - TAIL[0] < t_max) and t_max < 1.0:
         points += t_end
     row = np.array(sorted({p for p in points if 0.0 <= p <= t_max}))
@@ -432,6 +457,7 @@ TAIL = 10.0 ** -np.arange(3.0, 13.0, 3.0)
 #: singularity, on which one interval's K − G understated the error 2.3 times at loose tolerances
 #: (corrected Ward, m = 0.1, 65.5°, rtol 1e-6: 2.4e-7 off at a reported 1.0e-7).
 HEAD = 10.0 ** -np.arange(1.0, 9.0, 1.0)
+_HEAD = HEAD.tolist()
 #: Initial breakpoints β = β_max (1 − 10^(−k)) before the radius where the circle leaves the upper
 #: hemisphere, where that radius lies in the lobe's far flank (1 − 1e-3 < t_max < 1, the TAIL
 #: points beyond t_max dropped).  There the cap N·V > 0 closes like (β_max − β)^(3/2) and t
