@@ -28,7 +28,8 @@ def test_an_unbuilt_or_damaged_timing_gives_the_plain_render_priority(tmp_path):
     assert report.render_priority("absent", tmp_path) == 1
     path = tmp_path / report.RENDER_TIMING.format(name="damaged")
     path.parent.mkdir(parents=True)
-    for text in ("{not json", '{"panels": [{"cpu_s": "x"}]}', '{"figure": "damaged"}', "[]"):
+    for text in ("{not json", '{"panels": [{"cpu_s": "x"}]}', '{"figure": "damaged"}', "[]", '{"panels": {"a": 1}}',
+                 '{"panels": [{"cpu_s": NaN}]}', '{"panels": [{"cpu_s": Infinity}]}'):
         path.write_text(text, encoding="utf-8")
         assert report.render_priority("damaged", tmp_path) == 1, text
 

@@ -111,7 +111,7 @@ def render_priority(name: str, root: str | os.PathLike = REPO_ROOT) -> int:
     try:
         panels = json.loads((Path(root) / RENDER_TIMING.format(name=name)).read_text(encoding="utf-8"))["panels"]
         return 1 + max(0, round(sum(float(p["cpu_s"]) for p in panels)))
-    except (OSError, ValueError, TypeError, KeyError):
+    except (OSError, ValueError, TypeError, KeyError, OverflowError):
         return 1
 
 
