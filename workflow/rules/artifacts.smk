@@ -30,8 +30,10 @@ rule artifact:
         name=wildcard_choice(set(ARTIFACTS) - RENDERING),
     threads: lambda wc: ARTIFACTS[wc.name].resources["threads"]
     # The renders (config section `renders`) start first, side by side on two cores: they are the
-    # longest jobs, and behind the others one waited for the other.
-    priority: lambda wc: 1 if "renders" in ARTIFACTS[wc.name].config else 0
+    # longest jobs, and behind the others one waited for the other. Among them the longest first, by
+    # the CPU seconds the last build measured (report_text.render_priority; 1 in a fresh tree): the
+    # longest started last would run alone at the end.
+    priority: lambda wc: report_text.render_priority(wc.name, ".") if "renders" in ARTIFACTS[wc.name].config else 0
     resources:
         mem_mb=lambda wc: ARTIFACTS[wc.name].resources["mem_mb"],
         runtime=lambda wc: ARTIFACTS[wc.name].resources["runtime"],

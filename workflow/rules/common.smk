@@ -1,6 +1,7 @@
 # Configuration check and the registry-derived names every rule uses.
 #
-# Planning has no side effects: nothing here writes a file or reads an output. The registry lists
+# Planning has no side effects: nothing here writes a file or reads an output (but the renders' last
+# measured seconds, which order the render jobs and never decide what runs: artifacts.smk, priority). The registry lists
 # the artifacts from their decorator lines without importing their modules
 # (brdfs.pipeline.registry.artifacts); the report's captions and verdicts are read when
 # `snakemake --report` renders them (brdfs.pipeline.report.ReportTexts).

@@ -100,6 +100,21 @@ def caption(name: str, directory: str | os.PathLike = CAPTIONS_DIR) -> str:
 RENDER_TIMING = "results/renders/{name}/timing.json"
 
 
+def render_priority(name: str, root: str | os.PathLike = REPO_ROOT) -> int:
+    """Snakemake's priority of render job ``name``: 1 + its CPU seconds measured by the last build
+    (:data:`RENDER_TIMING`, rounded), 1 where there is none or it cannot be read. The workflow runs its
+    renders before every other job, longest first: on 2 cores the longest render started last ran alone
+    for ~10 s of a forced render rebuild (benchmarks/speed_notes.md, "Session 6: render budget"). It
+    orders jobs only; what runs and what it writes never depend on it."""
+    import json
+
+    try:
+        panels = json.loads((Path(root) / RENDER_TIMING.format(name=name)).read_text(encoding="utf-8"))["panels"]
+        return 1 + max(0, round(sum(float(p["cpu_s"]) for p in panels)))
+    except (OSError, ValueError, TypeError, KeyError, OverflowError):
+        return 1
+
+
 def render_seconds(name: str, root: str | os.PathLike = REPO_ROOT) -> str:
     """RST: the measured render seconds of each panel of ``name`` in this build (``root`` /
     :data:`RENDER_TIMING`), or "" where the figure renders nothing or is not built."""
