@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from fractions import Fraction
-from math import factorial, lgamma, prod
+from math import factorial, lgamma, prod, sqrt
 
 from scipy.special import erfc, erfcx, i0e, ndtri
 
@@ -245,6 +245,8 @@ class Beckmann(_SmithVisibleNormals):
     def smith_lambda_cos(self, cos_theta):
         """λ(μ) = Λ(θ) cos θ = α sin θ e^{−a²}/(2√π) − cos θ erfc(a)/2, a = cot θ/α: finite at the
         horizon (α/(2√π)), 0 at normal incidence; G1 = μ/(μ + λ(μ))."""
+        if type(cos_theta) is float and type(self.alpha) is float:          # one number: the same bits
+            return self._smith_lambda_cos_of_one(cos_theta)
         c = np.minimum(np.maximum(cos_theta, 0.0), 1.0)      # np.clip's values, without its wrapper's cost
         s = np.sqrt((1.0 - c) * (1.0 + c))
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -252,6 +254,17 @@ class Beckmann(_SmithVisibleNormals):
             a = c / alpha_s
             lam = alpha_s * np.exp(-a * a) / _TWO_SQRT_PI - 0.5 * c * erfc(a)
         return np.where(s > 0, lam, 0.0)
+
+    def _smith_lambda_cos_of_one(self, cos_theta: float) -> float:
+        """:meth:`smith_lambda_cos` of one Python float, by the same operations on numbers (IEEE
+        arithmetic and sqrt as numpy's; exp and erfc by the same ufuncs), without the arrays' cost."""
+        c = min(max(cos_theta, 0.0), 1.0)
+        s = sqrt((1.0 - c) * (1.0 + c))
+        alpha_s = self.alpha * s
+        if not alpha_s > 0:                      # the pole, or α s below the smallest float: λ = 0
+            return 0.0
+        a = c / alpha_s
+        return float(alpha_s * np.exp(-a * a) / _TWO_SQRT_PI - 0.5 * c * erfc(a))
 
     def smith_g1_thesis(self, cos_theta):
         """G*(x) as the thesis prints it (eq. 1.38): with h = x²/(2α²(1 − x²)),
@@ -369,10 +382,11 @@ class GGX(_SmithVisibleNormals):
         far = near + 2.0 * b                     # a2 + q + 2b, c: the same sums as written out
         r = np.sqrt(near * far)
         c = near + b
-        terms = (1.0, 2.0 * k / r, k * k * c / r ** 3)
-        value = a2 * (terms[0] + terms[1] + terms[2])
-        rounding = 16 * _EPS * a2 * (1.0 + np.abs(terms[1]) + terms[2])
-        return value, rounding
+        second, third = 2.0 * k / r, k * k * c / r ** 3
+        total = 1.0 + second + third
+        # the bound's sum of magnitudes is the sum itself where k ≥ 0 (α ≤ 1: every term ≥ 0)
+        magnitudes = total if k >= 0 else 1.0 + np.abs(second) + third
+        return a2 * total, 16 * _EPS * a2 * magnitudes
 
     def sample_normal(self, u1, u2):
         """Microfacet normals H with density D(H) (N·H) from uniform (u1, u2); shape (..., 3)."""
@@ -402,6 +416,13 @@ class GGX(_SmithVisibleNormals):
     def smith_lambda_cos(self, cos_theta):
         """λ(μ) = Λ(θ) cos θ = (√(μ² + α² sin²θ) − μ)/2 = α² sin²θ / (2 (√(μ² + α² sin²θ) + μ)):
         finite at the horizon (α/2); G1 = μ/(μ + λ(μ))."""
+        if type(cos_theta) is float and type(self.alpha) is float:          # one number: the same bits
+            c = min(max(cos_theta, 0.0), 1.0)                               # (IEEE arithmetic, sqrt rounded alike)
+            s2 = (1.0 - c) * (1.0 + c)
+            a2 = self.alpha ** 2
+            root = sqrt(c * c + a2 * s2) + c
+            if root > 0:                                                    # else the arrays' 0/0
+                return 0.5 * a2 * s2 / root
         c = np.minimum(np.maximum(cos_theta, 0.0), 1.0)      # np.clip's values, without its wrapper's cost
         s2 = (1.0 - c) * (1.0 + c)
         a2 = self.alpha ** 2
