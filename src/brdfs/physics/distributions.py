@@ -205,10 +205,11 @@ class Beckmann(_SmithVisibleNormals):
         x = 2.0 * b / a2
         p = 1.0 + q
         (f0, f1, f2), (e0, e1, e2) = kummer_half_integers(x)
-        scale = np.exp(-q / a2) / a2
+        exponent = q / a2                        # 2q/α² below is 2 · this, exactly (a power of two)
+        scale = np.exp(-exponent) / a2
         weights = (p * p, 2 * p * b, 1.5 * b * b)          # of F_k and of their bounds alike
         value = scale * (weights[0] * f0 + weights[1] * f1 + weights[2] * f2)
-        rounding = scale * (weights[0] * e0 + weights[1] * e1 + weights[2] * e2) + (2 * q / a2 + 16) * _EPS * value
+        rounding = scale * (weights[0] * e0 + weights[1] * e1 + weights[2] * e2) + (2 * exponent + 16) * _EPS * value
         return value, rounding
 
     def sample_normal(self, u1, u2):

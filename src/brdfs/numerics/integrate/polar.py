@@ -129,9 +129,10 @@ def radial_integrand(distribution, S, theta_l, theta_v, mu_l=None, s_l=None):
         phi, phi_err = distribution.azimuthal_integral(q, b)
         weight = 2.0 * s_v * mu_v * S(mu_l, mu_v)
         value = weight * phi
-    value = np.where(phi == 0, 0.0, value)       # D vanishes (e^−q/α² underflows): zero, not 0·∞
+    value[phi == 0] = 0.0                        # D vanishes (e^−q/α² underflows): zero, not 0·∞
     rounding = np.abs(weight) * phi_err + S_ROUNDING * _EPS * np.abs(value)
-    return value, np.where(np.isfinite(rounding), rounding, 0.0)
+    rounding[~np.isfinite(rounding)] = 0.0       # (in place, both new arrays: np.where's values, in fewer µs)
+    return value, rounding
 
 
 #: The mirror angle and its offsets in lobe widths, s · k for s = ±1 and k in :data:`LOBE_WIDTHS`.
