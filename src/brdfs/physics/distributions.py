@@ -490,6 +490,7 @@ _ASYMPTOTIC = _rounded_coefficients(
 #: The asymptotic prefactor's log Γ(k + 1) − log Γ(½) and exponent k + ½ (columns over k = 0, 1, 2).
 _ASYMPTOTIC_LOG_SCALE = np.array([[lgamma(k + 1) - lgamma(0.5)] for k in range(3)])
 _ASYMPTOTIC_POWER = np.array([[k + 0.5] for k in range(3)])
+_TWICE_ASYMPTOTIC_POWER = 2 * _ASYMPTOTIC_POWER
 
 
 def _powers(y, count):
@@ -498,11 +499,13 @@ def _powers(y, count):
     numpy operations."""
     out = np.empty((count, y.size))
     out[0] = 1.0
+    multiply = np.multiply                       # (out passed by position: the keyword costs a parse per call)
     m = 1
     while m < count:
         k = min(m, count - m)
-        np.multiply(out[m - 1], y, out=out[m])
-        np.multiply(out[1:k], out[m], out=out[m + 1:m + k])
+        multiply(out[m - 1], y, out[m])
+        if k > 1:
+            multiply(out[1:k], out[m], out[m + 1:m + k])
         m *= 2
     return out
 
@@ -568,8 +571,7 @@ def _asymptotic(xl):
     out = np.empty((6, xl.size))
     value, bound = out[:3], out[3:]
     n = _KUMMER_ASYMPTOTIC_TERMS
-    with np.errstate(divide="ignore"):
-        y = 1.0 / xl
+    y = 1.0 / xl                                 # x ≥ 40 (or NaN): no division by zero
     for s in range(0, xl.size, _KUMMER_BLOCK):
         powers = _powers(y[s:s + _KUMMER_BLOCK], n + 2)
         total = _ASYMPTOTIC[:, :n + 1] @ powers[:n + 1]
@@ -577,7 +579,7 @@ def _asymptotic(xl):
         log_x = np.log(xl[s:s + _KUMMER_BLOCK])
         high = np.exp(_ASYMPTOTIC_LOG_SCALE - _ASYMPTOTIC_POWER * log_x) * total
         value[:, s:s + _KUMMER_BLOCK] = high
-        rounding = n + 8 + 2 * _ASYMPTOTIC_POWER * np.abs(log_x)
+        rounding = n + 8 + _TWICE_ASYMPTOTIC_POWER * np.abs(log_x)
         with np.errstate(invalid="ignore"):          # x = ∞: F = 0 exactly, 0 · ∞ in the bound
             relative = high * (rounding * _EPS + omitted / total)
         bound[:, s:s + _KUMMER_BLOCK] = np.where(high > 0, relative, np.where(np.isinf(log_x), 0.0, _TINY))
