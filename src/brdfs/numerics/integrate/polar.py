@@ -117,8 +117,9 @@ def _albedo_one(brdf, theta_deg, rtol, atol) -> Estimate:
 
 
 def radial_integrand(distribution, S, theta_l, theta_v, mu_l=None, s_l=None):
-    """2 sin θ_V cos θ_V S Φ at polar angles θ_V (module docstring), with its rounding bound.
-    ``mu_l``, ``s_l``: cos θ_L and sin θ_L where the caller has them (a single angle's, as numbers)."""
+    """2 sin θ_V cos θ_V S Φ at polar angles θ_V (module docstring; an array, the driver's nodes), with
+    its rounding bound.  ``mu_l``, ``s_l``: cos θ_L and sin θ_L where the caller has them (a single
+    angle's, as numbers)."""
     if mu_l is None:
         mu_l, s_l = np.cos(theta_l), np.sin(theta_l)
     mu_v, s_v = np.cos(theta_v), np.sin(theta_v)
