@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from fractions import Fraction
-from math import factorial, lgamma, prod
+from math import factorial, lgamma, prod, sqrt
 
 from scipy.special import erfc, erfcx, i0e, ndtri
 
@@ -205,10 +205,11 @@ class Beckmann(_SmithVisibleNormals):
         x = 2.0 * b / a2
         p = 1.0 + q
         (f0, f1, f2), (e0, e1, e2) = kummer_half_integers(x)
-        scale = np.exp(-q / a2) / a2
+        exponent = q / a2                        # 2q/α² below is 2 · this, exactly (a power of two)
+        scale = np.exp(-exponent) / a2
         weights = (p * p, 2 * p * b, 1.5 * b * b)          # of F_k and of their bounds alike
         value = scale * (weights[0] * f0 + weights[1] * f1 + weights[2] * f2)
-        rounding = scale * (weights[0] * e0 + weights[1] * e1 + weights[2] * e2) + (2 * q / a2 + 16) * _EPS * value
+        rounding = scale * (weights[0] * e0 + weights[1] * e1 + weights[2] * e2) + (2 * exponent + 16) * _EPS * value
         return value, rounding
 
     def sample_normal(self, u1, u2):
@@ -245,6 +246,8 @@ class Beckmann(_SmithVisibleNormals):
     def smith_lambda_cos(self, cos_theta):
         """λ(μ) = Λ(θ) cos θ = α sin θ e^{−a²}/(2√π) − cos θ erfc(a)/2, a = cot θ/α: finite at the
         horizon (α/(2√π)), 0 at normal incidence; G1 = μ/(μ + λ(μ))."""
+        if type(cos_theta) is float and type(self.alpha) is float:          # one number: the same bits
+            return self._smith_lambda_cos_of_one(cos_theta)
         c = np.minimum(np.maximum(cos_theta, 0.0), 1.0)      # np.clip's values, without its wrapper's cost
         s = np.sqrt((1.0 - c) * (1.0 + c))
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -252,6 +255,17 @@ class Beckmann(_SmithVisibleNormals):
             a = c / alpha_s
             lam = alpha_s * np.exp(-a * a) / _TWO_SQRT_PI - 0.5 * c * erfc(a)
         return np.where(s > 0, lam, 0.0)
+
+    def _smith_lambda_cos_of_one(self, cos_theta: float) -> float:
+        """:meth:`smith_lambda_cos` of one Python float, by the same operations on numbers (IEEE
+        arithmetic and sqrt as numpy's; exp and erfc by the same ufuncs), without the arrays' cost."""
+        c = min(max(cos_theta, 0.0), 1.0)
+        s = sqrt((1.0 - c) * (1.0 + c))
+        alpha_s = self.alpha * s
+        if not alpha_s > 0:                      # the pole, or α s below the smallest float: λ = 0
+            return 0.0
+        a = c / alpha_s
+        return float(alpha_s * np.exp(-a * a) / _TWO_SQRT_PI - 0.5 * c * erfc(a))
 
     def smith_g1_thesis(self, cos_theta):
         """G*(x) as the thesis prints it (eq. 1.38): with h = x²/(2α²(1 − x²)),
@@ -369,10 +383,11 @@ class GGX(_SmithVisibleNormals):
         far = near + 2.0 * b                     # a2 + q + 2b, c: the same sums as written out
         r = np.sqrt(near * far)
         c = near + b
-        terms = (1.0, 2.0 * k / r, k * k * c / r ** 3)
-        value = a2 * (terms[0] + terms[1] + terms[2])
-        rounding = 16 * _EPS * a2 * (1.0 + np.abs(terms[1]) + terms[2])
-        return value, rounding
+        second, third = 2.0 * k / r, k * k * c / r ** 3
+        total = 1.0 + second + third
+        # the bound's sum of magnitudes is the sum itself where k ≥ 0 (α ≤ 1: every term ≥ 0)
+        magnitudes = total if k >= 0 else 1.0 + np.abs(second) + third
+        return a2 * total, 16 * _EPS * a2 * magnitudes
 
     def sample_normal(self, u1, u2):
         """Microfacet normals H with density D(H) (N·H) from uniform (u1, u2); shape (..., 3)."""
@@ -402,6 +417,13 @@ class GGX(_SmithVisibleNormals):
     def smith_lambda_cos(self, cos_theta):
         """λ(μ) = Λ(θ) cos θ = (√(μ² + α² sin²θ) − μ)/2 = α² sin²θ / (2 (√(μ² + α² sin²θ) + μ)):
         finite at the horizon (α/2); G1 = μ/(μ + λ(μ))."""
+        if type(cos_theta) is float and type(self.alpha) is float:          # one number: the same bits
+            c = min(max(cos_theta, 0.0), 1.0)                               # (IEEE arithmetic, sqrt rounded alike)
+            s2 = (1.0 - c) * (1.0 + c)
+            a2 = self.alpha ** 2
+            root = sqrt(c * c + a2 * s2) + c
+            if root > 0:                                                    # else the arrays' 0/0
+                return 0.5 * a2 * s2 / root
         c = np.minimum(np.maximum(cos_theta, 0.0), 1.0)      # np.clip's values, without its wrapper's cost
         s2 = (1.0 - c) * (1.0 + c)
         a2 = self.alpha ** 2
@@ -468,6 +490,7 @@ _ASYMPTOTIC = _rounded_coefficients(
 #: The asymptotic prefactor's log Γ(k + 1) − log Γ(½) and exponent k + ½ (columns over k = 0, 1, 2).
 _ASYMPTOTIC_LOG_SCALE = np.array([[lgamma(k + 1) - lgamma(0.5)] for k in range(3)])
 _ASYMPTOTIC_POWER = np.array([[k + 0.5] for k in range(3)])
+_TWICE_ASYMPTOTIC_POWER = 2 * _ASYMPTOTIC_POWER
 
 
 def _powers(y, count):
@@ -476,11 +499,13 @@ def _powers(y, count):
     numpy operations."""
     out = np.empty((count, y.size))
     out[0] = 1.0
+    multiply = np.multiply                       # (out passed by position: the keyword costs a parse per call)
     m = 1
     while m < count:
         k = min(m, count - m)
-        np.multiply(out[m - 1], y, out=out[m])
-        np.multiply(out[1:k], out[m], out=out[m + 1:m + k])
+        multiply(out[m - 1], y, out[m])
+        if k > 1:
+            multiply(out[1:k], out[m], out[m + 1:m + k])
         m *= 2
     return out
 
@@ -546,8 +571,7 @@ def _asymptotic(xl):
     out = np.empty((6, xl.size))
     value, bound = out[:3], out[3:]
     n = _KUMMER_ASYMPTOTIC_TERMS
-    with np.errstate(divide="ignore"):
-        y = 1.0 / xl
+    y = 1.0 / xl                                 # x ≥ 40 (or NaN): no division by zero
     for s in range(0, xl.size, _KUMMER_BLOCK):
         powers = _powers(y[s:s + _KUMMER_BLOCK], n + 2)
         total = _ASYMPTOTIC[:, :n + 1] @ powers[:n + 1]
@@ -555,7 +579,7 @@ def _asymptotic(xl):
         log_x = np.log(xl[s:s + _KUMMER_BLOCK])
         high = np.exp(_ASYMPTOTIC_LOG_SCALE - _ASYMPTOTIC_POWER * log_x) * total
         value[:, s:s + _KUMMER_BLOCK] = high
-        rounding = n + 8 + 2 * _ASYMPTOTIC_POWER * np.abs(log_x)
+        rounding = n + 8 + _TWICE_ASYMPTOTIC_POWER * np.abs(log_x)
         with np.errstate(invalid="ignore"):          # x = ∞: F = 0 exactly, 0 · ∞ in the bound
             relative = high * (rounding * _EPS + omitted / total)
         bound[:, s:s + _KUMMER_BLOCK] = np.where(high > 0, relative, np.where(np.isinf(log_x), 0.0, _TINY))

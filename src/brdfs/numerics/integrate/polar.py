@@ -99,26 +99,30 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
 
 def _albedo_one(brdf, theta_deg, rtol, atol) -> Estimate:
     """:func:`albedo_many` of one element (a single angle): the same breakpoints, integrand and driver,
-    without the batch's grouping (:func:`_breakpoints_of_one`; θ_L as one (1, 1) array, broadcast over
-    the nodes, where the batch gathers it per node)."""
+    without the batch's grouping (:func:`_breakpoints_of_one`), θ_L, cos θ_L and sin θ_L as numbers
+    (computed once, by the arrays' own cos and sin, where the batch gathers them per node: IEEE
+    operations with a number or with a column of copies give the same bits)."""
     factors = brdf.half_vector_factors()
     if factors is None:
         raise ValueError(f"the polar route needs a model that declares half_vector_factors, got {brdf.name!r}")
     theta_l = np.radians(theta_deg)
-    column = theta_l.reshape(1, 1)
+    t, mu_l, s_l = theta_l[0].item(), np.cos(theta_l)[0].item(), np.sin(theta_l)[0].item()
 
     def integrand(theta_v, elem):
-        value, rounding = radial_integrand(*factors, column, theta_v)
+        value, rounding = radial_integrand(*factors, t, theta_v, mu_l, s_l)
         return NodeValues(value, value, rounding)
 
-    return integrate(integrand, _breakpoints_of_one(brdf, factors[0], theta_l), rtol=rtol, atol=atol,
+    return integrate(integrand, _breakpoints_of_one(brdf, factors[0], t, mu_l), rtol=rtol, atol=atol,
                      fill=FILL_CHEAP)
 
 
-def radial_integrand(distribution, S, theta_l, theta_v):
-    """2 sin θ_V cos θ_V S Φ at polar angles θ_V (module docstring), with its rounding bound."""
-    mu_l, mu_v = np.cos(theta_l), np.cos(theta_v)
-    s_l, s_v = np.sin(theta_l), np.sin(theta_v)
+def radial_integrand(distribution, S, theta_l, theta_v, mu_l=None, s_l=None):
+    """2 sin θ_V cos θ_V S Φ at polar angles θ_V (module docstring; an array, the driver's nodes), with
+    its rounding bound.  ``mu_l``, ``s_l``: cos θ_L and sin θ_L where the caller has them (a single
+    angle's, as numbers)."""
+    if mu_l is None:
+        mu_l, s_l = np.cos(theta_l), np.sin(theta_l)
+    mu_v, s_v = np.cos(theta_v), np.sin(theta_v)
     h_z = mu_l + mu_v
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         q = np.tan(0.5 * (theta_l - theta_v)) ** 2
@@ -126,9 +130,10 @@ def radial_integrand(distribution, S, theta_l, theta_v):
         phi, phi_err = distribution.azimuthal_integral(q, b)
         weight = 2.0 * s_v * mu_v * S(mu_l, mu_v)
         value = weight * phi
-    value = np.where(phi == 0, 0.0, value)       # D vanishes (e^−q/α² underflows): zero, not 0·∞
+    value[phi == 0] = 0.0                        # D vanishes (e^−q/α² underflows): zero, not 0·∞
     rounding = np.abs(weight) * phi_err + S_ROUNDING * _EPS * np.abs(value)
-    return value, np.where(np.isfinite(rounding), rounding, 0.0)
+    rounding[~np.isfinite(rounding)] = 0.0       # (in place, both new arrays: np.where's values, in fewer µs)
+    return value, rounding
 
 
 #: The mirror angle and its offsets in lobe widths, s · k for s = ±1 and k in :data:`LOBE_WIDTHS`.
@@ -141,7 +146,8 @@ def breakpoints(models, theta_l, groups=None):
     near grazing incidence, of μ_V = μ_L · 8^k below α (:func:`_grazing_levels`).  ``groups``: the
     element indices of each model object (:func:`.grouping.indices_by_model`), if known."""
     if len(models) == 1:
-        return _breakpoints_of_one(models[0], models[0].half_vector_factors()[0], theta_l)
+        return _breakpoints_of_one(models[0], models[0].half_vector_factors()[0], theta_l[0].item(),
+                                   np.cos(theta_l)[0].item())
     parts = []                                   # (element indices, candidates) of each model
     for members in groups or indices_by_model(models):
         idx = np.array(members)
@@ -161,16 +167,17 @@ def breakpoints(models, theta_l, groups=None):
     return _ascending_distinct(parts, len(models))
 
 
-def _breakpoints_of_one(brdf, distribution, theta_l):
-    """:func:`breakpoints` of one element (``theta_l`` of size 1), as one row: the same candidates by
-    the same arithmetic, kept and ordered as Python floats."""
-    cand = (theta_l[0] + _lobe_offsets(distribution.alpha)).tolist()
-    mu = np.cos(theta_l)
-    levels = brdf.nv_levels(mu)
+def _breakpoints_of_one(brdf, distribution, theta_l, mu_l):
+    """:func:`breakpoints` of one element (θ_L and cos θ_L as numbers), as one row: the same candidates
+    by the same arithmetic (a number plus the cached offsets, IEEE sums as the array's), kept and
+    ordered as Python floats."""
+    cand = [theta_l + offset for offset in _lobe_offsets_listed(float(distribution.alpha))]
+    levels = brdf.nv_levels(np.array([mu_l]))
     if levels:
-        cand += (_constant_level_angles(tuple(levels)) if all(isinstance(c, float) for c in levels)
-                 else _level_angles(levels, 1)[0]).tolist()
-    cand += [float(level[0]) for level in _grazing_levels(mu, distribution.alpha)]
+        cand += (_constant_level_angles_listed(tuple(levels)) if all(isinstance(c, float) for c in levels)
+                 else _level_angles(levels, 1)[0].tolist())
+    if mu_l > 0 and GRAZING_GRADING * mu_l < distribution.alpha:          # S's layer at the horizon
+        cand += [float(level[0]) for level in _grazing_levels(np.array([mu_l]), distribution.alpha)]
     return np.array([sorted({0.0, _HALF_PI, *(c for c in cand if 0.0 < c < _HALF_PI)})])
 
 
@@ -189,6 +196,18 @@ def _lobe_offsets_of(alpha: float):
     offsets = _LOBE_OFFSETS * (2.0 * np.arctan(alpha))
     offsets.flags.writeable = False
     return offsets
+
+
+@functools.lru_cache(maxsize=256)
+def _lobe_offsets_listed(alpha: float):
+    """:func:`_lobe_offsets_of` as a tuple of Python floats (a single angle's breakpoints)."""
+    return tuple(_lobe_offsets_of(alpha).tolist())
+
+
+@functools.lru_cache(maxsize=256)
+def _constant_level_angles_listed(levels):
+    """:func:`_constant_level_angles` as a tuple of Python floats (a single angle's breakpoints)."""
+    return tuple(_constant_level_angles(levels).tolist())
 
 
 @functools.lru_cache(maxsize=256)
