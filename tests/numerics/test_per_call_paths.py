@@ -138,6 +138,17 @@ def test_a_mixtures_single_angle_met_at_once_skips_the_second_pass_with_its_answ
             assert once.value[0] == twice.value[0] and once.error[0] == twice.error[0]
 
 
+def test_a_model_changed_after_building_is_checked_again_by_the_front_door():
+    """The facts kept per model object are kept for its values: a parameter set after building (a
+    plain user class can, a frozen one through object.__setattr__) is refused by albedo() as if the
+    model had been built with it, even after a call that found the model within its ranges."""
+    m = brdfs.model("phong", n=20)
+    assert brdfs.albedo(m, 30.0).status == "converged"
+    object.__setattr__(m, "n", -5.0)
+    with pytest.raises(brdfs.ArgumentError, match=r"model\.n = -5\.0"):
+        brdfs.albedo(m, 30.0)
+
+
 def test_facts_kept_per_model_object_are_its_own_and_go_with_it():
     """The front doors keep a model object's facts (its declared ranges checked, its single angle's
     route) by identity while it lives: an equal model is another object, a dead one's facts are gone,

@@ -93,9 +93,12 @@ def _describe_interval(interval) -> str:
 
 
 class PerModel:
-    """Facts of a model object that depend on its values alone (a model is a frozen value), found once
-    and kept while the object lives: looked up by its identity, a weak reference telling that it is the
-    same object (a model that takes none is asked every time).  A fact whose finding raises is not kept."""
+    """Facts of a model object that depend on its values alone, found once and kept while the object
+    lives and its values stay the ones they were found with: looked up by its identity, a weak
+    reference telling that it is the same object, and its attributes (``vars``) compared by identity
+    with those seen when the fact was found, so that a value set after building (a plain user class,
+    or ``object.__setattr__`` on a frozen one) is asked again.  A model that takes no weak reference or
+    has no ``__dict__`` is asked every time; a fact whose finding raises is not kept."""
 
     def __init__(self):
         self._kept: dict = {}
@@ -104,15 +107,25 @@ class PerModel:
         """The fact ``key`` of ``model``: kept, or ``find()`` (then kept)."""
         at = (id(model), key)
         kept = self._kept.get(at)
-        if kept is not None and kept[0]() is model:
-            return kept[1]
+        try:
+            state = tuple(vars(model).values())
+        except TypeError:
+            return find()
+        if kept is not None and kept[0]() is model and _same_objects(kept[1], state):
+            return kept[2]
         fact = find()
         try:
             ref = weakref.ref(model, lambda _, at=at: self._kept.pop(at, None))
         except TypeError:
             return fact
-        self._kept[at] = (ref, fact)
+        # seen after finding: what the finding itself cached on the model (a cached_property) is part of it
+        self._kept[at] = (ref, tuple(vars(model).values()), fact)
         return fact
+
+
+def _same_objects(seen: tuple, now: tuple) -> bool:
+    """The attributes' values are the very objects seen (the kept tuple holds them, so no id is reused)."""
+    return len(seen) == len(now) and all(a is b for a, b in zip(seen, now))
 
 
 #: The front doors' facts of model objects (their declared ranges checked, their single angle's route).
