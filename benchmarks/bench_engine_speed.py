@@ -221,18 +221,18 @@ class _CurveAt:
         "from brdfs.physics.models import MODELS\n"
         "for line in sys.stdin:\n"
         "    name, rtol, rounds = line.split()\n"
-        "    try:\n"
-        "        brdf = MODELS[name].example('typical')\n"
-        "        bench.albedo(brdf, 30.0)\n"
-        "        out = bench._curve_seconds(brdf, float(rtol), int(rounds))\n"
-        "    except Exception:\n"
-        "        out = float('nan')\n"
-        "    print(repr(out), flush=True)\n")
+        "    if name not in MODELS:\n"
+        "        print('absent', flush=True)\n"
+        "        continue\n"
+        "    brdf = MODELS[name].example('typical')\n"
+        "    bench.albedo(brdf, 30.0)\n"
+        "    print(repr(bench._curve_seconds(brdf, float(rtol), int(rounds))), flush=True)\n")
 
     def __init__(self, rev):
         import pathlib
         import subprocess
         import tempfile
+        self.rev = rev
         self.dir = tempfile.TemporaryDirectory(prefix=f"bench-{rev}-")
         archive = subprocess.run(["git", "-C", str(REPO_ROOT), "archive", rev, "src"], check=True, capture_output=True)
         subprocess.run(["tar", "-x", "-C", self.dir.name], input=archive.stdout, check=True)
@@ -243,7 +243,13 @@ class _CurveAt:
     def seconds(self, name, rtol, rounds):
         self.child.stdin.write(f"{name} {rtol!r} {rounds}\n")
         self.child.stdin.flush()
-        return float(self.child.stdout.readline())
+        answer = self.child.stdout.readline().strip()
+        if answer == "absent":
+            return float("nan")
+        if not answer:
+            raise RuntimeError(f"bench_engine_speed: the {self.rev} baseline failed on {name} at rtol {rtol!r} "
+                               "(its traceback above)")
+        return float(answer)
 
     def close(self):
         self.child.stdin.close()
@@ -295,7 +301,7 @@ def _model_rows(name, brdf, rounds, other):
         if other is not None:
             row["curve_ms_before"] = 1e3 * best_before
             row["curve_vs_before"] = best_curve / best_before
-            row["curve_not_slower"] = bool(not best_curve > SLOWER_BEYOND * best_before)    # NaN: no such model then
+            row["curve_not_slower"] = bool(not best_curve > SLOWER_BEYOND * best_before)    # NaN: no such model at the baseline
             meets = meets and row["curve_not_slower"]
         rows.append(row | {"meets_target": meets})
     return rows
