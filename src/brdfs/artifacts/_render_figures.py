@@ -343,7 +343,7 @@ def center_ids(mi, scene) -> np.ndarray:
     that the ray through each pixel's centre meets first (the crop windows' objects, before any sample)."""
     import drjit as dr
 
-    from brdfs.render.mitsuba.integrator import _object_index
+    from brdfs.render.mitsuba.integrator import object_index
 
     sensor = scene.sensors()[0]
     width, height = sensor.film().crop_size()
@@ -351,7 +351,7 @@ def center_ids(mi, scene) -> np.ndarray:
     row = pixel // width
     position = (mi.Vector2f(mi.Float(pixel - row * width), mi.Float(row)) + 0.5) / mi.ScalarVector2f(width, height)
     ray, _ = sensor.sample_ray(0.0, 0.0, position, mi.Point2f(0.5))
-    ids = _object_index(scene, scene.ray_intersect(ray))
+    ids = object_index(scene, scene.ray_intersect(ray))
     return np.asarray(ids).reshape(height, width)
 
 

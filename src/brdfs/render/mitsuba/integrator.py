@@ -123,7 +123,7 @@ def _glossy_only(bsdf):
     return mi.has_flag(flags, mi.BSDFFlags.Glossy) & ~mi.has_flag(flags, mi.BSDFFlags.Diffuse)
 
 
-def _object_index(scene, si):
+def object_index(scene, si):
     """1-based index (as a Float) of the hit shape's BSDF in :func:`scene_bsdfs`; 0 where the ray escaped."""
     ids = mi.Float(0.0)
     hit_bsdf = si.bsdf()
@@ -200,7 +200,7 @@ class _BrdfsPathMethods:
         # The camera ray: the object ID, what it sees of emitters, the background where it misses.
         si = scene.ray_intersect(ray, ray_flags=mi.RayFlags.All, coherent=True, active=active)
         self._count(active)
-        object_id = _object_index(scene, si)
+        object_id = object_index(scene, si)
         cos_v = dr.select(si.is_valid(), dr.abs(si.wi.z), 0.0)
         seen = active & (si.is_valid() | mi.Bool(not self.hide_emitters))
         L = dr.select(seen, si.emitter(scene, seen).eval(si, seen), 0.0)
