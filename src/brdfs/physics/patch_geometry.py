@@ -469,13 +469,13 @@ def weight_integral(profiles, lo, hi, rtol=1e-10, atol=1e-14) -> Estimate:
 LENS_LAYER_GRADING = 4.0 ** np.arange(0.0, 27.0)
 
 
-def _r_breakpoints(points, d, single_graded=False, rtol=0.0):
+def _r_breakpoints(points, d, single_graded=False):
     """Per element: 0, the kinks 1 − d, 1, 1 + d of a_R(d) in R, the cuts of :data:`LENS_LAYER_GRADING`,
-    the weight's ``points``, 2; with ``single_graded``, a single element's row graded further for
-    ``rtol`` (:func:`_single_element_partition`, :func:`_kink_grading`)."""
+    the weight's ``points``, 2; with ``single_graded``, a single element's row graded further
+    (:func:`_single_element_partition`)."""
     d = np.atleast_1d(np.asarray(d, float))
     if single_graded and d.size == 1:
-        return _single_element_partition(points, float(d[0]), _kink_grading(rtol))[None]
+        return _single_element_partition(points, float(d[0]))[None]
     fixed = np.array([0.0, 1.0, 2.0, *points])
     layer = (1.0 - d)[:, None] * (1.0 + LENS_LAYER_GRADING)
     pts = np.concatenate([np.broadcast_to(fixed, (d.size, fixed.size)),
@@ -498,20 +498,7 @@ WEIGHT_POINT_GRADING = (0.5, 0.25, 0.125, 0.0625)
 _LAYERS = tuple((1.0 + LENS_LAYER_GRADING).tolist())
 
 
-#: From this rtol on, a single element's first partition grades toward the lens's kinks by
-#: :data:`LOOSE_LENS_KINK_GRADING` (two halves): it meets the tolerance on its first evaluation (the three
-#: patch mixtures' typical examples at 12 angles 0°–89°: at most 4.9e-8 relative with two levels, 1.7e-7
-#: with one), with 388–470 nodes instead of 850–1,214 (a quarter of a single call's instructions at 1e-6).
-LOOSE_RTOL = 1e-6
-LOOSE_LENS_KINK_GRADING = LENS_KINK_GRADING[:2]
-
-
-def _kink_grading(rtol):
-    """The grading toward the lens's kinks of a single element's first partition at ``rtol``."""
-    return LOOSE_LENS_KINK_GRADING if float(np.min(rtol)) >= LOOSE_RTOL else LENS_KINK_GRADING
-
-
-def _single_element_partition(points, d, kink_grading=LENS_KINK_GRADING):
+def _single_element_partition(points, d):
     """The first partition of one element at |L'_P| = ``d``, on Python floats: the points of
     :func:`_r_breakpoints`, graded toward the lens's kinks (:data:`LENS_KINK_GRADING`) and toward the
     weight's ``points`` from below (:data:`WEIGHT_POINT_GRADING`), so that one evaluation meets the
@@ -526,9 +513,9 @@ def _single_element_partition(points, d, kink_grading=LENS_KINK_GRADING):
         above = [p for p in row if p > lo]
         below = [p for p in row if p < hi]
         if above:
-            cuts.update(lo + (above[0] - lo) * g for g in kink_grading)
+            cuts.update(lo + (above[0] - lo) * g for g in LENS_KINK_GRADING)
         if below:
-            cuts.update(hi - (hi - below[-1]) * g for g in kink_grading)
+            cuts.update(hi - (hi - below[-1]) * g for g in LENS_KINK_GRADING)
     for point in inside:                 # the weight's own features, graded toward from below
         before = [p for p in row if p < point]
         if before:
@@ -579,7 +566,7 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
                 return out
         return integrand(x, elem)
 
-    bp = _r_breakpoints(points, d, single_graded, rtol)
+    bp = _r_breakpoints(points, d, single_graded)
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
