@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from brdfs.physics.geometry import sin_incidence
-from brdfs.core.gauss_kronrod import NODES, Estimate, NodeValues, integrate
+from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 
 _EPS = float(np.finfo(float).eps)     # a Python float: the one-value path stays on Python floats
 #: Relative rounding bound of the closed forms of this module (sums of non-negative terms,
@@ -570,24 +570,17 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
-    rough = integrate(rough_integrand, bp, rtol=1e-4, atol=atol)
+    rough, rough_rounds = integrate(rough_integrand, bp, rtol=1e-4, atol=atol, return_rounds=True)
     constant = p_diffuse if covered is None else covered
     target = np.maximum(0.5 * rtol * np.abs(rough.value + constant), atol)
     # The second pass starts from the rough pass's first evaluation; where the rough pass stopped there
     # (nothing was split) with every error within a quarter of the target, the second stops there too
     # (2 Σ|K − G| ≤ error ≤ target / 4 is within its budget, :func:`.gauss_kronrod._budget`) and its sums
     # are the same: the rough answer is the final one, to the bit, without the second pass's round.
-    first_only = rough.evaluations == _intervals(bp) * NODES.size
-    est = rough if first_only and np.all(rough.error <= 0.25 * target) else \
+    est = rough if rough_rounds == 0 and np.all(rough.error <= 0.25 * target) else \
         integrate(final_integrand, bp, rtol=0.0, atol=target)
     rounding = abs(p_diffuse) if covered is None else abs(covered) + abs(p_diffuse)   # ≥ ∫₁²|p| (p of one sign)
     return Estimate(est.value + constant, est.error + CLOSED_FORM_RTOL * rounding)
-
-
-def _intervals(bp):
-    """The intervals :func:`.gauss_kronrod.integrate` starts from on breakpoint rows ``bp`` (NaN-padded)."""
-    lo, hi = bp[:, :-1], bp[:, 1:]
-    return int(np.count_nonzero(np.isfinite(lo) & np.isfinite(hi) & (hi > lo)))
 
 
 def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_graded=False):
