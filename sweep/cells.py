@@ -138,6 +138,13 @@ FAMILIES = (
            param_sets=({"alpha": ALPHA_MIN}, {"alpha": ALPHA_MAX})),
     Family("beckmann_alpha_ends", "beckmann", ("alpha",), (("G2", "height_correlated"),),
            param_sets=({"alpha": ALPHA_MIN}, {"alpha": ALPHA_MAX})),
+    # the generalized Lambertian with its clip next to the weight's pole R = 2, at grazing incidence, where
+    # the clip and the lens's kink 1 + sin θ meet the pole's layer (issue 41: up to 3.4× dishonest before
+    # patch_geometry.WEIGHT_LAYER_GRADING)
+    Family("generalized_lambertian_clip_near_2", "generalized_lambertian", ("d", "m_clip"),
+           param_sets=({"d": 1.0, "m_clip": 2.0 - 1e-7}, {"d": 1.0, "m_clip": 2.0 - 1e-9},
+                       {"d": 0.5, "m_clip": 2.0 - 1e-9}),
+           n_random_angles=0, grazing=(89.9, 89.97, 89.99, 89.995, 89.999)),
 )
 #: Families declared but left out of the committed sweep: He–Torrance's density alone (term 'dd'),
 #: the same integral as ``he_torrance_total`` without the delta's closed form.

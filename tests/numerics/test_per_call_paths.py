@@ -121,18 +121,24 @@ def test_a_mixtures_second_pass_takes_the_values_it_would_compute(monkeypatch):
 
 def test_a_mixtures_single_angle_met_at_once_skips_the_second_pass_with_its_answer(monkeypatch):
     """A graded single angle that meets its target on the first evaluation runs the driver once, and
-    answers what the second pass (forced: no intervals match) would have, to the bit."""
+    answers what the second pass (forced: the rough pass reported as refined) would have, to the bit."""
     profile = patch.ExponentialProfile(4.0)
     runs = []
     integrate = patch.integrate
     monkeypatch.setattr(patch, "integrate", lambda *a, **k: (runs.append(1), integrate(*a, **k))[1])
+
+    def refined(*args, **kwargs):        # the rough pass reported as refined: the second pass runs
+        runs.append(1)
+        out = integrate(*args, **kwargs)
+        return (out[0], out[1] + 1) if kwargs.get("return_rounds") else out
+
     for rtol in (1e-10, 1e-6):
         for theta in (0.0, 30.0, 89.9):
             runs.clear()
             once = patch.mixture_albedo(profile, np.array([theta]), rtol=rtol, single_graded=True)
             assert len(runs) == 1
             with monkeypatch.context() as forced:
-                forced.setattr(patch, "_intervals", lambda bp: -1)
+                forced.setattr(patch, "integrate", refined)
                 twice = patch.mixture_albedo(profile, np.array([theta]), rtol=rtol, single_graded=True)
             assert len(runs) == 3
             assert once.value[0] == twice.value[0] and once.error[0] == twice.error[0]

@@ -105,7 +105,7 @@ def nodes_on(a, b):
 
 
 def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_000,
-              max_rounds=200, chunk=4096, fill=0):
+              max_rounds=200, chunk=4096, fill=0, return_rounds=False):
     """Integrate many 1-D functions adaptively, each over its own breakpoint-split interval.
 
     Parameters
@@ -129,12 +129,16 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         bisection in one round.  For integrands whose nodes are cheap (a closed-form kernel), where a
         round's fixed cost exceeds its evaluations and a single element bisected level by level pays
         that cost once per level.
+    return_rounds : bool
+        Also return how many refinement rounds (splits and their evaluations) were run: 0 when the
+        first evaluation stopped it (every element met its target there, or none could be refined).
 
     Returns
     -------
     Estimate
         ``value`` (Gauss sum), ``error`` (``SAFETY`` Σ|K − G| over the intervals, plus known and
         rounding errors) and ``status`` per element; ``evaluations`` counts the integrand's nodes.
+        With ``return_rounds``: ``(Estimate, rounds)``.
 
     Notes
     -----
@@ -162,6 +166,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         rtol_1 = rtol if isinstance(rtol, float) else float(np.ravel(rtol)[0])
         atol_1 = atol if isinstance(atol, float) else float(np.ravel(atol)[0])
     sums_1 = None              # a single element's sums over its current intervals
+    rounds = 0
     for _ in range(max_rounds):
         if n_el == 1:          # the same arithmetic on Python floats: a single element's round is mostly overhead
             sums_1 = _single_sums(elem, vals, err)
@@ -192,6 +197,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         groups = _split_groups(np.flatnonzero(split), stalls, lo, hi, fill)
         c_elem, c_lo, c_hi = _children_of(elem, lo, hi, groups)
         c_vals = _evaluate(integrand, c_elem, c_lo, c_hi, chunk)
+        rounds += 1
         sums_1 = None
         evaluations += c_elem.size * NODES.size
         c_err = np.abs(c_vals[0] - c_vals[1])
@@ -208,13 +214,15 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         error_1 = SAFETY * total_1 + extra_1 + 50 * _EPS * absval_1
         met = error_1 <= max(rtol_1 * abs(low_1), atol_1)
         status = CONVERGED if met else BUDGET_EXHAUSTED if exhausted else STALLED
-        return Estimate(np.array([low_1]), np.array([error_1]), evaluations, np.array([status], _STATUS_DTYPE))
-    high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
-    total = np.bincount(elem, err, n_el)
-    error = SAFETY * total + extra + 50 * _EPS * absval
-    met = error <= np.maximum(rtol * np.abs(low), atol)
-    status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
-    return Estimate(low, error, evaluations, status)
+        est = Estimate(np.array([low_1]), np.array([error_1]), evaluations, np.array([status], _STATUS_DTYPE))
+    else:
+        high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
+        total = np.bincount(elem, err, n_el)
+        error = SAFETY * total + extra + 50 * _EPS * absval
+        met = error <= np.maximum(rtol * np.abs(low), atol)
+        status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
+        est = Estimate(low, error, evaluations, status)
+    return (est, rounds) if return_rounds else est
 
 
 def _single_sums(elem, vals, err):
@@ -371,24 +379,22 @@ def _evaluate(integrand, elem, lo, hi, chunk):
     """Kronrod and Gauss sums on every interval, evaluated in chunks to bound memory: rows high
     (Kronrod), low (Gauss), extra (the known error) and |f| (the Kronrod sum of |f|), shape (4, m)."""
     m = elem.size
-    if m <= chunk:             # one chunk (every single element's round): no slices, one scaling
-        half = 0.5 * (hi - lo)
-        x = (0.5 * (lo + hi))[:, None] + half[:, None] * NODES
-        v_high, v_low, v_extra = node_values(integrand(x, elem))
-        out = np.empty((4, m))
-        out[0], out[1], out[3] = v_high @ KRONROD_WEIGHTS, v_low @ GAUSS_WEIGHTS, np.abs(v_high) @ KRONROD_WEIGHTS
-        out[2] = 0.0 if v_extra is None else np.abs(v_extra) @ KRONROD_WEIGHTS
-        out *= half
-        return out
+    if m <= chunk:             # one chunk (every single element's round): no slices
+        return _evaluate_chunk(integrand, elem, lo, hi)
     out = np.empty((4, m))
     for s in range(0, m, chunk):
         sl = slice(s, min(s + chunk, m))
-        a, b = lo[sl], hi[sl]
-        half = 0.5 * (b - a)
-        x = (0.5 * (a + b))[:, None] + half[:, None] * NODES
-        v_high, v_low, v_extra = node_values(integrand(x, elem[sl]))
-        out[0, sl] = half * (v_high @ KRONROD_WEIGHTS)
-        out[1, sl] = half * (v_low @ GAUSS_WEIGHTS)
-        out[2, sl] = 0.0 if v_extra is None else half * (np.abs(v_extra) @ KRONROD_WEIGHTS)
-        out[3, sl] = half * (np.abs(v_high) @ KRONROD_WEIGHTS)
+        out[:, sl] = _evaluate_chunk(integrand, elem[sl], lo[sl], hi[sl])
+    return out
+
+
+def _evaluate_chunk(integrand, elem, lo, hi):
+    """:func:`_evaluate`'s rows on one chunk of intervals, scaled by the half-widths once."""
+    half = 0.5 * (hi - lo)
+    x = (0.5 * (lo + hi))[:, None] + half[:, None] * NODES
+    v_high, v_low, v_extra = node_values(integrand(x, elem))
+    out = np.empty((4, elem.size))
+    out[0], out[1], out[3] = v_high @ KRONROD_WEIGHTS, v_low @ GAUSS_WEIGHTS, np.abs(v_high) @ KRONROD_WEIGHTS
+    out[2] = 0.0 if v_extra is None else np.abs(v_extra) @ KRONROD_WEIGHTS
+    out *= half
     return out

@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from brdfs.physics.geometry import sin_incidence
-from brdfs.core.gauss_kronrod import NODES, Estimate, NodeValues, integrate
+from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 
 _EPS = float(np.finfo(float).eps)     # a Python float: the one-value path stays on Python floats
 #: Relative rounding bound of the closed forms of this module (sums of non-negative terms,
@@ -336,6 +336,9 @@ class ExponentialProfile:
 
         return self.s**2 / (2.0 * np.pi * gammainc(2.0, self.s))
 
+    #: p(R) = C π s e^{−sR} min(1, R²) is entire: no pole to grade toward (:attr:`GeneralizedLambertProfile.steep_layer`).
+    steep_layer = None
+
     @property
     def breakpoints(self) -> tuple[float, ...]:
         """Where p(R) changes scale: multiples of its mode 2/s (kinks are added by the caller)."""
@@ -404,6 +407,12 @@ class GeneralizedLambertProfile:
     def breakpoints(self) -> tuple[float, ...]:
         return (self.m_clip,)
 
+    @property
+    def steep_layer(self) -> tuple[float, float] | None:
+        """(end, pole) = (m_clip, 2): p(R) ∝ R³ (1 − R²/4)^{−d/2−1} (eq. 4.41 with :meth:`dxi`) grows toward
+        its pole R = 2 up to its end m_clip, 0 beyond (:data:`WEIGHT_LAYER_GRADING`); None for d = 0 (p = 0)."""
+        return (float(self.m_clip), 2.0) if self.d > 0 else None
+
 
 def _one_minus_quarter_square(m):
     """1 − m²/4 as (1 − m/2)(1 + m/2): 1 − m/2 is exact for m in [1, 2] (Sterbenz), so the product carries
@@ -469,13 +478,19 @@ def weight_integral(profiles, lo, hi, rtol=1e-10, atol=1e-14) -> Estimate:
 LENS_LAYER_GRADING = 4.0 ** np.arange(0.0, 27.0)
 
 
-def _r_breakpoints(points, d, single_graded=False, rtol=0.0):
+def _r_breakpoints(points, d, single_graded=False, steep_layer=None):
     """Per element: 0, the kinks 1 − d, 1, 1 + d of a_R(d) in R, the cuts of :data:`LENS_LAYER_GRADING`,
-    the weight's ``points``, 2; with ``single_graded``, a single element's row graded further for
-    ``rtol`` (:func:`_single_element_partition`, :func:`_kink_grading`)."""
+    the weight's ``points``, 2, and with a ``steep_layer`` (end, pole) the cuts of :func:`_weight_layer_cuts`;
+    with ``single_graded``, a single element's row graded further (:func:`_single_element_partition`)."""
     d = np.atleast_1d(np.asarray(d, float))
     if single_graded and d.size == 1:
-        return _single_element_partition(points, float(d[0]), _kink_grading(rtol))[None]
+        return _single_element_partition(points, float(d[0]), steep_layer)[None]
+    bp = _lens_breakpoints(points, d)
+    return bp if steep_layer is None else _with_weight_layer(bp, d, *steep_layer)
+
+
+def _lens_breakpoints(points, d):
+    """:func:`_r_breakpoints`' rows without the weight's layer (NaN-padded)."""
     fixed = np.array([0.0, 1.0, 2.0, *points])
     layer = (1.0 - d)[:, None] * (1.0 + LENS_LAYER_GRADING)
     pts = np.concatenate([np.broadcast_to(fixed, (d.size, fixed.size)),
@@ -484,6 +499,45 @@ def _r_breakpoints(points, d, single_graded=False, rtol=0.0):
     pts = np.sort(pts, axis=1)
     duplicate = np.concatenate([np.zeros((d.size, 1), bool), np.diff(pts, axis=1) == 0], axis=1)
     return np.sort(np.where(duplicate, np.nan, pts), axis=1)   # NaN padding last
+
+
+#: Cuts R_e − r (4^k − 1), k = 1 … 26, below the end R_e = min(1 + d, end) of the integrand's support, when
+#: its weight grows as a power of 1/(pole − R) toward a pole at r = pole − R_e (a generalized Lambertian:
+#: (2 − R)^{−d/2−1}, cut at end = m_clip; :attr:`GeneralizedLambertProfile.steep_layer`): the pieces lie
+#: r 4^k from the pole, 3 times as wide, where the Gauss–Kronrod pair resolves the pole and K − G bounds G's
+#: error.  Without them the interval ending at R_e, ≫ r wide, held a layer of width ~r that neither rule
+#: sees and K − G underrated G's error: near m_clip → 2 at grazing the weight's (2 − R)^{−3/2} (d = 1) and
+#: the lens's 1 − a_R ∝ (1 + d − R)^{3/2} make p (a_R − 1) ≈ const · (1 − (3/2)(1 − d)/(2 − R)), and the
+#: interval [m_clip − 1/16, m_clip] at m_clip = 2 − 1e-6, 89.99° had |K − G| = 1.2e-8 for an error of 3.5e-8
+#: (reported 2.45e-8).  1 + 4^26 r exceeds the range [0, 2] for every r ≥ ε.
+WEIGHT_LAYER_GRADING = tuple(4.0 ** k - 1.0 for k in range(1, 27))
+#: The cuts are made only where the interval ending at R_e is wider than this many r (the rows of m_clip
+#: ≤ 1.9 never: 0.9 / 0.1): a layer that wide is resolved, and the partition keeps its bits.
+WEIGHT_LAYER_TRIGGER = 16.0
+
+
+def _weight_layer_cuts(prev, r_end, r):
+    """:data:`WEIGHT_LAYER_GRADING`'s cuts in (``prev``, ``r_end``) for a pole ``r`` beyond ``r_end`` (numbers:
+    a single element's row), none unless that interval is wider than :data:`WEIGHT_LAYER_TRIGGER` r."""
+    if not (r > 0.0 and r_end - prev > WEIGHT_LAYER_TRIGGER * r):
+        return []
+    return [cut for cut in (r_end - r * g for g in WEIGHT_LAYER_GRADING) if cut > prev]
+
+
+def _with_weight_layer(bp, d, end, pole):
+    """Rows ``bp`` (:func:`_lens_breakpoints`) with :func:`_weight_layer_cuts` below each element's end
+    min(1 + d, ``end``): the same cuts as a single element's, rows without them unchanged."""
+    r_end = np.minimum(1.0 + d, end)
+    r = pole - r_end
+    prev = np.max(np.where(bp < r_end[:, None], bp, -np.inf), axis=1)      # the row's point below the end
+    steep = (r > 0.0) & (r_end - prev > WEIGHT_LAYER_TRIGGER * r)
+    if not steep.any():
+        return bp
+    cuts = r_end[steep, None] - r[steep, None] * np.array(WEIGHT_LAYER_GRADING)
+    layer = np.full((d.size, cuts.shape[1]), np.nan)
+    layer[steep] = np.where(cuts > prev[steep, None], cuts, np.nan)
+    rows = np.sort(np.concatenate([bp, layer], axis=1), axis=1)           # NaN padding last
+    return rows[:, np.isfinite(rows).any(axis=0)]
 
 
 #: A single element's first partition is graded by halves toward the lens's kinks, R = 1 − d from above
@@ -498,20 +552,7 @@ WEIGHT_POINT_GRADING = (0.5, 0.25, 0.125, 0.0625)
 _LAYERS = tuple((1.0 + LENS_LAYER_GRADING).tolist())
 
 
-#: From this rtol on, a single element's first partition grades toward the lens's kinks by
-#: :data:`LOOSE_LENS_KINK_GRADING` (two halves): it meets the tolerance on its first evaluation (the three
-#: patch mixtures' typical examples at 12 angles 0°–89°: at most 4.9e-8 relative with two levels, 1.7e-7
-#: with one), with 388–470 nodes instead of 850–1,214 (a quarter of a single call's instructions at 1e-6).
-LOOSE_RTOL = 1e-6
-LOOSE_LENS_KINK_GRADING = LENS_KINK_GRADING[:2]
-
-
-def _kink_grading(rtol):
-    """The grading toward the lens's kinks of a single element's first partition at ``rtol``."""
-    return LOOSE_LENS_KINK_GRADING if float(np.min(rtol)) >= LOOSE_RTOL else LENS_KINK_GRADING
-
-
-def _single_element_partition(points, d, kink_grading=LENS_KINK_GRADING):
+def _single_element_partition(points, d, steep_layer=None):
     """The first partition of one element at |L'_P| = ``d``, on Python floats: the points of
     :func:`_r_breakpoints`, graded toward the lens's kinks (:data:`LENS_KINK_GRADING`) and toward the
     weight's ``points`` from below (:data:`WEIGHT_POINT_GRADING`), so that one evaluation meets the
@@ -520,15 +561,19 @@ def _single_element_partition(points, d, kink_grading=LENS_KINK_GRADING):
     lo, hi = 1.0 - d, 1.0 + d
     row = sorted({p for p in (0.0, 1.0, 2.0, *points, lo, hi, *(lo * g for g in _LAYERS if lo * g < 1.0))
                   if 0.0 <= p <= 2.0})
+    if steep_layer is not None:          # the weight's layer, then graded toward as the row's own points
+        end, pole = steep_layer
+        r_end = min(hi, end)
+        row = sorted({*row, *_weight_layer_cuts(max(p for p in row if p < r_end), r_end, pole - r_end)})
     cuts = set(row)
     inside = [p for p in points if 0.0 < p <= 2.0]       # the points _r_breakpoints keeps (a point past 2: none)
     if lo < hi:
         above = [p for p in row if p > lo]
         below = [p for p in row if p < hi]
         if above:
-            cuts.update(lo + (above[0] - lo) * g for g in kink_grading)
+            cuts.update(lo + (above[0] - lo) * g for g in LENS_KINK_GRADING)
         if below:
-            cuts.update(hi - (hi - below[-1]) * g for g in kink_grading)
+            cuts.update(hi - (hi - below[-1]) * g for g in LENS_KINK_GRADING)
     for point in inside:                 # the weight's own features, graded toward from below
         before = [p for p in row if p < point]
         if before:
@@ -539,7 +584,8 @@ def _single_element_partition(points, d, kink_grading=LENS_KINK_GRADING):
 def _mixture_integral(profile, C, per_element, d, rtol, atol):
     """:func:`_weighted_mixture_integral` of a profile's weight p(R) (eq. 4.41) and Dirac part (eq. 4.24)."""
     return _weighted_mixture_integral(lambda R: weight(profile, R, C), diffuse_weight(profile, C), per_element,
-                                      d, rtol, atol, profile.breakpoints, covered=covered_weight(profile, C))
+                                      d, rtol, atol, profile.breakpoints, covered=covered_weight(profile, C),
+                                      steep_layer=profile.steep_layer)
 
 
 def covered_weight(profile, C):
@@ -552,11 +598,12 @@ def covered_weight(profile, C):
 
 
 def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=(), single_graded=False,
-                               covered=None):
+                               covered=None, steep_layer=None):
     """∫₀² p(R) g(R, element) dR + p_Diffuse for g = ``per_element`` (an :class:`Estimate`),
     one element per |L'_P| = ``d`` (whose kinks 1 ∓ d split the range, with the weight's ``points``).
     With ``covered`` = p_Diffuse + ∫₁² p in closed form (:func:`covered_weight`): ∫₀² p (g − [R ≥ 1]) dR + covered
-    (g − 1 is exact, Sterbenz, for g in [1/2, 2]; its rounding below 1/2 is ε/2, within the final term)."""
+    (g − 1 is exact, Sterbenz, for g in [1/2, 2]; its rounding below 1/2 is ε/2, within the final term).
+    ``steep_layer``: (end, pole) of a weight that grows toward a pole (:func:`_weight_layer_cuts`)."""
 
     def integrand(x, elem):
         g = per_element(x, elem)
@@ -579,28 +626,21 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
                 return out
         return integrand(x, elem)
 
-    bp = _r_breakpoints(points, d, single_graded, rtol)
+    bp = _r_breakpoints(points, d, single_graded, steep_layer)
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
-    rough = integrate(rough_integrand, bp, rtol=1e-4, atol=atol)
+    rough, rough_rounds = integrate(rough_integrand, bp, rtol=1e-4, atol=atol, return_rounds=True)
     constant = p_diffuse if covered is None else covered
     target = np.maximum(0.5 * rtol * np.abs(rough.value + constant), atol)
     # The second pass starts from the rough pass's first evaluation; where the rough pass stopped there
     # (nothing was split) with every error within a quarter of the target, the second stops there too
     # (2 Σ|K − G| ≤ error ≤ target / 4 is within its budget, :func:`.gauss_kronrod._budget`) and its sums
     # are the same: the rough answer is the final one, to the bit, without the second pass's round.
-    first_only = rough.evaluations == _intervals(bp) * NODES.size
-    est = rough if first_only and np.all(rough.error <= 0.25 * target) else \
+    est = rough if rough_rounds == 0 and np.all(rough.error <= 0.25 * target) else \
         integrate(final_integrand, bp, rtol=0.0, atol=target)
     rounding = abs(p_diffuse) if covered is None else abs(covered) + abs(p_diffuse)   # ≥ ∫₁²|p| (p of one sign)
     return Estimate(est.value + constant, est.error + CLOSED_FORM_RTOL * rounding)
-
-
-def _intervals(bp):
-    """The intervals :func:`.gauss_kronrod.integrate` starts from on breakpoint rows ``bp`` (NaN-padded)."""
-    lo, hi = bp[:, :-1], bp[:, 1:]
-    return int(np.count_nonzero(np.isfinite(lo) & np.isfinite(hi) & (hi > lo)))
 
 
 def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_graded=False):
@@ -625,16 +665,18 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_gr
     """
     C = profile.c_max if C is None else float(C)
     return weighted_mixture_albedo(lambda R: weight(profile, R, C), diffuse_weight(profile, C), theta_deg,
-                                   rtol, atol, profile.breakpoints, single_graded, covered_weight(profile, C))
+                                   rtol, atol, profile.breakpoints, single_graded, covered_weight(profile, C),
+                                   profile.steep_layer)
 
 
 def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, points=(), single_graded=False,
-                            covered=None):
+                            covered=None, steep_layer=None):
     """a^p(L) = ∫₀² p(R) a_R(L) dR + p_Diffuse  (eqs. 4.22, 4.24) of any weight: ``p`` a vectorised
     callable p(R) on [0, 2] (smooth between the kinks 1, 1 ∓ |L'_P| of a_R and its own ``points``),
     ``p_diffuse`` the Dirac weight at R = 2, whose a_2 = 1.  The error adds each lens area's rounding
     bound, weighted by |p|, to the quadrature's.  ``single_graded``: as :func:`mixture_albedo`; ``covered``: p_Diffuse
-    + ∫₁² p in closed form, as :func:`_weighted_mixture_integral` takes it.
+    + ∫₁² p in closed form, as :func:`_weighted_mixture_integral` takes it; ``steep_layer``: (end, pole) of a
+    weight that grows toward a pole (:func:`_weight_layer_cuts`).
 
     Returns
     -------
@@ -645,7 +687,7 @@ def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, poi
     d = np.atleast_1d(sin_incidence(theta)).ravel()
     mu = np.atleast_1d(_cos_incidence_near_grazing(theta)).ravel()
     est = _weighted_mixture_integral(p, p_diffuse, lambda R, e: basic_albedo_at(d[e][:, None], R, mu[e][:, None]),
-                                     d, rtol, atol, points, single_graded, covered)
+                                     d, rtol, atol, points, single_graded, covered, steep_layer)
     return Estimate(est.value.reshape(theta.shape), est.error.reshape(theta.shape))
 
 
