@@ -25,6 +25,8 @@ Shape of the integrand (read by the integration engine, :mod:`brdfs.numerics.int
   r = |L_xy + V_xy| of the horizontal scattering vector — the same radius for every direction
   (the patch radii, He–Torrance's scales), or along the direction (cos ψ, sin ψ) of L_xy + V_xy
   (an elliptical patch).
+* ``scattering_radius_steep_layer()``: (end, pole) where f grows as a power of 1/(pole − r) in
+  r = |L_xy + V_xy| up to r = end (a generalized Lambertian: (m_clip, 2)), or None.
 * ``torrance_sparrow_switches``: the integrand carries the min of eq. 2.10, whose masking and
   shadowing switches are kinks; ``symmetric_about_incidence_plane``: f(L, V) is even in V_y.
 * ``albedo_estimate(theta_deg, rtol, atol)``: the model's own route to its albedo where it has
@@ -362,6 +364,11 @@ class BRDF:
         one array (of the shape of ``cos_psi``) per kink: by default the constant radii of
         :meth:`scattering_radius_levels`."""
         return [np.full(np.shape(cos_psi), r) for r in self.scattering_radius_levels()]
+
+    def scattering_radius_steep_layer(self):
+        """(end, pole): f grows as a power of 1/(pole − r) in r = |L_xy + V_xy| up to r = end, or None (the
+        default): the rays of the disk route whose end comes near the pole are graded toward it."""
+        return None
 
     def scattering_azimuth_kernel(self):
         """``kernel(cos θ_L, sin θ_L, cos θ_V, sin θ_V) -> (value, error)``: ∫₀^{2π} f cos θ_V sin θ_V dφ_V

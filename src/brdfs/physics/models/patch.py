@@ -317,6 +317,11 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
         """The kink of min(ξ(m), ξ(m_clip)) at m = m_clip (eq. 4.59)."""
         return (float(self.m_clip),)
 
+    def scattering_radius_steep_layer(self):
+        """(m_clip, 2): ξ(m) = (1 − m²/4)^{−d/2} grows toward its pole m = 2 up to m_clip (the profile's own
+        :attr:`~brdfs.physics.patch_geometry.GeneralizedLambertProfile.steep_layer`, that of p(R))."""
+        return patch.GeneralizedLambertProfile(self.d, self.m_clip).steep_layer
+
     def _eval(self, L, V, nl, nv):
         return self.C * patch.GeneralizedLambertProfile(self.d, self.m_clip).xi(projected_distance(L, V))
 
