@@ -63,3 +63,16 @@ def test_disk_grades_psi_toward_the_longest_ray_only_near_the_pole():
     assert rays.size > 10 and width < rays.min() < 4 * width, (rays.min(), width)
     assert disk._steep_layer_rays(_model(1.0, 1.9), mu, st) == []
     assert disk._steep_layer_rays(brdfs.model("patch_exponential", s=1.0), mu, st) == []
+
+
+def test_a_pumped_model_keeps_its_bases_steep_layer():
+    """Pumping divides f by g(N·L, N·V), a function of the angles alone: the pole of f in r = |L_xy + V_xy|
+    stays, and the disk grades a pumped generalized Lambertian's rays as its base's."""
+    from brdfs.numerics import pumping
+
+    base = _model(1.0, 2 - 1e-9)
+    table = pumping.AlbedoTable(np.array([0.0, 1.0]), np.full((1, 3), 0.9), 0.0)   # any table: g does not move r
+    pumped = pumping.Pumped(base, table)
+    assert pumped.scattering_radius_steep_layer() == base.scattering_radius_steep_layer() is not None
+    mu, st = np.cos(np.radians(89.99)), np.sin(np.radians(89.99))
+    assert disk._steep_layer_rays(pumped, mu, st) == disk._steep_layer_rays(base, mu, st)

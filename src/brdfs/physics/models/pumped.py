@@ -99,6 +99,9 @@ class Pumped(BRDF):
     def scattering_radius_kinks(self, cos_psi, sin_psi):
         return self.base.scattering_radius_kinks(cos_psi, sin_psi)
 
+    def scattering_radius_steep_layer(self):
+        return self.base.scattering_radius_steep_layer()
+
     @property
     def torrance_sparrow_switches(self):
         return self.base.torrance_sparrow_switches
