@@ -480,7 +480,7 @@ LENS_LAYER_GRADING = 4.0 ** np.arange(0.0, 27.0)
 
 def _r_breakpoints(points, d, single_graded=False, steep_layer=None):
     """Per element: 0, the kinks 1 − d, 1, 1 + d of a_R(d) in R, the cuts of :data:`LENS_LAYER_GRADING`,
-    the weight's ``points``, 2, and with a ``steep_layer`` (end, pole) the cuts of :func:`_weight_layer_cuts`;
+    the weight's ``points``, 2, and with a ``steep_layer`` (end, pole) the cuts of :func:`weight_layer_cuts`;
     with ``single_graded``, a single element's row graded further (:func:`_single_element_partition`)."""
     d = np.atleast_1d(np.asarray(d, float))
     if single_graded and d.size == 1:
@@ -516,7 +516,7 @@ WEIGHT_LAYER_GRADING = tuple(4.0 ** k - 1.0 for k in range(1, 27))
 WEIGHT_LAYER_TRIGGER = 16.0
 
 
-def _weight_layer_cuts(prev, r_end, r):
+def weight_layer_cuts(prev, r_end, r):
     """:data:`WEIGHT_LAYER_GRADING`'s cuts in (``prev``, ``r_end``) for a pole ``r`` beyond ``r_end`` (numbers:
     a single element's row), none unless that interval is wider than :data:`WEIGHT_LAYER_TRIGGER` r."""
     if not (r > 0.0 and r_end - prev > WEIGHT_LAYER_TRIGGER * r):
@@ -525,7 +525,7 @@ def _weight_layer_cuts(prev, r_end, r):
 
 
 def _with_weight_layer(bp, d, end, pole):
-    """Rows ``bp`` (:func:`_lens_breakpoints`) with :func:`_weight_layer_cuts` below each element's end
+    """Rows ``bp`` (:func:`_lens_breakpoints`) with :func:`weight_layer_cuts` below each element's end
     min(1 + d, ``end``): the same cuts as a single element's, rows without them unchanged."""
     r_end = np.minimum(1.0 + d, end)
     r = pole - r_end
@@ -564,7 +564,7 @@ def _single_element_partition(points, d, steep_layer=None):
     if steep_layer is not None:          # the weight's layer, then graded toward as the row's own points
         end, pole = steep_layer
         r_end = min(hi, end)
-        row = sorted({*row, *_weight_layer_cuts(max(p for p in row if p < r_end), r_end, pole - r_end)})
+        row = sorted({*row, *weight_layer_cuts(max(p for p in row if p < r_end), r_end, pole - r_end)})
     cuts = set(row)
     inside = [p for p in points if 0.0 < p <= 2.0]       # the points _r_breakpoints keeps (a point past 2: none)
     if lo < hi:
@@ -603,7 +603,7 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
     one element per |L'_P| = ``d`` (whose kinks 1 ∓ d split the range, with the weight's ``points``).
     With ``covered`` = p_Diffuse + ∫₁² p in closed form (:func:`covered_weight`): ∫₀² p (g − [R ≥ 1]) dR + covered
     (g − 1 is exact, Sterbenz, for g in [1/2, 2]; its rounding below 1/2 is ε/2, within the final term).
-    ``steep_layer``: (end, pole) of a weight that grows toward a pole (:func:`_weight_layer_cuts`)."""
+    ``steep_layer``: (end, pole) of a weight that grows toward a pole (:func:`weight_layer_cuts`)."""
 
     def integrand(x, elem):
         g = per_element(x, elem)
@@ -676,7 +676,7 @@ def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, poi
     ``p_diffuse`` the Dirac weight at R = 2, whose a_2 = 1.  The error adds each lens area's rounding
     bound, weighted by |p|, to the quadrature's.  ``single_graded``: as :func:`mixture_albedo`; ``covered``: p_Diffuse
     + ∫₁² p in closed form, as :func:`_weighted_mixture_integral` takes it; ``steep_layer``: (end, pole) of a
-    weight that grows toward a pole (:func:`_weight_layer_cuts`).
+    weight that grows toward a pole (:func:`weight_layer_cuts`).
 
     Returns
     -------

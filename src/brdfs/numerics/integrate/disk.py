@@ -52,7 +52,7 @@ import numpy as np
 
 from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.physics.lobes import HALF, MIRROR, SCATTERING
-from brdfs.physics.patch_geometry import WEIGHT_LAYER_GRADING, WEIGHT_LAYER_TRIGGER
+from brdfs.physics.patch_geometry import weight_layer_cuts
 from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
@@ -211,10 +211,9 @@ def _steep_layer_rays(model, mu, st):
         r_end, g = end, pole - end
     else:                       # P − (1 + sin θ) with 1 − sin θ = cos²θ/(1 + sin θ): no cancellation
         r_end, g = 1.0 + st, (pole - 2.0) + mu * mu / (1.0 + st)
-    if not (g > 0 and r_end - 1.0 > WEIGHT_LAYER_TRIGGER * g):
+    radii = np.array(weight_layer_cuts(1.0, r_end, g))                # the engine's cuts above its lens kink R = 1
+    if radii.size == 0:
         return []
-    radii = np.array([r_end - g * k for k in WEIGHT_LAYER_GRADING])
-    radii = radii[radii > 1.0]
     x = (radii * radii - mu * mu) / (2 * radii * st)          # the ray that ends at r (_constant_radii)
     return list(np.arccos(x[(x > -1) & (x < 1)]))
 
