@@ -265,7 +265,7 @@ def _imported_names_of(path: Path) -> set[str]:
     """The absolute package modules ``path`` imports: the names :func:`_imported_names` reads from the
     module's syntax tree, from the syntax tree of its import statements alone (found by
     :func:`_import_statements`, about 8x faster than parsing the module while the workflow plans;
-    ``tests/pipeline/test_registry.py`` holds the two equal on every module of the package). A
+    ``tests/pipeline/test_source_scan.py`` holds the two equal on every module of the package). A
     statement the scan cuts short (a ``)`` in a comment inside its parentheses) fails to parse, and
     then the whole module is parsed."""
     try:
