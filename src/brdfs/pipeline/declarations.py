@@ -27,16 +27,10 @@ from brdfs.pipeline import registry
 
 # --- the module-level statements a scan reads, without parsing the functions' bodies ---------------
 
-# Lexemes of Python source: strings and comments (consumed whole, so that nothing inside them counts),
-# a backslash continuing a line, brackets (their depth), and a newline followed by a line's first
+# Lexemes of Python source: strings, comments and a backslash's continued line (stepped over whole:
+# registry._STRINGS_AND_COMMENTS), brackets (their depth), and a newline followed by a line's first
 # character that is neither blank nor a comment's: at depth 0, the start of a module-level statement.
-_LEXEMES = re.compile(r"""
-    "{3}[^"\\]*(?:(?:\\.|"(?!""))[^"\\]*)*"{3}
-  | '{3}[^'\\]*(?:(?:\\.|'(?!''))[^'\\]*)*'{3}
-  | "[^"\\\n]*(?:\\.[^"\\\n]*)*"
-  | '[^'\\\n]*(?:\\.[^'\\\n]*)*'
-  | \#[^\n]*
-  | \\\n
+_LEXEMES = re.compile(registry._STRINGS_AND_COMMENTS + r"""
   | (?P<open>[(\[{])
   | (?P<close>[)\]}])
   | (?P<line>\n(?=[^\s\#]))

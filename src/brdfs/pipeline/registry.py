@@ -228,18 +228,22 @@ def _imported_names(statements: Iterable[ast.AST]) -> set[str]:
     return names
 
 
-# An import statement's keyword where a statement starts (a line's first word, or after ``;`` or the
-# ``:`` of ``if x: import y``), outside strings and comments: the scanner consumes those whole, so a
-# docstring's ``from brdfs import model`` is no import, and a backslash's line continues a statement.
-# ``raise E from e`` and ``yield from`` are no statement's start. The text before the source is a
-# newline (``_import_statements`` prepends it).
-_IMPORT_SCAN = re.compile(r"""
+#: Python's string literals and comments, and a backslash that continues a line: the text a scan of
+#: source must step over whole (here and in :mod:`brdfs.pipeline.declarations`), so that nothing inside
+#: a string or a comment counts, and a continued line is no new line. A regular expression's
+#: alternatives (re.VERBOSE, re.DOTALL), to be followed by the scan's own.
+_STRINGS_AND_COMMENTS = r"""
     "{3}[^"\\]*(?:(?:\\.|"(?!""))[^"\\]*)*"{3}
   | '{3}[^'\\]*(?:(?:\\.|'(?!''))[^'\\]*)*'{3}
   | "[^"\\\n]*(?:\\.[^"\\\n]*)*"
   | '[^'\\\n]*(?:\\.[^'\\\n]*)*'
   | \#[^\n]*
-  | \\\n
+  | \\\n"""
+# An import statement's keyword where a statement starts (a line's first word, or after ``;`` or the
+# ``:`` of ``if x: import y``), outside strings and comments: a docstring's ``from brdfs import model``
+# is no import. ``raise E from e`` and ``yield from`` are no statement's start. The text before the
+# source is a newline (``_import_statements`` prepends it).
+_IMPORT_SCAN = re.compile(_STRINGS_AND_COMMENTS + r"""
   | [\n;:][ \t\f]*(?P<statement>(?:from|import)\b)
 """, re.VERBOSE | re.DOTALL)
 # The rest of an import statement: its line (and backslash continuations), or through the ``)`` of
