@@ -62,3 +62,25 @@ def test_beckmann_lambda_keeps_relative_accuracy_where_it_underflows_the_roundin
     a = mu / (alpha * np.sqrt(1 - mu * mu))
     series = np.exp(-a * a) / (4 * a ** 3 * np.sqrt(np.pi)) * (1 - 3 / (2 * a * a) + 15 / (4 * a ** 4) - 105 / (8 * a ** 6))
     assert float(Beckmann(alpha).smith_lambda(mu)) == pytest.approx(series, rel=1e3 / a ** 8)
+
+
+def test_the_kummer_coefficients_are_the_exact_rationals_of_their_definition_each_rounded_once():
+    """The tables' memoised Pochhammer symbols (a)_n = (a)_(n-1) (a + n - 1) give the rationals of
+    the products a (a + 1) ... (a + n - 1) themselves: each coefficient is the float nearest to its
+    exact value (Fraction -> float rounds correctly), at both ends and inside both series."""
+    from fractions import Fraction
+    from math import factorial, prod
+
+    from brdfs.physics import distributions as d
+
+    def poch(a, n):
+        return prod((a + j for j in range(n)), start=Fraction(1))
+
+    half = Fraction(1, 2)
+    for n in (0, 1, 2, 37, 119):
+        for row, k in enumerate((1, 2)):
+            assert d._SERIES[row, n] == float(poch(half, n) / (poch(k + 1, n) * factorial(n)))
+    for s in (0, 1, 20, 41):
+        for k in range(3):
+            assert d._ASYMPTOTIC[k, s] == float(poch(Fraction(2 * k + 1, 2), s) * poch(half, s) / factorial(s))
+    assert d._SERIES.shape == (2, 120) and d._ASYMPTOTIC.shape == (3, 42)

@@ -209,7 +209,8 @@ def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     per_panel = df[df["object"] == PROFILED_OBJECT].set_index("panel")
     columns = [c for c in per_panel.columns if c not in ("object", "pixels", "luminance", "luminance_err")
                and not c.startswith(("object_", "p95", "fireflies"))]
-    rows = [{**per_panel.loc[row["panel"], columns].to_dict(), "width": limb_size[0], "height": limb_size[1], "spp": rendered.spp,
+    of_panel = {panel: per_panel.loc[panel, columns].to_dict() for panel in {row["panel"] for row in profile_rows}}
+    rows = [{**of_panel[row["panel"]], "width": limb_size[0], "height": limb_size[1], "spp": rendered.spp,
              "point_lights": 0, "max_depth": limb.max_depth, **row} for row in profile_rows]
     profile = pd.DataFrame(rows)
     images, ids = df.attrs["images"], df.attrs["ids"]

@@ -26,7 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from fractions import Fraction
-from math import factorial, lgamma, prod, sqrt
+from functools import lru_cache
+from math import factorial, lgamma, sqrt
 
 from scipy.special import erfc, erfcx, i0e, ndtri
 
@@ -474,8 +475,10 @@ def _rounded_coefficients(rows, count):
     return np.array([[float(row(n)) for n in range(count)] for row in rows])
 
 
+@lru_cache(maxsize=None)
 def _pochhammer(a, n):
-    return prod((a + j for j in range(n)), start=Fraction(1))
+    """(a)_n exactly, from (a)_(n-1): the tables' rows take n products each, not n² (import time)."""
+    return Fraction(1) if n == 0 else _pochhammer(a, n - 1) * (a + n - 1)
 
 
 #: The series' coefficients (½)_n / ((k + 1)_n n!) of k = 1, 2 (rows), n < 120, each rounded once.

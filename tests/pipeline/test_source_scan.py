@@ -1,0 +1,179 @@
+"""The workflow plans from scans of the package's source that parse only what they need: the import
+statements (an artifact's code inputs, ``registry._imports_of``) and the module-level statements
+(the decorator declarations, ``declarations._top_level``). Each must read what the module's full
+syntax tree holds, on every module of the package, and on source written to mislead a scan."""
+
+import ast
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from brdfs.pipeline import declarations, registry
+
+PACKAGE = Path(registry.__file__).resolve().parents[1]
+MODULES = sorted(PACKAGE.rglob("*.py"))
+
+
+def _names_of_tree(source: str) -> set[str]:
+    return registry._imported_names(registry._statements(ast.parse(source).body))
+
+
+def _names_of_scan(source: str, package: str = "brdfs") -> set[str]:
+    return registry._imported_names(registry._statements(ast.parse(registry._import_statements(source, package)).body))
+
+
+def _in_package(names):
+    return {n for n in names if n == "brdfs" or n.startswith("brdfs.")}
+
+
+@pytest.fixture(scope="module")
+def trees():
+    """Every module of the package: its path, source and syntax tree."""
+    return [(path, source, ast.parse(source)) for path in MODULES for source in [path.read_text(encoding="utf-8")]]
+
+
+def test_the_import_scan_reads_every_import_the_syntax_tree_holds_in_every_package_module(trees):
+    assert len(trees) > 100
+    for path, source, tree in trees:
+        imported = registry._imported_names(registry._statements(tree.body))
+        assert _names_of_scan(source, package="") == imported, path  # every import statement
+        assert _in_package(registry._imported_names_of(path)) == _in_package(imported), path
+
+
+# Imports a scan for "import" at a line's start would miss, and text that is no import.
+MISLEADING = r'''"""A docstring that shows code:
+
+from brdfs.physics import fresnel
+    import brdfs.numerics.albedo
+"""
+import os, brdfs.core.estimate as est
+from brdfs.pipeline import (io,  # a comment with "quotes" and from brdfs.render import x
+    registry)
+x = 'it''s'; import brdfs.physics.lobes
+s = "\" from brdfs.numerics import grazing"
+if True: from brdfs.physics import geometry
+from brdfs.physics \
+    import sampling
+
+
+def f():
+    r"""raw: \\""" + '#'
+    try:
+        import brdfs.numerics.pumping
+    except ImportError:
+        raise ValueError("no") from None
+    yield from range(3)  # from brdfs.render import mitsuba
+    t = f"""{1}
+from brdfs.render import spectrum"""
+
+
+class C:
+    from brdfs.physics.models import phong
+# import brdfs.render.mitsuba (it's a comment)
+    # from brdfs.render import spectrum
+'''
+
+
+def test_the_import_scan_skips_strings_and_comments_and_finds_imports_after_colons_and_semicolons():
+    assert _names_of_scan(MISLEADING, package="") == _names_of_tree(MISLEADING)
+    assert _in_package(_names_of_tree(MISLEADING)) == {
+        "brdfs.core.estimate", "brdfs.pipeline", "brdfs.pipeline.io", "brdfs.pipeline.registry",
+        "brdfs.physics.lobes", "brdfs.physics", "brdfs.physics.geometry", "brdfs.physics.sampling",
+        "brdfs.numerics.pumping", "brdfs.physics.models", "brdfs.physics.models.phong"}
+
+
+def test_an_import_the_scan_cuts_short_falls_back_to_the_modules_syntax_tree(tmp_path):
+    path = tmp_path / "toy.py"
+    path.write_text("from brdfs.physics import (fresnel,  # see f(x)\n    lobes)\n")
+    with pytest.raises(SyntaxError):  # the statement's text ends at the comment's ")"
+        ast.parse(registry._import_statements(path.read_text()))
+    assert registry._imported_names_of(path) == {"brdfs.physics", "brdfs.physics.fresnel", "brdfs.physics.lobes"}
+
+
+def _read(nodes):
+    """What the declarations' scan uses of a module's body: module-level assignments and imports, and
+    the decorators of functions (with their line numbers)."""
+    out = []
+    for node in nodes:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node.decorator_list:
+            out.append([ast.dump(d, include_attributes=True) for d in node.decorator_list])
+        elif isinstance(node, (ast.Assign, ast.AnnAssign, ast.Import, ast.ImportFrom)):
+            out.append(ast.dump(node, include_attributes=True))
+    return out
+
+
+def test_the_module_level_scan_reads_what_the_syntax_tree_holds_in_every_package_module(trees):
+    for path, _, tree in trees:
+        assert _read(declarations._top_level(path)) == _read(tree.body), path
+
+
+TOP_LEVEL = '''\
+#!/usr/bin/env python
+"""Docstring with a line that looks like a statement:
+NOT_A_CONSTANT = 1
+"""
+import brdfs.pipeline.registry as reg
+from brdfs.pipeline.registry import figure, table
+A = 1; B = (2,
+3)
+pass; C = "x"
+D: tuple = ("y", """
+E = 4
+""")
+F = 1 + \\
+2
+try:
+    G = 5
+except ImportError:
+    G = 6
+else:
+    H = 7
+match = [1]
+SECTIONS = dict(
+a=1,
+b=2)
+
+
+@table("extra_toy", deps=(A,
+ "b"),
+       config=SECTIONS)  # a comment
+def compute(cfg, deps):
+    I = 8  # a local, not a constant
+    return I
+
+
+@reg.figure("fig_9_9_toy",
+)
+async def other(cfg, deps):
+    pass
+
+
+@staticmethod
+class K:
+    L = 9
+'''
+
+
+def test_the_module_level_scan_follows_strings_brackets_continuations_and_decorators(tmp_path):
+    path = tmp_path / "toy.py"
+    path.write_text(TOP_LEVEL)
+    nodes = declarations._top_level(path)
+    assert _read(nodes) == _read(ast.parse(TOP_LEVEL).body)
+    assigned = [t.id for n in nodes if isinstance(n, ast.Assign) for t in n.targets]
+    assert assigned == ["A", "B", "C", "F", "match", "SECTIONS"]  # D is annotated; G, H in a try
+    assert not any(isinstance(n, ast.ClassDef) for n in nodes)
+
+
+def test_a_statement_the_module_level_scan_splits_wrongly_falls_back_to_the_whole_syntax_tree(tmp_path, monkeypatch):
+    path = tmp_path / "toy.py"
+    text = "X = f(\na=1,\nb=2)\n"  # a bracket's lines at column 0: one statement
+    path.write_text(text)
+    assert [s for _, s in declarations._module_statements(text)] == [text]
+    path.write_text("X = (\n\"\"\"\n)\n")  # a string that never ends: not Python at all
+    with pytest.raises(SyntaxError):
+        declarations._top_level(path)
+    path.write_text(text)
+    lines = [(k + 1, line) for k, line in enumerate(text.splitlines(keepends=True))]
+    monkeypatch.setattr(declarations, "_module_statements", lambda source: lines)  # as if the depth were lost
+    assert _read(declarations._top_level(path)) == _read(ast.parse(text).body)  # "a=1," alone would be a tuple
