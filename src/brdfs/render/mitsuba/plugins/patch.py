@@ -67,6 +67,8 @@ bench_patch_plugins.py): at s = 2 accept/reject rejects 0 % (θ = 0°) to 45 % (
 """
 from __future__ import annotations
 
+import math
+
 import drjit as dr
 import mitsuba as mi
 import numpy as np
@@ -116,15 +118,19 @@ def disk_to_direction(x, y):
     return mi.Vector3f(x, y, dr.safe_sqrt(1.0 - r2)), r2 < 1.0
 
 
-def _segment(t):
-    """t − sin t cos t = (x − sin x)/2, x = 2t (Float64), by its series where it cancels (as patch_geometry)."""
-    x = 2.0 * t
+#: 1/(2k + 3)! for k = 0 … 6: the series x³/3! − x⁵/5! + … of x − sin x (the products, not divisions, in the kernel).
+_SEGMENT_SERIES = tuple(1.0 / math.factorial(2 * k + 3) for k in range(7))
+
+
+def _segment(x, sin_x):
+    """t − sin t cos t = (x − sin x)/2 (Float64) of x = 2t and its sine (given: the caller has it without
+    a call of sin), by its series (Horner) where the difference cancels, |x| < 1/4 (as patch_geometry)."""
     x2 = x * x
-    series, term = 0.0 * x, x * x2 / 6.0
-    for k in range(1, 8):
-        series += term
-        term = -term * x2 / ((2 * k + 2) * (2 * k + 3))
-    return 0.5 * dr.select(dr.abs(x) < 0.25, series, x - dr.sin(x))
+    series = 0.0 * x
+    for c in reversed(_SEGMENT_SERIES):
+        series = c - x2 * series
+    series = x * x2 * series
+    return 0.5 * dr.select(dr.abs(x) < 0.25, series, x - sin_x)
 
 
 def lens_area(d, R):
@@ -142,13 +148,22 @@ def lens_area64(d, R):
     b = dr.maximum(dr.minimum(one, R), dr.minimum(dr.maximum(one, R), d))
     prod = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c))
     four_delta = dr.sqrt(dr.maximum(prod, 0.0))
-    alpha = dr.atan2(four_delta, 1.0 + (d - R) * (d + R))
-    beta = dr.atan2(four_delta, d * d + (R - 1.0) * (R + 1.0))
+    cos_alpha, cos_beta = 1.0 + (d - R) * (d + R), d * d + (R - 1.0) * (R + 1.0)   # (4Δ, ·) ∝ (sin, cos)
+    alpha, beta = dr.atan2(four_delta, cos_alpha), dr.atan2(four_delta, cos_beta)
     nested = d <= dr.abs(1.0 - R)
     apart = d >= 1.0 + R
-    alpha = dr.select(apart, 0.0, dr.select(nested, dr.select(R <= 1.0, 0.0, dr.pi), alpha))
-    beta = dr.select(apart, 0.0, dr.select(nested, dr.select(R <= 1.0, dr.pi, 0.0), beta))
-    return _segment(alpha) + R * R * _segment(beta)
+    special = nested | apart                         # α, β ∈ {0, π}: sin 2α = sin 2β = 0
+    half_turn = mi.Float64(math.pi)                  # (a select of two Python floats would be float32)
+    alpha = dr.select(apart, 0.0, dr.select(nested, dr.select(R <= 1.0, 0.0, half_turn), alpha))
+    beta = dr.select(apart, 0.0, dr.select(nested, dr.select(R <= 1.0, half_turn, 0.0), beta))
+    return (_segment(2.0 * alpha, _sin_double(four_delta, cos_alpha, special))
+            + R * R * _segment(2.0 * beta, _sin_double(four_delta, cos_beta, special)))
+
+
+def _sin_double(y, x, special):
+    """sin 2φ of φ = atan2(y, x), y ≥ 0: 2xy/(x² + y²), 0 where ``special`` or x = y = 0."""
+    h = x * x + y * y
+    return dr.select(special | (h == 0.0), 0.0, 2.0 * x * y / dr.select(h == 0.0, 1.0, h))
 
 
 def fresnel_cosine_prime(L, V):
@@ -200,8 +215,8 @@ def _p3_series(x):
     P(3, x) below x = 1, where the closed form 1 − e^{−x}(1 + x + x²/2) cancels."""
     acc = 0.0 * x + 1.0
     for k in range(3 + SERIES_TERMS - 1, 3, -1):
-        acc = 1.0 + acc * x / k
-    return x * x * x / 6.0 * acc
+        acc = 1.0 + acc * x * (1.0 / k)
+    return x * x * x * (1.0 / 6.0) * acc
 
 
 def exponential_cdf_and_density(R, s, norm, ends):
