@@ -367,6 +367,24 @@ def test_the_lobe_mis_density_changes_the_mis_weights_only_not_the_samples_weigh
     assert not np.allclose(_np(bs_e.pdf)[kept], _np(bs_l.pdf)[kept], rtol=1e-3)
 
 
+def test_the_lens_area_in_float64_is_the_numpy_geometrys_to_1e_12(mitsuba):
+    """lens_area64 (sin 2φ from the triangle, no call of sin) against patch_geometry.circle_intersection at
+    random (d, R), near both tangencies and nested/apart: the normal weight a_R(L) carries no error a
+    float32 image could see (a float32 π in the nested case was 2.8e-8 off)."""
+    mi = mitsuba
+    from brdfs.render.mitsuba.plugins import patch as plugins
+    rng = np.random.default_rng(17)
+    n = 20_000
+    d = np.concatenate([rng.random(n), 1 - 10.0 ** rng.uniform(-12, 0, n), 10.0 ** rng.uniform(-12, 0, n), rng.random(2 * n)])
+    near = 10.0 ** rng.uniform(-12, -1, 2 * n) * rng.choice([-1.0, 1.0], 2 * n)
+    R = np.concatenate([2 * rng.random(n), 10.0 ** rng.uniform(-6, 0.3, 2 * n),
+                        np.abs(np.abs(1 - d[3 * n:4 * n]) + near[:n]), 1 + d[4 * n:] + near[n:]])
+    exact = patch.circle_intersection(d, R).area
+    area = np.asarray(plugins.lens_area64(mi.Float64(d), mi.Float64(R)))
+    np.testing.assert_array_equal(area[exact == 0], 0.0)
+    np.testing.assert_allclose(area, exact, rtol=1e-12, atol=0)
+
+
 def test_the_normal_loop_gives_up_with_a_probability_below_float32_resolution(mitsuba):
     from brdfs.render.mitsuba.plugins import patch as plugins
     d, R = np.meshgrid(np.linspace(0.0, 1.0, 201), np.linspace(0.01, 2.0, 200))
@@ -417,6 +435,38 @@ def test_exponential_radius_is_the_models_inverse_cdf(mitsuba):
         R = _np(plugin.radius(mi.Float(u)))
         exact = numpy_model("patch_exponential", s=s).radius_of_cdf(u.astype(np.float64))
         np.testing.assert_allclose(R, exact, rtol=2.0 ** -21, atol=2.0 ** -30)
+
+
+def _independent_radius(s, u):
+    """F⁻¹(u) of the exponential mixture without the model's bisection: x = P(3, ·)⁻¹(u P(2, s)) (scipy's
+    ``gammaincinv``), R = x/s below F(1), the closed form R = −ln(e^{−2s} + (1 − u − p_Diffuse) 2P(2, s)/s²)/s
+    above it, 2 from 1 − p_Diffuse on."""
+    brdf = numpy_model("patch_exponential", s=s)
+    norm, p_diffuse = gammainc(2.0, s), brdf.C / brdf.total_weight * np.pi * np.exp(-2.0 * s)
+    at_one = gammainc(3.0, s) / norm
+    inner = gammaincinv(3.0, np.minimum(u, at_one) * norm) / s
+    with np.errstate(divide="ignore", invalid="ignore"):
+        outer = -np.log(np.exp(-2.0 * s) + ((1.0 - u) - p_diffuse) * 2.0 * norm / (s * s)) / s
+    return np.where(u >= 1.0 - p_diffuse, 2.0, np.where(u <= at_one, inner, outer))
+
+
+@pytest.mark.parametrize("s", [0.01, 0.5, 1.0, 2.0, 4.0, 6.0, 8.0, 10.0, 15.0, 20.0, 64.0, 512.0, 1e5])
+def test_exponential_radius_is_within_its_stated_bound_of_an_independent_inverse(mitsuba, s):
+    """R = F⁻¹(u) of the plugin (table start, Newton steps, float64) within RADIUS_RTOL R of scipy's
+    inverse, at 2·10⁴ uniform u, 10⁴ toward 0 and 10⁴ toward 1 (float32 u, as the sampler's): far below
+    float32's 2⁻²⁴, so the radii sample the model's weight (with the 5 Newton steps of the linear start
+    before, or 1 step now, 4e-6 at s ≥ 15, this fails)."""
+    mi = mitsuba
+    from brdfs.render.mitsuba.plugins import patch as plugins
+    rng = np.random.default_rng(int(s * 100))
+    u = np.concatenate([rng.random(20_000), 10.0 ** rng.uniform(-9, 0, 10_000), 1 - 10.0 ** rng.uniform(-7.2, 0, 10_000),
+                        [2.0 ** -24, 1 - 2.0 ** -24]]).astype(np.float32)
+    u = u[u < 1].astype(np.float64)
+    R = np.asarray(mi.load_dict(_plugin("patch_exponential", s=s)).radius64(mi.Float(u.astype(np.float32))))
+    exact = _independent_radius(s, u)
+    worst = np.max(np.abs(R - exact) / exact)
+    assert worst <= plugins.RADIUS_RTOL, worst
+    assert plugins.RADIUS_RTOL <= 2.0 ** -30
 
 
 # --- anisotropy: patch_elliptical at B/A < 1 -----------------------------------------------------------------
