@@ -86,6 +86,15 @@ MEANING = [
     ("renders.final.spp", 1530, "renders.final.spp = 1530", "multiple of passes"),
     ("renders.preview.figure_spp.fig_4_16_patch_metals", 250, "renders.preview.figure_spp.fig_4_16_patch_metals = 250", "multiple of passes"),
     ("renders.preview.figure_spp.fig_2_8_pumping_render", [48, 36, 48, 48], "renders.preview.figure_spp.fig_2_8_pumping_render[1] = 36", "multiple of passes"),
+    # samples per object: the figure's own objects, multiples of passes, not beside a crop_spp
+    ("renders.preview.object_spp.fig_4_9_sampling_efficiency", {"platinum s=3": 96},
+     "renders.preview.object_spp.fig_4_9_sampling_efficiency.platinum s=3 = 96", "not an object of fig_4_9"),
+    ("renders.preview.object_spp.fig_4_9_sampling_efficiency", {"gold s=10": 100},
+     "renders.preview.object_spp.fig_4_9_sampling_efficiency.gold s=10 = 100", "multiple of passes"),
+    ("renders.preview.object_spp.fig_2_8_pumping_render", {"tank": 4.5},
+     "renders.preview.object_spp.fig_2_8_pumping_render.tank = 4.5", "integer"),
+    ("renders.preview.crop_spp.fig_4_9_sampling_efficiency", 128,
+     "renders.preview.object_spp.fig_4_9_sampling_efficiency: the figure also has", "give one of them"),
     # an integer is an int
     ("patch.fig_4_10_grid", 121.0, "patch.fig_4_10_grid = 121.0", "integer"),
     ("grazing.per_decade", 10.0, "grazing.per_decade = 10.0", "integer"),

@@ -232,6 +232,23 @@ def test_each_object_but_the_floor_gets_a_crop_window_with_its_margin_and_overla
     assert rf.crop_windows(np.ones((4, 4)), {1: "floor"}) == []
 
 
+def test_each_listed_object_gets_its_own_count_in_its_own_window_and_the_larger_count_where_windows_overlap():
+    from brdfs.artifacts import _render_figures as rf
+
+    ids = np.full((40, 60), 1.0)                           # 1: the floor, everywhere
+    ids[10:15, 20:26] = 2.0                                # ball: window (18, 8, 10, 9) at margin 2
+    ids[14:20, 27:31] = 3.0                                # tank: window (25, 12, 8, 10), overlapping the ball's
+    ids[30:34, 50:54] = 4.0                                # cube: not listed, film samples only
+    labels = {1: "floor", 2: "ball", 3: "tank", 4: "cube", 5: "hidden"}
+    windows = rf.object_windows(ids, labels, {"ball": 3, "tank": 5, "hidden": 9}, margin=2)
+    assert windows == [(18, 8, 10, 9, 3), (25, 12, 8, 10, 5)]          # unseen "hidden": no window
+    samples = rf.object_window_samples(ids.shape, windows, 2)
+    assert samples[8, 18] == 3 and samples[12, 26] == 5 and samples[21, 32] == 5     # the overlap: the larger
+    assert samples[31, 51] == 2 and samples[0, 0] == 2 and samples[7, 18] == 2       # the cube, the floor: film
+    assert rf.object_window_samples(ids.shape, [(0, 0, 4, 4, 1)], 2)[0, 0] == 2      # never below the film
+    assert (samples > 2).sum() == 10 * 9 + 8 * 10 - 3 * 5      # the two windows' pixels, the overlap (3 x 5) once
+
+
 def _lit_ball(mi, width=24, height=16, sampler="independent"):
     from brdfs.render.mitsuba import scenes
 

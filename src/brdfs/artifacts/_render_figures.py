@@ -107,6 +107,14 @@ def settings(cfg: dict) -> dict:
         if not isinstance(spp, int) or spp < 0 or spp % setup["passes"]:
             raise ValueError(f"renders.{preset}.crop_spp.{name} = {spp!r}: must be a whole multiple of passes = "
                              f"{setup['passes']}, >= 0")
+    setup["figure_object_spp"] = setup.pop("object_spp", None) or {}
+    for name, per_object in setup["figure_object_spp"].items():
+        for label, spp in per_object.items():
+            if not isinstance(spp, int) or spp < setup["passes"] or spp % setup["passes"]:
+                raise ValueError(f"renders.{preset}.object_spp.{name}.{label} = {spp!r}: must be a whole multiple of "
+                                 f"passes = {setup['passes']}, >= passes")
+        if setup["figure_crop_spp"].get(name):
+            raise ValueError(f"renders.{preset}.object_spp.{name}: the figure also has a crop_spp; give one of them")
     setup["figure_adaptive"] = setup.pop("adaptive", None) or {}
     for name, target in setup["figure_adaptive"].items():
         if not isinstance(target, (int, float)) or not 0.0 < target < 1.0:
@@ -119,10 +127,20 @@ def settings(cfg: dict) -> dict:
     return setup
 
 
+def object_labels(name: str, cfg: dict) -> list[str]:
+    """The labels of rendered figure ``name``'s objects (the CSV's ``object`` column), every panel's, in order."""
+    import importlib
+
+    module = importlib.import_module(f"brdfs.artifacts.{name}")
+    labels = [label for panel in module.panels(cfg) for label, _, _ in panel.objects]
+    return list(dict.fromkeys(labels))
+
+
 def figure_setup(setup: dict, name: str) -> dict:
     """The preset's settings for figure ``name``: its ``figure_spp`` entry, if any, as ``spp`` (an
     integer, or a list with one entry per panel, :func:`panel_setups`)."""
     return {**setup, "spp": setup["figure_spp"].get(name, setup["spp"]), "crop_spp": int(setup["figure_crop_spp"].get(name, 0)),
+            "object_spp": dict(setup["figure_object_spp"].get(name, {})),
             "adaptive": float(setup["figure_adaptive"].get(name, 0.0)),
             "clamp": float(setup["figure_clamp"].get(name, 0.0))}
 
@@ -288,6 +306,10 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     * ``setup["crop_spp"]`` > 0: the pixels of a crop window around each object but the floor
       (:func:`crop_windows` of the objects seen by the pixels' centres, :func:`center_ids`) get
       ``crop_spp / passes`` more samples in each pass, one stratified set with the film's;
+    * ``setup["object_spp"]``, {object label: samples per pixel}: each listed object's own window (its
+      pixels' bounding box, :data:`CROP_MARGIN` wider, :func:`object_windows`) gets that many samples in
+      all, ``spp / passes`` a pass elsewhere, the largest count where windows overlap
+      (:func:`object_window_samples`): samples spent on the objects that need them;
     * ``setup["adaptive"]`` > 0, a relative standard error: each pixel's count from an independent pilot
       (:func:`adaptive_counts`).
 
@@ -301,8 +323,9 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
     spp = max((setup["spp"] if panel.spp is None else panel.spp) // passes, 1)
     crop_spp = int(setup.get("crop_spp", 0)) // passes if panel.spp is None else 0
     target = float(setup.get("adaptive", 0.0)) if panel.spp is None else 0.0
-    if target > 0 and crop_spp:
-        raise ValueError(f"renders: panel {panel.title!r}: adaptive sampling and crop_spp exclude each other")
+    object_spp = {label: count // passes for label, count in setup.get("object_spp", {}).items()} if panel.spp is None else {}
+    if sum(map(bool, (target > 0, crop_spp, object_spp))) > 1:
+        raise ValueError(f"renders: panel {panel.title!r}: adaptive sampling, crop_spp and object_spp exclude each other")
     out = np.zeros((passes, height, width, SPECTRAL if groups else 3))
     clamp = float(setup.get("clamp", 0.0))
     integrator = _integrator(panel, count, setup["caustics"], len(groups) if groups else 1, clamp)
@@ -315,7 +338,7 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
             part = Panel(**{**panel.__dict__, "lights": lights})
             scene = msc.load(_scene(part, cfg, groups), camera, integrator, setup["sampler"])
             if counts is None:
-                counts, windows = _panel_counts(mi, scene, setup, cfg["seed"], groups, spp, crop_spp, target)
+                counts, windows = _panel_counts(mi, scene, setup, cfg["seed"], groups, spp, crop_spp, target, object_spp)
                 # the ID and cos θ_V AOVs averaged over every sample of the first scene (all passes): a
                 # pixel's ID is an object's only where all its samples hit that object
                 ids, cos_v, ids_sq = _render_counts(mi, scene, setup["sampler"], counts, passes, cfg["seed"], 0, groups, out, lost)
@@ -329,11 +352,15 @@ def render_panel(panel: Panel, cfg: dict, setup: dict, width: int, height: int, 
                          costs, rays, cos_v, lost, crop_spp * passes if windows else 0, tuple(windows), samples, target)
 
 
-def _panel_counts(mi, scene, setup: dict, seed: int, groups, spp: int, crop_spp: int, target: float):
+def _panel_counts(mi, scene, setup: dict, seed: int, groups, spp: int, crop_spp: int, target: float,
+                  object_spp: dict | None = None):
     """A panel's (H, W) samples per pixel and pass and its crop windows (:func:`render_panel`)."""
     width, height = scene.sensors()[0].film().crop_size()
     if target > 0:
         return adaptive_counts(mi, scene, setup, seed, groups, target), []
+    if object_spp:
+        windows = object_windows(center_ids(mi, scene), msc.object_labels(scene), object_spp)
+        return object_window_samples((height, width), windows, spp), [w[:4] for w in windows]
     windows = crop_windows(center_ids(mi, scene), msc.object_labels(scene)) if crop_spp else []
     return window_samples((height, width), windows, spp, crop_spp), windows
 
@@ -376,6 +403,25 @@ def crop_windows(ids: np.ndarray, labels: dict, skip=("floor",), margin: int = C
         y1, x1 = min(rows.max() + margin + 1, height), min(cols.max() + margin + 1, width)
         out.append((int(x0), int(y0), int(x1 - x0), int(y1 - y0)))
     return merge_windows(out)
+
+
+def object_windows(ids: np.ndarray, labels: dict, counts: dict, margin: int = CROP_MARGIN) -> list[tuple]:
+    """(x, y, width, height, count) per object of ``counts`` ({label: samples per pixel and pass}) that the
+    pixels' centres see: its own window as :func:`crop_windows` makes it (not merged with others)."""
+    out = []
+    for k, label in sorted(labels.items()):
+        if label in counts:
+            out += [(*window, int(counts[label])) for window in crop_windows(ids, {k: label}, skip=(), margin=margin)]
+    return out
+
+
+def object_window_samples(shape, windows, spp_full: int) -> np.ndarray:
+    """(H, W) samples per pixel and pass: ``spp_full``, and in each window (x, y, width, height, count) the
+    largest of the counts of the windows over the pixel and ``spp_full``."""
+    out = np.full(shape, int(spp_full))
+    for x, y, w, h, count in windows:
+        np.maximum(out[y:y + h, x:x + w], int(count), out=out[y:y + h, x:x + w])
+    return out
 
 
 def merge_windows(windows) -> list[tuple]:

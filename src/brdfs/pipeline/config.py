@@ -393,7 +393,30 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
     if (found := _first_non_finite(config)) is not None:
         raise ConfigError(f"Error validating config file: {_key(found[0])} = {_short(found[1])}: {NOT_FINITE}")
     _check_model_entries(config)
+    _check_object_spp(config)
     return config
+
+
+def _check_object_spp(config: dict) -> None:
+    """``renders.<preset>.object_spp``: each figure's labels are its objects' (the figure's ``panels``
+    read with this config), and the figure has no ``crop_spp`` beside it (either, not both)."""
+    renders = config.get("renders") or {}
+    listed = [(preset, name, labels) for preset, settings in renders.items() if isinstance(settings, dict)
+              for name, labels in (settings.get("object_spp") or {}).items()]
+    if not listed:
+        return
+    from brdfs.artifacts._render_figures import object_labels
+
+    for preset, name, labels in listed:
+        path = f"renders.{preset}.object_spp.{name}"
+        if crop := (renders[preset].get("crop_spp") or {}).get(name):
+            raise ConfigError(f"Error validating config file: {path}: the figure also has renders.{preset}.crop_spp."
+                              f"{name} = {crop}; give one of them")
+        known = object_labels(name, config)
+        for label, spp in labels.items():
+            if label not in known:
+                raise ConfigError(f"Error validating config file: {path}.{label} = {spp!r}: not an object of {name} "
+                                  f"(its objects: {', '.join(map(repr, known))})")
 
 
 #: Keys of a model entry (``{model: phong, n: 150, theta_deg: 60}``) that are not the model's parameters.
