@@ -48,6 +48,8 @@ section 3.6) unless a figure asks otherwise, and the same seeds (common random n
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import contextlib
 import json
 import textwrap
@@ -55,12 +57,14 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-import pandas as pd
 
 from brdfs.render import spectrum
 from brdfs.render.mitsuba import metrics
 from brdfs.render.mitsuba import scenes as msc
 from brdfs.render.mitsuba.spectral import WAVELENGTH_PASSES, metal_constants, pass_channels
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 SECTION = "renders"
 PRESETS = ("preview", "final")
@@ -723,6 +727,8 @@ def compute_panels(cfg: dict, name: str, panels: list[Panel], shared_scale: bool
     ``count``: columns ``rays`` (the panel's) and ``plugin_samples``, ``plugin_tries``,
     ``plugin_evaluations`` (per object whose plugin counts), over all passes.
     """
+    import pandas as pd
+
     setups = panel_setups(figure_setup(settings(cfg), name), name, len(panels))
     rows, images, id_buffers, radiance, scale, seconds = [], [], [], [], None, []
     for k, (panel, setup) in enumerate(zip(panels, setups)):

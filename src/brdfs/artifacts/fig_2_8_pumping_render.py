@@ -23,15 +23,19 @@ the sky rather than sideways at the neighbouring spheres. The CSV carries the pr
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import time
 
 import numpy as np
-import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.render import spectrum
 from brdfs.render.mitsuba import scenes as msc
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_2_8_pumping_render"
 
@@ -194,6 +198,8 @@ def _profile_chart(profile: pd.DataFrame, titles: list[str]) -> np.ndarray:
 
 @figure(NAME, config=(rf.SECTION,), resources={"runtime": 3})
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    import pandas as pd
+
     the_panels = panels(cfg)
     df = rf.compute_panels(cfg, NAME, the_panels)
     setup = rf.figure_setup(rf.settings(cfg), NAME)

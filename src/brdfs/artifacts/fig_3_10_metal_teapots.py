@@ -7,13 +7,17 @@ teapots fill the frame, every spout and handle in it (:func:`~brdfs.artifacts._r
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import dataclasses
 
-import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_3_10_metal_teapots"
 #: The camera's direction and field of view (its distance and target: framed on the teapots).

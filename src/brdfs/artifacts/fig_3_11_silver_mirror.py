@@ -1,12 +1,15 @@
 """Fig. 3.11: gold and copper objects on a silver near-mirror: see the caption (workflow/report/captions/fig_3_11_silver_mirror.rst) for the substituted scene."""
 from __future__ import annotations
 
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
 from brdfs.render import shapes  # noqa: F401  (scene shapes)
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_3_11_silver_mirror"
 

@@ -5,10 +5,13 @@ lightness and saturation; two point lights plus homogeneous daylight, Monte Carl
 """
 from __future__ import annotations
 
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_3_12_plastics"
 

@@ -7,11 +7,14 @@ fill the frame, spouts and handles in it (:func:`~brdfs.artifacts._render_figure
 """
 from __future__ import annotations
 
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.render.mitsuba import scenes as msc
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_3_13_ceramics"
 #: The camera's direction and field of view (its distance and target: framed on the teapots).

@@ -1,11 +1,14 @@
 """Fig. 3.9: a silver 'tank' and metal spheres: see the caption (workflow/report/captions/fig_3_9_metals_new_model.rst) for the substituted scene."""
 from __future__ import annotations
 
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_3_9_metals_new_model"
 

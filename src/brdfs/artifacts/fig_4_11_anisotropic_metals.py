@@ -12,11 +12,15 @@ camera (:func:`~brdfs.artifacts._render_figures.project`).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_4_11_anisotropic_metals"
 #: Chemical symbols in the panel title (the names are in the CSV), so that it fits the panel's width.

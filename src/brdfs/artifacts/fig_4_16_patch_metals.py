@@ -1,12 +1,15 @@
 """Fig. 4.16: metals with the exponential patch model: see the caption (workflow/report/captions/fig_4_16_patch_metals.rst) for the substituted scene."""
 from __future__ import annotations
 
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
 from brdfs.artifacts.fig_4_11_anisotropic_metals import SYMBOL
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_4_16_patch_metals"
 

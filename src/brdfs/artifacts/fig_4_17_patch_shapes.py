@@ -5,14 +5,18 @@ The camera stands back from the street camera of the other metal scenes and the 
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import dataclasses
 
-import pandas as pd
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.artifacts import _render_metal_scenes as ms
 from brdfs.render.mitsuba import scenes as msc
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_4_17_patch_shapes"
 CAMERA = {"eye": (0.0, -7.6, 3.0), "target": (0.0, 0.0, 0.55), "fov_deg": 34.0}

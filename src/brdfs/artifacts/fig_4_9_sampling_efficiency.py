@@ -13,10 +13,13 @@ sample) is the extra ``extra_sampling_efficiency``.
 """
 from __future__ import annotations
 
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from brdfs.artifacts import _render_figures as rf
 from brdfs.pipeline.registry import figure
+
+if TYPE_CHECKING:      # pandas loads in the job, not when planning reads the figure's objects
+    import pandas as pd
 
 NAME = "fig_4_9_sampling_efficiency"
 CAMERA = {"eye": (0.0, -9.0, 2.2), "target": (0.0, 0.0, 0.7), "fov_deg": 25.0}    # all three spheres in frame
