@@ -34,7 +34,8 @@ The declarations are read in two ways that agree (``tests/pipeline/test_registry
 - :func:`artifacts` and :func:`comparisons` read the decorator lines of
   ``src/brdfs/artifacts/*.py`` without importing the modules
   (:mod:`brdfs.pipeline.declarations`), so that Snakemake lists every artifact while
-  it plans without the 1.96 s of importing them with numpy, scipy, pandas and matplotlib. A decorator argument is therefore a literal, a module-level
+  it plans without the 1.96 s of importing them with numpy, scipy, pandas and
+  matplotlib. A decorator argument is therefore a literal, a module-level
   constant or a constant of an imported package module (or ``tuple``/``d.values()``
   of those); anything else is a :class:`DeclarationError` naming the file and line.
 - Importing a module runs its decorators, which register the functions;
@@ -239,12 +240,13 @@ _STRINGS_AND_COMMENTS = r"""
   | '[^'\\\n]*(?:\\.[^'\\\n]*)*'
   | \#[^\n]*
   | \\\n"""
+_NOT_CODE = re.compile(_STRINGS_AND_COMMENTS, re.VERBOSE | re.DOTALL)
 # An import statement's keyword where a statement starts (a line's first word, or after ``;`` or the
-# ``:`` of ``if x: import y``), outside strings and comments: a docstring's ``from brdfs import model``
-# is no import. ``raise E from e`` and ``yield from`` are no statement's start. The text before the
-# source is a newline (``_import_statements`` prepends it).
+# ``:`` of ``if x: import y``, also on a line a backslash continues), outside strings and comments: a
+# docstring's ``from brdfs import model`` is no import. ``raise E from e`` and ``yield from`` are no
+# statement's start. The text before the source is a newline (``_import_statements`` prepends it).
 _IMPORT_SCAN = re.compile(_STRINGS_AND_COMMENTS + r"""
-  | [\n;:][ \t\f]*(?P<statement>(?:from|import)\b)
+  | [\n;:][ \t\f]*(?:\\\n[ \t\f]*)*(?P<statement>(?:from|import)\b)
 """, re.VERBOSE | re.DOTALL)
 # The rest of an import statement: its line (and backslash continuations), or through the ``)`` of
 # ``from m import (a, b)``.
@@ -265,17 +267,33 @@ def _import_statements(source: str, package: str = "brdfs") -> str:
     return "\n".join(found)
 
 
+def _read_source(path: Path) -> tuple[str, ast.Module | None]:
+    """The text of a module, for a scan that parses only parts of it (:func:`_imported_names_of`,
+    :func:`brdfs.pipeline.declarations._top_level`), and None; or, unless its strings end and its
+    brackets pair (counted with strings and comments taken out, ~0.2 ms a module), its syntax tree:
+    such text would mislead the scan, and a syntax error fails the workflow's planning naming the
+    file and line, as importing the module would (one that keeps them paired, ``x = = 1`` in a
+    function's body, is found when a job imports the module)."""
+    source = path.read_text(encoding="utf-8")
+    code = _NOT_CODE.sub("", source)
+    if '"' in code or "'" in code or any(code.count(a) != code.count(b) for a, b in ("()", "[]", "{}")):
+        return source, _parse(path)
+    return source, None
+
+
 def _imported_names_of(path: Path) -> set[str]:
     """The absolute package modules ``path`` imports: the names :func:`_imported_names` reads from the
     module's syntax tree, from the syntax tree of its import statements alone (found by
     :func:`_import_statements`, about 8x faster than parsing the module while the workflow plans;
     ``tests/pipeline/test_source_scan.py`` holds the two equal on every module of the package). A
     statement the scan cuts short (a ``)`` in a comment inside its parentheses) fails to parse, and
-    then the whole module is parsed."""
-    try:
-        tree = ast.parse(_import_statements(path.read_text(encoding="utf-8")))
-    except SyntaxError:
-        tree = _parse(path)
+    then the whole module is parsed, as is a module :func:`_read_source` finds suspect."""
+    source, tree = _read_source(path)
+    if tree is None:
+        try:
+            tree = ast.parse(_import_statements(source))
+        except SyntaxError:
+            tree = _parse(path)
     return _imported_names(_statements(tree.body))
 
 
