@@ -21,7 +21,8 @@ def _names_of_tree(source: str) -> set[str]:
 
 
 def _names_of_scan(source: str, package: str = "brdfs") -> set[str]:
-    return registry._imported_names(registry._statements(ast.parse(registry._import_statements(source, package)).body))
+    statements, _ = registry._import_statements(source, package)
+    return registry._imported_names(registry._statements(ast.parse(statements).body))
 
 
 def _in_package(names):
@@ -40,7 +41,8 @@ def test_the_import_scan_reads_every_import_the_syntax_tree_holds_in_every_packa
         imported = registry._imported_names(registry._statements(tree.body))
         assert _names_of_scan(source, package="") == imported, path  # every import statement
         assert _in_package(registry._imported_names_of(path)) == _in_package(imported), path
-        assert registry._read_source(path) == (source, None), path  # scanned, not parsed whole
+        assert not registry._import_statements(source)[1], path  # scanned, not parsed whole
+        declarations._module_statements(source)  # raises where the module would be parsed whole
 
 
 # Imports a scan for "import" at a line's start would miss, and text that is no import.
@@ -102,7 +104,7 @@ def test_an_import_the_scan_cuts_short_falls_back_to_the_modules_syntax_tree(tmp
     path = tmp_path / "toy.py"
     path.write_text("from brdfs.physics import (fresnel,  # see f(x)\n    lobes)\n")
     with pytest.raises(SyntaxError):  # the statement's text ends at the comment's ")"
-        ast.parse(registry._import_statements(path.read_text()))
+        ast.parse(registry._import_statements(path.read_text())[0])
     assert registry._imported_names_of(path) == {"brdfs.physics", "brdfs.physics.fresnel", "brdfs.physics.lobes"}
 
 

@@ -29,11 +29,12 @@ from brdfs.pipeline import registry
 # --- the module-level statements a scan reads, without parsing the functions' bodies ---------------
 
 # Lexemes of Python source: strings, comments and a backslash's continued line (stepped over whole:
-# registry._STRINGS_AND_COMMENTS), brackets (their depth), and a newline followed by a line that
-# starts in column 0 and is neither blank nor a comment: at depth 0, the start of a module-level
-# statement. A form feed sets the column to 0 (Python's tokenizer): only spaces and tabs after the
-# line's last form feed indent it.
+# registry._STRINGS_AND_COMMENTS), a quote that starts no string that ends, brackets (their depth),
+# and a newline followed by a line that starts in column 0 and is neither blank nor a comment: at
+# depth 0, the start of a module-level statement. A form feed sets the column to 0 (Python's
+# tokenizer): only spaces and tabs after the line's last form feed indent it.
 _LEXEMES = re.compile(registry._STRINGS_AND_COMMENTS + r"""
+  | (?P<quote>["'])
   | (?P<open>[(\[{])
   | (?P<close>[)\]}])
   | (?P<line>\n(?=(?:[ \t\f]*\f)?[^ \t\f\#\n]))
@@ -45,15 +46,29 @@ _SKIPPED = {"if", "elif", "else", "for", "while", "try", "except", "finally", "w
 
 
 def _module_statements(source: str) -> list[tuple[int, str]]:
-    """The module-level statements of ``source``: (first line, text), in order."""
+    """The module-level statements of ``source``: (first line, text), in order.
+
+    Raises
+    ------
+    SyntaxError
+        A string does not end or the brackets do not pair (:func:`registry._unpaired
+        <brdfs.pipeline.registry._unpaired>`): the statements cannot be told apart.
+    """
     starts, depth = [0], 0
     for match in _LEXEMES.finditer(source):
         if match.lastgroup == "open":
             depth += 1
         elif match.lastgroup == "close":
             depth -= 1
+            if depth < 0:
+                break
         elif match.lastgroup == "line" and depth == 0:
             starts.append(match.start() + 1)
+        elif match.lastgroup == "quote":
+            depth = -1
+            break
+    if depth != 0:
+        raise SyntaxError("a string that does not end or brackets that do not pair")
     starts.append(len(source))
     statements, line = [], 1
     for a, b in zip(starts, starts[1:]):
@@ -76,14 +91,11 @@ def _top_level(path: Path) -> tuple[ast.stmt, ...]:
     waits for while it plans); ``tests/pipeline/test_source_scan.py`` holds them equal to the module's
     syntax tree on every module of the package. A statement that does not parse alone (a split the
     scan got wrong), and a module whose strings do not end or whose brackets do not pair
-    (:func:`registry._read_source <brdfs.pipeline.registry._read_source>`), fall back to parsing the
-    whole module: a syntax error is raised naming the file and line."""
-    source, tree = registry._read_source(path)
-    if tree is not None:
-        return tuple(tree.body)
+    (:func:`_module_statements`), fall back to parsing the whole module: a syntax error is raised
+    naming the file and line."""
     try:
         nodes, decorators = [], []
-        for line, text in _module_statements(source):
+        for line, text in _module_statements(path.read_text(encoding="utf-8")):
             word = _FIRST_WORD.match(text)
             word = word.group(1) if word else ""
             if word == "@":

@@ -240,7 +240,6 @@ _STRINGS_AND_COMMENTS = r"""
   | '[^'\\\n]*(?:\\.[^'\\\n]*)*'
   | \#[^\n]*
   | \\\n"""
-_NOT_CODE = re.compile(_STRINGS_AND_COMMENTS, re.VERBOSE | re.DOTALL)
 # An import statement's keyword where a statement starts (a line's first word, or after ``;`` or the
 # ``:`` of ``if x: import y``, also on a line a backslash continues), outside strings and comments: a
 # docstring's ``from brdfs import model`` is no import. ``raise E from e`` and ``yield from`` are no
@@ -253,32 +252,32 @@ _IMPORT_SCAN = re.compile(_STRINGS_AND_COMMENTS + r"""
 _IMPORT_REST = re.compile(r"(?:[^\n\\(]|\\\n)*(?:\([^)]*\)[^\n]*)?")
 
 
-def _import_statements(source: str, package: str = "brdfs") -> str:
+def _import_statements(source: str, package: str = "brdfs") -> tuple[str, bool]:
     """The text of every import statement of ``source`` that names ``package``, one after another,
-    as Python source (at most a few lines of each: what follows a ``;`` on its line comes along)."""
+    as Python source (at most a few lines of each: what follows a ``;`` on its line comes along), and
+    whether the rest, strings and comments taken out, has a quote or brackets that do not pair
+    (:func:`_unpaired`)."""
     source = "\n" + source
-    found = []
+    found, code, end = [], [], 0
     for match in _IMPORT_SCAN.finditer(source):
+        code.append(source[end:match.start()])
+        end = match.end()
         start = match.start("statement")
         if start >= 0:
             statement = source[start:_IMPORT_REST.match(source, match.end()).end()]
             if package in statement:
                 found.append(statement)
-    return "\n".join(found)
+    code.append(source[end:])
+    return "\n".join(found), _unpaired("".join(code))
 
 
-def _read_source(path: Path) -> tuple[str, ast.Module | None]:
-    """The text of a module, for a scan that parses only parts of it (:func:`_imported_names_of`,
-    :func:`brdfs.pipeline.declarations._top_level`), and None; or, unless its strings end and its
-    brackets pair (counted with strings and comments taken out, ~0.2 ms a module), its syntax tree:
-    such text would mislead the scan, and a syntax error fails the workflow's planning naming the
-    file and line, as importing the module would (one that keeps them paired, ``x = = 1`` in a
-    function's body, is found when a job imports the module)."""
-    source = path.read_text(encoding="utf-8")
-    code = _NOT_CODE.sub("", source)
-    if '"' in code or "'" in code or any(code.count(a) != code.count(b) for a, b in ("()", "[]", "{}")):
-        return source, _parse(path)
-    return source, None
+def _unpaired(code: str) -> bool:
+    """Whether ``code`` (source with its strings and comments taken out) has a quote, the start of a
+    string that does not end, or brackets that do not pair: a module that does not parse, or text
+    that misleads a scan of it (a scan then parses the whole module: a syntax error fails the
+    workflow's planning, naming the file and line, as importing the module would; one that keeps
+    them paired, ``x = = 1`` in a function's body, is found when a job imports the module)."""
+    return '"' in code or "'" in code or any(code.count(a) != code.count(b) for a, b in ("()", "[]", "{}"))
 
 
 def _imported_names_of(path: Path) -> set[str]:
@@ -287,14 +286,14 @@ def _imported_names_of(path: Path) -> set[str]:
     :func:`_import_statements`, about 8x faster than parsing the module while the workflow plans;
     ``tests/pipeline/test_source_scan.py`` holds the two equal on every module of the package). A
     statement the scan cuts short (a ``)`` in a comment inside its parentheses) fails to parse, and
-    then the whole module is parsed, as is a module :func:`_read_source` finds suspect."""
-    source, tree = _read_source(path)
-    if tree is None:
+    then the whole module is parsed, as is a module whose strings or brackets are :func:`_unpaired`."""
+    statements, suspect = _import_statements(path.read_text(encoding="utf-8"))
+    if not suspect:
         try:
-            tree = ast.parse(_import_statements(source))
+            return _imported_names(_statements(ast.parse(statements).body))
         except SyntaxError:
-            tree = _parse(path)
-    return _imported_names(_statements(tree.body))
+            pass
+    return _imported_names(_statements(_parse(path).body))
 
 
 @functools.lru_cache(maxsize=None)
