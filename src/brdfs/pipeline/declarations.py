@@ -51,8 +51,9 @@ def _module_statements(source: str) -> list[tuple[int, str]]:
     Raises
     ------
     SyntaxError
-        A string does not end or the brackets do not pair (:func:`registry._unpaired
-        <brdfs.pipeline.registry._unpaired>`): the statements cannot be told apart.
+        A string does not end or the brackets do not pair (what :func:`registry._unpaired
+        <brdfs.pipeline.registry._unpaired>` finds for the import scan): the statements cannot be
+        told apart, and the module may not parse.
     """
     starts, depth = [0], 0
     for match in _LEXEMES.finditer(source):
