@@ -4,6 +4,7 @@ statements (an artifact's code inputs, ``registry._imports_of``) and the module-
 syntax tree holds, on every module of the package, and on source written to mislead a scan."""
 
 import ast
+import sys
 import textwrap
 from pathlib import Path
 
@@ -20,7 +21,8 @@ def _names_of_tree(source: str) -> set[str]:
 
 
 def _names_of_scan(source: str, package: str = "brdfs") -> set[str]:
-    return registry._imported_names(registry._statements(ast.parse(registry._import_statements(source, package)).body))
+    statements, _ = registry._import_statements(source, package)
+    return registry._imported_names(registry._statements(ast.parse(statements).body))
 
 
 def _in_package(names):
@@ -39,6 +41,8 @@ def test_the_import_scan_reads_every_import_the_syntax_tree_holds_in_every_packa
         imported = registry._imported_names(registry._statements(tree.body))
         assert _names_of_scan(source, package="") == imported, path  # every import statement
         assert _in_package(registry._imported_names_of(path)) == _in_package(imported), path
+        assert not registry._import_statements(source)[1], path  # scanned, not parsed whole
+        declarations._module_statements(source)  # raises where the module would be parsed whole
 
 
 # Imports a scan for "import" at a line's start would miss, and text that is no import.
@@ -55,6 +59,18 @@ s = "\" from brdfs.numerics import grazing"
 if True: from brdfs.physics import geometry
 from brdfs.physics \
     import sampling
+if True: \
+    import brdfs.physics.fresnel
+y = 1; \
+    import brdfs.numerics.quadrature
+y = 2
+\
+import brdfs.render.scene
+try:
+    pass
+except ImportError: \
+  \
+    from brdfs.physics import distributions
 
 
 def f():
@@ -75,19 +91,20 @@ class C:
 '''
 
 
-def test_the_import_scan_skips_strings_and_comments_and_finds_imports_after_colons_and_semicolons():
+def test_the_import_scan_skips_strings_and_comments_and_finds_imports_after_colons_semicolons_and_continuations():
     assert _names_of_scan(MISLEADING, package="") == _names_of_tree(MISLEADING)
     assert _in_package(_names_of_tree(MISLEADING)) == {
         "brdfs.core.estimate", "brdfs.pipeline", "brdfs.pipeline.io", "brdfs.pipeline.registry",
         "brdfs.physics.lobes", "brdfs.physics", "brdfs.physics.geometry", "brdfs.physics.sampling",
-        "brdfs.numerics.pumping", "brdfs.physics.models", "brdfs.physics.models.phong"}
+        "brdfs.numerics.pumping", "brdfs.physics.models", "brdfs.physics.models.phong",
+        "brdfs.physics.fresnel", "brdfs.numerics.quadrature", "brdfs.render.scene", "brdfs.physics.distributions"}
 
 
 def test_an_import_the_scan_cuts_short_falls_back_to_the_modules_syntax_tree(tmp_path):
     path = tmp_path / "toy.py"
     path.write_text("from brdfs.physics import (fresnel,  # see f(x)\n    lobes)\n")
     with pytest.raises(SyntaxError):  # the statement's text ends at the comment's ")"
-        ast.parse(registry._import_statements(path.read_text()))
+        ast.parse(registry._import_statements(path.read_text())[0])
     assert registry._imported_names_of(path) == {"brdfs.physics", "brdfs.physics.fresnel", "brdfs.physics.lobes"}
 
 
@@ -177,3 +194,48 @@ def test_a_statement_the_module_level_scan_splits_wrongly_falls_back_to_the_whol
     lines = [(k + 1, line) for k, line in enumerate(text.splitlines(keepends=True))]
     monkeypatch.setattr(declarations, "_module_statements", lambda source: lines)  # as if the depth were lost
     assert _read(declarations._top_level(path)) == _read(ast.parse(text).body)  # "a=1," alone would be a tuple
+
+
+# Module-level statements after a form feed (which sets the column to 0) and after a string and ";".
+AFTER_FORM_FEEDS_AND_STRINGS = [
+    "def helper():\n    pass\n\f@table('x')\ndef compute(cfg, deps):\n    pass\n",
+    '"""Doc."""\n\fX = 1\n',
+    "class C:\n    pass\n\fX = 1\n",
+    "def f():\n    pass\n  \fX = 1\n",
+    "def f():\n    x = 1\n\f\n\f    y = 2\nX = 1\n",
+    '"""Doc."""; X = 1\n',
+    "'x'; X = 1\n",
+]
+
+
+@pytest.mark.parametrize("source", AFTER_FORM_FEEDS_AND_STRINGS)
+def test_the_module_level_scan_reads_statements_after_form_feeds_and_strings(tmp_path, source):
+    path = tmp_path / "toy.py"
+    path.write_text(source)
+    read = _read(declarations._top_level(path))
+    assert read == _read(ast.parse(source).body)
+    assert read  # the constant or the decorator is there
+
+
+BROKEN = [("from brdfs.physics import fresnel\n\ndef f():\n    return (1,\n", 4),
+          ("import brdfs.physics\n\ndef f():\n    return [1, 2)]\n", 4),
+          ("def f():\n    return 'no end\n\nX = 1\n", 2)]
+
+
+@pytest.mark.parametrize(("source", "line"), BROKEN)
+def test_a_module_whose_brackets_do_not_pair_or_string_does_not_end_fails_the_scans_naming_file_and_line(
+        tmp_path, source, line):
+    path = tmp_path / "toy.py"
+    path.write_text(source)
+    for scan in (registry._imported_names_of, declarations._top_level):
+        with pytest.raises(SyntaxError) as error:
+            scan(path)
+        assert (error.value.filename, error.value.lineno) == (str(path), line), scan
+
+
+@pytest.mark.skipif(sys.version_info < (3, 12), reason="a quote inside a same-quote f-string is PEP 701's")
+def test_a_module_that_misleads_the_bracket_count_is_read_from_its_syntax_tree(tmp_path):
+    source = 'def helper():\n    return f"{"("}"\n\n\n@table("x")\ndef compute(cfg, deps):\n    pass\n'
+    path = tmp_path / "toy.py"
+    path.write_text(source)
+    assert _read(declarations._top_level(path)) == _read(ast.parse(source).body) != []

@@ -475,9 +475,10 @@ def _rounded_coefficients(rows, count):
     return np.array([[float(row(n)) for n in range(count)] for row in rows])
 
 
-@lru_cache(maxsize=None)
+@lru_cache(maxsize=None, typed=True)
 def _pochhammer(a, n):
-    """(a)_n exactly, from (a)_(n-1): the tables' rows take n products each, not n² (import time)."""
+    """(a)_n exactly, from (a)_(n-1): the tables' rows take n products each, not n² (import time).
+    Cached by type too: an int ``a`` and an equal Fraction are separate entries."""
     return Fraction(1) if n == 0 else _pochhammer(a, n - 1) * (a + n - 1)
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import copy
 import functools
+import io
 import math
 import os
 import re
@@ -366,9 +367,12 @@ def load_schema(schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
 @functools.lru_cache(maxsize=8)
 def _read_schema(path: str, mtime_ns: int) -> dict:
     """The schema file as parsed (cached while the file is unchanged; callers copy it): by libyaml's
-    parser where PyYAML has it (the same safe construction as ``yaml.safe_load``, 3x faster on the schema)."""
+    parser where PyYAML has it (the same safe construction as ``yaml.safe_load``, 3x faster on the schema;
+    PyYAML's own parser where the text has a tab: :func:`_loader_for`)."""
     with open(path, encoding="utf-8") as stream:
-        return yaml.load(stream, Loader=_FAST_SAFE_LOADER)  # noqa: S506 (a SafeLoader)
+        text = stream.read()
+    loader = _loader_for(text, _FAST_SAFE_LOADER, yaml.SafeLoader)
+    return yaml.load(_named(text, path), Loader=loader)  # noqa: S506 (a SafeLoader)
 
 
 def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
@@ -480,15 +484,33 @@ class _FastStrictLoader(_RefusingDuplicateKeys, _FAST_SAFE_LOADER):
     error is read again by :class:`_StrictLoader` for its message (libyaml's says less)."""
 
 
+def _loader_for(text: str, fast: type, pure: type) -> type:
+    """``fast`` (on libyaml's parser) unless ``text`` has a tab: libyaml takes a tab as a separator
+    (``a:\t1``, ``[1,\t2]``, ``a\t: 1``, ``1\t# c``) where PyYAML, and so Snakemake, refuses it."""
+    return pure if "\t" in text else fast
+
+
 def _load_strictly(path: str | os.PathLike) -> object:
-    """The YAML document of ``path`` by :class:`_FastStrictLoader`; a YAML error is the one
-    :class:`_StrictLoader` raises (or its value, should PyYAML's own parser accept what libyaml refused)."""
+    """The YAML document of ``path`` (read once: a FIFO or ``/dev/fd/N`` has one reading) by
+    :class:`_FastStrictLoader`, or by :class:`_StrictLoader` where the text has a tab; a YAML error is
+    the one :class:`_StrictLoader` raises (or its value, should PyYAML's own parser accept what libyaml
+    refused)."""
+    with open(path, encoding="utf-8") as stream:
+        text = stream.read()
+    loader = _loader_for(text, _FastStrictLoader, _StrictLoader)
     try:
-        with open(path, encoding="utf-8") as stream:
-            return yaml.load(stream, Loader=_FastStrictLoader)  # noqa: S506 (a SafeLoader)
+        return yaml.load(_named(text, path), Loader=loader)  # noqa: S506 (a SafeLoader)
     except yaml.YAMLError:
-        with open(path, encoding="utf-8") as stream:
-            return yaml.load(stream, Loader=_StrictLoader)  # noqa: S506 (a SafeLoader)
+        if loader is _StrictLoader:
+            raise
+        return yaml.load(_named(text, path), Loader=_StrictLoader)  # noqa: S506 (a SafeLoader)
+
+
+def _named(text: str, path: str | os.PathLike) -> io.StringIO:
+    """``text`` as a stream named ``path``, the name the loaders' marks (and error messages) give."""
+    stream = io.StringIO(text)
+    stream.name = os.fspath(path)
+    return stream
 
 
 def read_config_file(path: str | os.PathLike) -> dict:

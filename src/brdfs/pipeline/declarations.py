@@ -4,10 +4,11 @@ Snakemake lists every artifact while it plans (``workflow/rules/common.smk``:
 :func:`brdfs.pipeline.registry.artifacts`). Importing the ~70 artifact modules would run numpy,
 scipy, pandas and matplotlib (1.96 s); parsing their module-level statements (not the bodies of
 their functions: :func:`_top_level`, about 3x faster than parsing the whole modules) and evaluating
-each ``@table``/``@figure``/``@check``/``@comparison`` call's arguments imports none of them. The arguments are evaluated by :func:`_evaluate`, which knows literals, module-level
-constants (``NAME = "..."``), constants of imported package modules (``dg.SECTION``,
-``from m import NAME``), ``*`` inside tuples and lists, ``tuple(...)``/``list(...)``/``sorted(...)``
-and ``d.values()``/``d.keys()``; anything else is a :class:`~brdfs.pipeline.registry.DeclarationError`
+each ``@table``/``@figure``/``@check``/``@comparison`` call's arguments imports none of them. The
+arguments are evaluated by :func:`_evaluate`, which knows literals, module-level constants
+(``NAME = "..."``), constants of imported package modules (``dg.SECTION``, ``from m import NAME``),
+``*`` inside tuples and lists, ``tuple(...)``/``list(...)``/``sorted(...)`` and
+``d.values()``/``d.keys()``; anything else is a :class:`~brdfs.pipeline.registry.DeclarationError`
 naming the file and line. The values go through the same constructor as the decorators'
 (``registry._declare_artifact``), and ``tests/pipeline/test_registry.py`` checks that the scan
 and the imported modules declare the same.
@@ -28,29 +29,47 @@ from brdfs.pipeline import registry
 # --- the module-level statements a scan reads, without parsing the functions' bodies ---------------
 
 # Lexemes of Python source: strings, comments and a backslash's continued line (stepped over whole:
-# registry._STRINGS_AND_COMMENTS), brackets (their depth), and a newline followed by a line's first
-# character that is neither blank nor a comment's: at depth 0, the start of a module-level statement.
+# registry._STRINGS_AND_COMMENTS), a quote that starts no string that ends, brackets (their depth),
+# and a newline followed by a line that starts in column 0 and is neither blank nor a comment: at
+# depth 0, the start of a module-level statement. A form feed sets the column to 0 (Python's
+# tokenizer): only spaces and tabs after the line's last form feed indent it.
 _LEXEMES = re.compile(registry._STRINGS_AND_COMMENTS + r"""
+  | (?P<quote>["'])
   | (?P<open>[(\[{])
   | (?P<close>[)\]}])
-  | (?P<line>\n(?=[^\s\#]))
+  | (?P<line>\n(?=(?:[ \t\f]*\f)?[^ \t\f\#\n]))
 """, re.VERBOSE | re.DOTALL)
-_FIRST_WORD = re.compile(r"@|[A-Za-z_]\w*")
+_FIRST_WORD = re.compile(r"[ \t\f]*(@|[A-Za-z_]\w*)")
 #: First words of the module-level statements that bind no constant and import nothing at module
 #: level: compound statements (their bodies are not the module's body) and their clauses.
 _SKIPPED = {"if", "elif", "else", "for", "while", "try", "except", "finally", "with", "class", "def", "async"}
 
 
 def _module_statements(source: str) -> list[tuple[int, str]]:
-    """The module-level statements of ``source``: (first line, text), in order."""
+    """The module-level statements of ``source``: (first line, text), in order.
+
+    Raises
+    ------
+    SyntaxError
+        A string does not end or the brackets do not pair (what :func:`registry._unpaired
+        <brdfs.pipeline.registry._unpaired>` finds for the import scan): the statements cannot be
+        told apart, and the module may not parse.
+    """
     starts, depth = [0], 0
     for match in _LEXEMES.finditer(source):
         if match.lastgroup == "open":
             depth += 1
         elif match.lastgroup == "close":
             depth -= 1
+            if depth < 0:
+                break
         elif match.lastgroup == "line" and depth == 0:
             starts.append(match.start() + 1)
+        elif match.lastgroup == "quote":
+            depth = -1
+            break
+    if depth != 0:
+        raise SyntaxError("a string that does not end or brackets that do not pair")
     starts.append(len(source))
     statements, line = [], 1
     for a, b in zip(starts, starts[1:]):
@@ -72,12 +91,14 @@ def _top_level(path: Path) -> tuple[ast.stmt, ...]:
     Parsing only these statements is about 3x faster than parsing the module (what Snakemake
     waits for while it plans); ``tests/pipeline/test_source_scan.py`` holds them equal to the module's
     syntax tree on every module of the package. A statement that does not parse alone (a split the
-    scan got wrong) falls back to parsing the whole module."""
+    scan got wrong), and a module whose strings do not end or whose brackets do not pair
+    (:func:`_module_statements`), fall back to parsing the whole module: a syntax error is raised
+    naming the file and line."""
     try:
         nodes, decorators = [], []
         for line, text in _module_statements(path.read_text(encoding="utf-8")):
             word = _FIRST_WORD.match(text)
-            word = word.group() if word else ""
+            word = word.group(1) if word else ""
             if word == "@":
                 decorators.append((line, text))
             elif word in ("def", "async") and decorators:
@@ -85,7 +106,7 @@ def _top_level(path: Path) -> tuple[ast.stmt, ...]:
                 nodes += _parsed(stub, decorators[0][0])
                 decorators = []
             else:
-                if word not in _SKIPPED and not text.startswith(('"', "'")):  # not a docstring
+                if word not in _SKIPPED:
                     nodes += _parsed(text, line)
                 decorators = []
         return tuple(nodes)

@@ -34,7 +34,8 @@ The declarations are read in two ways that agree (``tests/pipeline/test_registry
 - :func:`artifacts` and :func:`comparisons` read the decorator lines of
   ``src/brdfs/artifacts/*.py`` without importing the modules
   (:mod:`brdfs.pipeline.declarations`), so that Snakemake lists every artifact while
-  it plans without the 1.96 s of importing them with numpy, scipy, pandas and matplotlib. A decorator argument is therefore a literal, a module-level
+  it plans without the 1.96 s of importing them with numpy, scipy, pandas and
+  matplotlib. A decorator argument is therefore a literal, a module-level
   constant or a constant of an imported package module (or ``tuple``/``d.values()``
   of those); anything else is a :class:`DeclarationError` naming the file and line.
 - Importing a module runs its decorators, which register the functions;
@@ -240,29 +241,43 @@ _STRINGS_AND_COMMENTS = r"""
   | \#[^\n]*
   | \\\n"""
 # An import statement's keyword where a statement starts (a line's first word, or after ``;`` or the
-# ``:`` of ``if x: import y``), outside strings and comments: a docstring's ``from brdfs import model``
-# is no import. ``raise E from e`` and ``yield from`` are no statement's start. The text before the
-# source is a newline (``_import_statements`` prepends it).
+# ``:`` of ``if x: import y``, also on a line a backslash continues), outside strings and comments: a
+# docstring's ``from brdfs import model`` is no import. ``raise E from e`` and ``yield from`` are no
+# statement's start. The text before the source is a newline (``_import_statements`` prepends it).
 _IMPORT_SCAN = re.compile(_STRINGS_AND_COMMENTS + r"""
-  | [\n;:][ \t\f]*(?P<statement>(?:from|import)\b)
+  | [\n;:][ \t\f]*(?:\\\n[ \t\f]*)*(?P<statement>(?:from|import)\b)
 """, re.VERBOSE | re.DOTALL)
 # The rest of an import statement: its line (and backslash continuations), or through the ``)`` of
 # ``from m import (a, b)``.
 _IMPORT_REST = re.compile(r"(?:[^\n\\(]|\\\n)*(?:\([^)]*\)[^\n]*)?")
 
 
-def _import_statements(source: str, package: str = "brdfs") -> str:
+def _import_statements(source: str, package: str = "brdfs") -> tuple[str, bool]:
     """The text of every import statement of ``source`` that names ``package``, one after another,
-    as Python source (at most a few lines of each: what follows a ``;`` on its line comes along)."""
+    as Python source (at most a few lines of each: what follows a ``;`` on its line comes along), and
+    whether the rest, strings and comments taken out, has a quote or brackets that do not pair
+    (:func:`_unpaired`)."""
     source = "\n" + source
-    found = []
+    found, code, end = [], [], 0
     for match in _IMPORT_SCAN.finditer(source):
+        code.append(source[end:match.start()])
+        end = match.end()
         start = match.start("statement")
         if start >= 0:
             statement = source[start:_IMPORT_REST.match(source, match.end()).end()]
             if package in statement:
                 found.append(statement)
-    return "\n".join(found)
+    code.append(source[end:])
+    return "\n".join(found), _unpaired("".join(code))
+
+
+def _unpaired(code: str) -> bool:
+    """Whether ``code`` (source with its strings and comments taken out) has a quote, the start of a
+    string that does not end, or brackets that do not pair: a module that does not parse, or text
+    that misleads a scan of it (a scan then parses the whole module: a syntax error fails the
+    workflow's planning, naming the file and line, as importing the module would; one that keeps
+    them paired, ``x = = 1`` in a function's body, is found when a job imports the module)."""
+    return '"' in code or "'" in code or any(code.count(a) != code.count(b) for a, b in ("()", "[]", "{}"))
 
 
 def _imported_names_of(path: Path) -> set[str]:
@@ -271,12 +286,14 @@ def _imported_names_of(path: Path) -> set[str]:
     :func:`_import_statements`, about 8x faster than parsing the module while the workflow plans;
     ``tests/pipeline/test_source_scan.py`` holds the two equal on every module of the package). A
     statement the scan cuts short (a ``)`` in a comment inside its parentheses) fails to parse, and
-    then the whole module is parsed."""
-    try:
-        tree = ast.parse(_import_statements(path.read_text(encoding="utf-8")))
-    except SyntaxError:
-        tree = _parse(path)
-    return _imported_names(_statements(tree.body))
+    then the whole module is parsed, as is a module whose strings or brackets are :func:`_unpaired`."""
+    statements, suspect = _import_statements(path.read_text(encoding="utf-8"))
+    if not suspect:
+        try:
+            return _imported_names(_statements(ast.parse(statements).body))
+        except SyntaxError:
+            pass
+    return _imported_names(_statements(_parse(path).body))
 
 
 @functools.lru_cache(maxsize=None)
