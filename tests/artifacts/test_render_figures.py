@@ -284,3 +284,16 @@ def test_an_adaptive_render_is_the_uniform_one_in_expectation_spends_its_samples
     assert (z.abs() < 4.0).all(), z
     assert first["object_spp"].min() >= 8 and first["object_spp"].max() <= 16 and first["spp"].iloc[0] < 16
     assert first["object_spp"].nunique() > 1
+
+
+def test_figure_4_9s_panel_titles_give_each_spheres_samples_where_they_differ_from_the_films():
+    import pandas as pd
+
+    from brdfs.artifacts.fig_4_9_sampling_efficiency import panel_costs
+
+    rows = pd.DataFrame({"panel": [0] * 4, "object": ["gold s=10", "silver s=4", "copper s=15", "floor"],
+                         "spp": 32, "object_spp": [96, 160, 96, 32], "rays_per_pixel": 160.0,
+                         "plugin_evaluations_per_pixel": [1.0, 2.0, 3.0, float("nan")], "thesis_minutes": 51.0})
+    assert panel_costs(rows) == ["32 spp (spheres 96/160/96), 160 rays/px, 6.0 plugin evals/px; thesis 50 spp, 51 min"]
+    uniform = rows.assign(object_spp=32)
+    assert panel_costs(uniform)[0].startswith("32 spp, 160 rays/px")

@@ -66,7 +66,8 @@ def panel_costs(df: pd.DataFrame) -> list[str]:
         first = rows.iloc[0]
         minutes = first["thesis_minutes"]
         thesis = f"thesis {THESIS_SPP} spp, {minutes:g} min" if minutes == minutes else "not in the thesis"
-        crop = f" (spheres {int(first['spp'] + first['crop_spp'])})" if first.get("crop_spp", 0) else ""
+        spheres = [int(v) for v in rows.loc[rows["object"] != "floor", "object_spp"]]
+        crop = f" (spheres {'/'.join(map(str, spheres))})" if any(v != first["spp"] for v in spheres) else ""
         out.append(f"{int(first['spp'])} spp{crop}, {first['rays_per_pixel']:.0f} rays/px, "
                    f"{rows['plugin_evaluations_per_pixel'].sum():.1f} plugin evals/px; {thesis}")
     return out
