@@ -372,7 +372,7 @@ def _initial_intervals(bp):
     if bp.shape[0] == 1:               # one element: its row, without the batch's broadcasting
         row = bp[0]
         lo, hi = row[:-1], row[1:]
-        if _ascending_and_finite(row.tolist()):          # nothing to drop (a single angle's rows)
+        if _ascending_and_finite(row, lo, hi):           # nothing to drop (a single angle's rows)
             return np.zeros(lo.size, np.intp), lo, hi
         keep = (hi > lo) & np.isfinite(lo) & np.isfinite(hi)
         lo, hi = lo[keep], hi[keep]
@@ -384,11 +384,11 @@ def _initial_intervals(bp):
     return elem[keep], lo[keep], hi[keep]
 
 
-def _ascending_and_finite(points) -> bool:
-    """Whether a row's points (Python floats) ascend strictly from a finite first to a finite last
-    point: every interval of the row is kept (NaN compares False, so a NaN anywhere says no)."""
-    return (len(points) > 1 and math.isfinite(points[0]) and math.isfinite(points[-1])
-            and all(map(float.__lt__, points[:-1], points[1:])))
+def _ascending_and_finite(row, lo, hi) -> bool:
+    """Whether a row of points ascends strictly (``hi`` > ``lo``, its intervals' ends) from a finite first
+    to a finite last point: every interval of the row is kept (NaN compares False, so a NaN anywhere says
+    no), by two numpy calls where the masks of the general case take seven."""
+    return row.size > 1 and math.isfinite(row[0]) and math.isfinite(row[-1]) and bool((hi > lo).all())
 
 
 def _evaluate(integrand, elem, lo, hi, chunk):
