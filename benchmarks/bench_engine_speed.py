@@ -23,10 +23,12 @@ same way (issue 41, "per-call cost"): ``curve_ms_per_point`` and ``single_ms`` a
 their ratio ``single_over_curve`` (target ≤ 3 for a model on an integral route), and the single call's
 CPU ms (target ≤ 0.1 ms for a model whose single calls need no integration, ``closed_form``: its own
 route is a closed form; the patch mixtures' own routes integrate, and have the ratio's target).  It
-also times the curve points of commit ``e0ba585`` (:data:`BEFORE`; ``--before=REV`` another, ``--before=``
-none) in a child process on that commit's ``src``, between its own timings (:class:`_CurveAt`):
-``curve_ms_before``, ``curve_vs_before`` and ``curve_not_slower`` (the target: no curve point slower
-than at e0ba585, within :data:`SLOWER_BEYOND` for the machine's noise).
+also times the curve points and single calls of commit ``e0ba585`` (:data:`BEFORE`; ``--before=REV``
+another, ``--before=`` none) in a child process on that commit's ``src``, between its own timings
+(:class:`_CurveAt`): ``curve_ms_before``, ``curve_vs_before`` and ``curve_not_slower`` (the target: no
+curve point slower than at e0ba585, within :data:`SLOWER_BEYOND` for the machine's noise), and
+``single_over_curve_before`` and ``single_vs_before`` (that commit's ratio, and our single call over
+its: a change's before and after in one run, with ``--before=`` the commit it started from).
 
 Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
@@ -207,11 +209,18 @@ def _curve_seconds(brdf, rtol, rounds):
     return min(_seconds(lambda: albedo(brdf, CURVE_THETA, rtol=rtol)) for _ in range(rounds)) / CURVE_THETA.size
 
 
+def _single_seconds(brdf, rtol, rounds):
+    """Best CPU seconds per single call (the mean over ``SINGLE_THETA``, one call per angle) over ``rounds``
+    (used here and in :class:`_CurveAt`'s child)."""
+    single = lambda: [albedo(brdf, float(t), rtol=rtol) for t in SINGLE_THETA]  # noqa: E731
+    return min(_seconds(single) for _ in range(rounds)) / SINGLE_THETA.size
+
+
 class _CurveAt:
-    """The curve points of another commit's code, timed by a child process on that commit's ``src``
-    (``git archive``) one request at a time, between this run's own timings, so that both see the same
-    load: ``seconds(name, rtol, rounds)`` per point of the model's ``typical`` example, NaN where that
-    commit has no such model or example."""
+    """The curve points and single calls of another commit's code, timed by a child process on that
+    commit's ``src`` (``git archive``) one request at a time, between this run's own timings, so that
+    both see the same load: ``seconds(name, rtol, rounds)`` per point of the model's ``typical`` example
+    (``kind="single"``: per single call), NaN where that commit has no such model or example."""
 
     CHILD = (
         "import sys, warnings\n"
@@ -220,13 +229,14 @@ class _CurveAt:
         "import bench_engine_speed as bench\n"
         "from brdfs.physics.models import MODELS\n"
         "for line in sys.stdin:\n"
-        "    name, rtol, rounds = line.split()\n"
+        "    name, rtol, rounds, kind = line.split()\n"
         "    if name not in MODELS:\n"
         "        print('absent', flush=True)\n"
         "        continue\n"
         "    brdf = MODELS[name].example('typical')\n"
         "    bench.albedo(brdf, 30.0)\n"
-        "    print(repr(bench._curve_seconds(brdf, float(rtol), int(rounds))), flush=True)\n")
+        "    timed = bench._single_seconds if kind == 'single' else bench._curve_seconds\n"
+        "    print(repr(timed(brdf, float(rtol), int(rounds))), flush=True)\n")
 
     def __init__(self, rev):
         import pathlib
@@ -240,8 +250,8 @@ class _CurveAt:
         self.child = subprocess.Popen([sys.executable, "-c", self.CHILD, str(pathlib.Path(__file__).parent)],
                                       stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
 
-    def seconds(self, name, rtol, rounds):
-        self.child.stdin.write(f"{name} {rtol!r} {rounds}\n")
+    def seconds(self, name, rtol, rounds, kind="curve"):
+        self.child.stdin.write(f"{name} {rtol!r} {rounds} {kind}\n")
         self.child.stdin.flush()
         answer = self.child.stdout.readline().strip()
         if answer == "absent":
@@ -261,8 +271,9 @@ def model_ratios(rounds=ROUNDS, only=None, before=BEFORE):
     """Every registered model (or those named in ``only``) at its ``typical`` example: CPU ms per
     curve point (100 angles) and per single call (12 angles), best of ``rounds``, at both tolerances,
     interleaved model by model; with ``before`` (a commit; None: not timed), that commit's curve point
-    timed between them (:class:`_CurveAt`), ``curve_vs_before`` = ours / its, and ``curve_not_slower``
-    (within :data:`SLOWER_BEYOND`).  ``meets_target``: the single call's target and, where timed, the
+    and single call timed between them (:class:`_CurveAt`), ``curve_vs_before`` = ours / its,
+    ``curve_not_slower`` (within :data:`SLOWER_BEYOND`), its ``single_over_curve_before`` and
+    ``single_vs_before`` = ours / its.  ``meets_target``: the single call's target and, where timed, the
     curve's."""
     import warnings
 
@@ -286,13 +297,13 @@ def _model_rows(name, brdf, rounds, other):
     route = str(np.ravel(albedo(brdf, 30.0).route)[0])
     rows = []
     for rtol in (TIGHT, LOOSE):
-        single = lambda: [albedo(brdf, float(t), rtol=rtol) for t in SINGLE_THETA]  # noqa: E731
-        best_curve = best_single = best_before = np.inf
+        best_curve = best_single = best_before = best_single_before = np.inf
         for _ in range(rounds):
             best_curve = min(best_curve, _curve_seconds(brdf, rtol, 1))
-            best_single = min(best_single, _seconds(single) / SINGLE_THETA.size)
+            best_single = min(best_single, _single_seconds(brdf, rtol, 1))
             if other is not None:
                 best_before = min(best_before, other.seconds(name, rtol, 1))
+                best_single_before = min(best_single_before, other.seconds(name, rtol, 1, "single"))
         ratio = best_single / best_curve
         closed = _closed_form(brdf, rtol)
         meets = bool(1e3 * best_single <= OWN_MS_TARGET if closed else ratio <= RATIO_TARGET)
@@ -301,6 +312,8 @@ def _model_rows(name, brdf, rounds, other):
         if other is not None:
             row["curve_ms_before"] = 1e3 * best_before
             row["curve_vs_before"] = best_curve / best_before
+            row["single_over_curve_before"] = best_single_before / best_before
+            row["single_vs_before"] = best_single / best_single_before
             row["curve_not_slower"] = bool(not best_curve > SLOWER_BEYOND * best_before)    # NaN: no such model at the baseline
             meets = meets and row["curve_not_slower"]
         rows.append(row | {"meets_target": meets})

@@ -24,6 +24,7 @@ inner Gauss/Kronrod pair outwards, so the differences measure inner and outer di
 """
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -151,7 +152,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     stays in one half is a localised feature (a boundary layer, a jump) and is split further,
     down to rounding width.
     """
-    bp = np.atleast_2d(np.asarray(breakpoints, float))
+    bp = breakpoints if _is_float_rows(breakpoints) else np.atleast_2d(np.asarray(breakpoints, float))
     n_el = bp.shape[0]
     elem, lo, hi = _initial_intervals(bp)
     vals = _evaluate(integrand, elem, lo, hi, chunk)           # rows: high, low, extra, |f|
@@ -159,7 +160,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     # a single element finds out first whether it has met its tolerance (most single calls, in
     # one round), and only then which intervals no split can improve
     fixed = None if n_el == 1 else _unrefinable(lo, hi, err, vals[2])
-    stalls = np.zeros(elem.size, np.intp)
+    stalls = None if n_el == 1 else np.zeros(elem.size, np.intp)      # a single element's: once it refines
     evaluations = elem.size * NODES.size
     exhausted = True
     if n_el == 1:
@@ -176,7 +177,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
                 exhausted = False
                 break
             if fixed is None:
-                fixed = _unrefinable(lo, hi, err, vals[2])
+                fixed, stalls = _unrefinable(lo, hi, err, vals[2]), np.zeros(elem.size, np.intp)
             frozen = fixed | (stalls >= STALL_LIMIT)
             movable_1 = float(np.bincount(elem, np.where(frozen, 0.0, err), 1)[0])
             total, budget = np.array([total_1]), np.array([budget_1])
@@ -230,7 +231,13 @@ def _single_sums(elem, vals, err):
     Python floats, summed in order as ``np.bincount`` sums a batch's elements (the same sums to the
     bit): the four rows of ``vals`` by one running sum (``np.cumsum``, sequential where ``np.sum`` is
     pairwise), ``err`` by ``np.bincount``."""
-    return [*np.cumsum(vals, axis=1)[:, -1].tolist(), float(np.bincount(elem, err, 1)[0])]
+    return [*vals.cumsum(axis=1)[:, -1].tolist(), float(np.bincount(elem, err, 1)[0])]
+
+
+def _is_float_rows(breakpoints) -> bool:
+    """Whether ``breakpoints`` are already the rows :func:`integrate` works on (a 2-D float array),
+    so that a single angle's call skips ``np.asarray`` and ``np.atleast_2d`` (their dispatch)."""
+    return type(breakpoints) is np.ndarray and breakpoints.ndim == 2 and breakpoints.dtype == np.float64
 
 
 def _budget(tol, floor):
@@ -365,6 +372,8 @@ def _initial_intervals(bp):
     if bp.shape[0] == 1:               # one element: its row, without the batch's broadcasting
         row = bp[0]
         lo, hi = row[:-1], row[1:]
+        if _ascending_and_finite(row, lo, hi):           # nothing to drop (a single angle's rows)
+            return np.zeros(lo.size, np.intp), lo, hi
         keep = (hi > lo) & np.isfinite(lo) & np.isfinite(hi)
         lo, hi = lo[keep], hi[keep]
         return np.zeros(lo.size, np.intp), lo, hi
@@ -373,6 +382,13 @@ def _initial_intervals(bp):
     # NaN padding and empty pieces are dropped; an all-empty element integrates to zero.
     keep = np.isfinite(lo) & np.isfinite(hi) & (hi > lo)
     return elem[keep], lo[keep], hi[keep]
+
+
+def _ascending_and_finite(row, lo, hi) -> bool:
+    """Whether a row of points ascends strictly (``hi`` > ``lo``, its intervals' ends) from a finite first
+    to a finite last point: every interval of the row is kept (NaN compares False, so a NaN anywhere says
+    no), by two numpy calls where the masks of the general case take seven."""
+    return row.size > 1 and math.isfinite(row[0]) and math.isfinite(row[-1]) and bool((hi > lo).all())
 
 
 def _evaluate(integrand, elem, lo, hi, chunk):
@@ -394,7 +410,13 @@ def _evaluate_chunk(integrand, elem, lo, hi):
     x = (0.5 * (lo + hi))[:, None] + half[:, None] * NODES
     v_high, v_low, v_extra = node_values(integrand(x, elem))
     out = np.empty((4, elem.size))
-    out[0], out[1], out[3] = v_high @ KRONROD_WEIGHTS, v_low @ GAUSS_WEIGHTS, np.abs(v_high) @ KRONROD_WEIGHTS
-    out[2] = 0.0 if v_extra is None else np.abs(v_extra) @ KRONROD_WEIGHTS
+    # each sum written into its row (the same products, without a temporary and its copy)
+    np.matmul(v_high, KRONROD_WEIGHTS, out=out[0])
+    np.matmul(v_low, GAUSS_WEIGHTS, out=out[1])
+    np.matmul(np.abs(v_high), KRONROD_WEIGHTS, out=out[3])
+    if v_extra is None:
+        out[2] = 0.0
+    else:
+        np.matmul(np.abs(v_extra), KRONROD_WEIGHTS, out=out[2])
     out *= half
     return out

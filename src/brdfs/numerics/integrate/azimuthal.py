@@ -129,7 +129,13 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
     kernels = ({0: _RadialKernel.of(models[0])} if single else
                {members[0]: _RadialKernel.of(models[members[0]]) for members in indices_by_model(models)})
-    if len(kernels) == 1:                  # one model: no regrouping of the nodes by model
+    if single:                             # one element: its cos θ and sin θ as a (1, 1) column, not gathered per node row
+        kernel, mu_1, st_1 = kernels[0], mu[:, None], st[:, None]
+
+        def integrand(t, elem):
+            value, rounding = kernel(t, mu_1, st_1)
+            return NodeValues(value, value, rounding)
+    elif len(kernels) == 1:                # one model: no regrouping of the nodes by model
         (kernel,) = kernels.values()
 
         def integrand(t, elem):
@@ -242,6 +248,8 @@ SINGLE_ANGLE_TAIL = np.concatenate([[0.75, 0.5, 0.25], 10.0 ** -np.arange(1.0, 3
 #: 3.0, with fewer evaluations in all: the refinement rounds it saves cost 32 intervals each).  Loose
 #: tolerances keep the coarser :data:`SINGLE_ANGLE_TAIL`, which meets them in one round already.
 TIGHT_SINGLE_ANGLE_TAIL = np.concatenate([1.0 - np.arange(1, 16) / 16, 10.0 ** -np.arange(1.0, 13.0, 0.5)])
+for _tail in (BATCH_TAIL, SINGLE_ANGLE_TAIL, TIGHT_SINGLE_ANGLE_TAIL):
+    _tail.flags.writeable = False        # constants (hemisphere._ends_of_tail keeps their points)
 #: The rtol below which a single angle starts from :data:`TIGHT_SINGLE_ANGLE_TAIL`, graded toward
 #: the declared levels' tangency radii and the range's end (``radial_breakpoints_many(graded=True)``,
 #: :data:`.hemisphere.LEVEL_GRADING`), with every horizon onset mapped (:data:`TIGHT_ONSET_MIN_SPAN`).

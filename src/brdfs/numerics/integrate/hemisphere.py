@@ -362,7 +362,7 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
     t_all = lobe.t_of(np.array([beta_max] + cand + ends + graded_pts + cone + layers)).tolist()
     t_max, t_cand = t_all[0], t_all[1:1 + len(cand)]
     t_end, t_rest = t_all[1 + len(cand):1 + len(cand) + len(ends)], t_all[1 + len(cand) + len(ends):]
-    points = [0.0] + t_cand + [1.0 - x for x in tail.tolist()] + t_rest
+    points = [0.0] + t_cand + _ends_of_tail(tail) + t_rest
     if through_centre:
         points += [t_max * h for h in _HEAD]
     if (graded or 1.0 - TAIL[0] < t_max) and t_max < 1.0:
@@ -371,6 +371,22 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
     onset_frame = lobe.frame is HALF or lobe.frame is MIRROR
     t0 = t_cand[0] if onset_frame and cand[0] < beta_max else math.nan
     return [row], [(np.empty(0), np.empty(0))], np.array([t0])
+
+
+def _ends_of_tail(tail) -> list:
+    """t = 1 − x of the tail breakpoints ``tail`` as Python floats (the subtraction is the arrays', to
+    the bit), kept for the module's tails (:data:`TAIL` and the 1-D route's), which every single angle
+    passes: their ~40 subtractions cost a call ~2 µs."""
+    kept = _TAIL_ENDS.get(id(tail))
+    if kept is not None and kept[0] is tail:
+        return kept[1]
+    ends = [1.0 - x for x in tail.tolist()]
+    if not tail.flags.writeable:             # a constant: kept (with it, so that its id is not reused)
+        _TAIL_ENDS[id(tail)] = (tail, ends)
+    return ends
+
+
+_TAIL_ENDS: dict = {}
 
 
 def _tangency_layer_radii(a, theta, st, scale, beta_max, layer_max):
@@ -451,6 +467,7 @@ def _cone_radius(model, theta, scale):
 #: Gauss–Kronrod interval ending at t = 1 places none of its nodes: a kink or a dip there was
 #: accepted as flat (Cook–Torrance, m = 0.1, 22°–48°: 6e-6 missed at a reported 2e-12).
 TAIL = 10.0 ** -np.arange(3.0, 13.0, 3.0)
+TAIL.flags.writeable = False
 #: Initial breakpoints t = 10^(−k) t_max at the lobe's centre, for a model with the kink level
 #: N·V = N·L (``nv_levels``): it passes through the mirror direction, the lobe's centre, so
 #: the φ-integral carries odd powers of sin β ∝ √t and the radial integrand a √t endpoint

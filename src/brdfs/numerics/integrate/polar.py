@@ -106,7 +106,7 @@ def _albedo_one(brdf, theta_deg, rtol, atol) -> Estimate:
     if factors is None:
         raise ValueError(f"the polar route needs a model that declares half_vector_factors, got {brdf.name!r}")
     theta_l = np.radians(theta_deg)
-    t, mu_l, s_l = theta_l[0].item(), np.cos(theta_l)[0].item(), np.sin(theta_l)[0].item()
+    t, mu_l, s_l = theta_l.item(), np.cos(theta_l).item(), np.sin(theta_l).item()
 
     def integrand(theta_v, elem):
         value, rounding = radial_integrand(*factors, t, theta_v, mu_l, s_l)
