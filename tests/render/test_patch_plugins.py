@@ -450,7 +450,7 @@ def _independent_radius(s, u):
     return np.where(u >= 1.0 - p_diffuse, 2.0, np.where(u <= at_one, inner, outer))
 
 
-@pytest.mark.parametrize("s", [0.01, 0.5, 1.0, 2.0, 4.0, 6.0, 8.0, 10.0, 15.0, 20.0, 64.0, 512.0, 1e5])
+@pytest.mark.parametrize("s", [0.01, 0.5, 1.0, 2.0, 4.0, 6.0, 8.0, 10.0, 15.0, 20.0, 64.0, 512.0, 1e5, 1e7, 1e9])
 def test_exponential_radius_is_within_its_stated_bound_of_an_independent_inverse(mitsuba, s):
     """R = F⁻¹(u) of the plugin (table start, Newton steps, float64) within RADIUS_RTOL R of scipy's
     inverse, at 2·10⁴ uniform u, 10⁴ toward 0 and 10⁴ toward 1 (float32 u, as the sampler's): far below
@@ -491,3 +491,11 @@ def test_a_frame_turned_ninety_degrees_fails_the_elliptical_chi_square_test(mits
     monkeypatch.setattr(_common, "FRAME_ROTATED_90", True)
     test = _chi2(mitsuba, brdf, "accept_reject", 40.0, sample_count=20_000, res=16)
     assert not test.passed
+
+
+def test_the_exponential_plugin_refuses_an_s_beyond_its_radius_bound_with_one_line(mitsuba):
+    from brdfs.render.mitsuba.plugins import patch as plugins
+
+    with pytest.raises(Exception, match=r"s = 2000000000\.0: at most 1e\+09") as error:
+        mitsuba.load_dict(_plugin("patch_exponential", s=2.0 * plugins.MAX_S))
+    assert "at most" in str(error.value)

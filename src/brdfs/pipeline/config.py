@@ -402,25 +402,43 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
 
 
 def _check_object_spp(config: dict) -> None:
-    """``renders.<preset>.object_spp``: each figure's labels are its objects' (the figure's ``panels``
-    read with this config), and the figure has no ``crop_spp`` beside it (either, not both)."""
+    """``renders.<preset>``'s ways of spending samples per figure exclude each other (``crop_spp``,
+    ``object_spp``, ``adaptive``: one of them); an ``object_spp`` figure's labels are its objects' (the
+    figure's ``panels`` read with this config) and each count is at least the figure's ``spp`` (every
+    panel's, where ``figure_spp`` lists one per panel), so that the listed object has that count in
+    every panel."""
     renders = config.get("renders") or {}
-    listed = [(preset, name, labels) for preset, settings in renders.items() if isinstance(settings, dict)
+    presets = [(preset, settings) for preset, settings in renders.items()
+               if isinstance(settings, dict) and {"spp", "passes"} <= set(settings)]
+    for preset, settings in presets:
+        ways = {way: {name for name, value in (settings.get(way) or {}).items() if value}
+                for way in ("crop_spp", "object_spp", "adaptive")}
+        for name in sorted(set().union(*ways.values())):
+            given = [way for way in ways if name in ways[way]]
+            if len(given) > 1:
+                raise ConfigError(f"Error validating config file: renders.{preset}.{given[-1]}.{name}: the figure also "
+                                  f"has renders.{preset}.{given[0]}.{name} = {_short(settings[given[0]][name])}; give one of them")
+    listed = [(preset, settings, name, labels) for preset, settings in presets
               for name, labels in (settings.get("object_spp") or {}).items()]
     if not listed:
         return
     from brdfs.artifacts._render_figures import object_labels
 
-    for preset, name, labels in listed:
+    for preset, settings, name, labels in listed:
         path = f"renders.{preset}.object_spp.{name}"
-        if crop := (renders[preset].get("crop_spp") or {}).get(name):
-            raise ConfigError(f"Error validating config file: {path}: the figure also has renders.{preset}.crop_spp."
-                              f"{name} = {crop}; give one of them")
+        film = max(_as_list(settings.get("figure_spp", {}).get(name, settings["spp"])))
         known = object_labels(name, config)
         for label, spp in labels.items():
             if label not in known:
                 raise ConfigError(f"Error validating config file: {path}.{label} = {spp!r}: not an object of {name} "
                                   f"(its objects: {', '.join(map(repr, known))})")
+            if spp < film:
+                raise ConfigError(f"Error validating config file: {path}.{label} = {spp!r}: below the figure's spp "
+                                  f"({film}); an object's window never lowers the film's count")
+
+
+def _as_list(value) -> list:
+    return list(value) if isinstance(value, (list, tuple)) else [value]
 
 
 #: Keys of a model entry (``{model: phong, n: 150, theta_deg: 60}``) that are not the model's parameters.

@@ -86,10 +86,13 @@ MAX_TRIES = 64
 MIN_ACCEPTANCE = (2.0 * np.pi / 3.0 - np.sqrt(3.0) / 2.0) / np.pi
 #: Intervals of the table of the model's F⁻¹ (and its slope: a cubic Hermite start) that brackets R,
 #: the safeguarded Newton steps on the closed-form F after it (float64), and the bound on the relative
-#: error of R they reach (:func:`exponential_radius64`; tested on s ∈ [1e-2, 1e5]).
+#: error of R they reach (:func:`exponential_radius64`; tested on s ∈ [1e-2, MAX_S]).
 CDF_TABLE = 256
 NEWTON_STEPS = 2
 RADIUS_RTOL = 2.0 ** -30
+#: The largest s the plugin takes: above it the model's bisection table is off by more than RADIUS_RTOL
+#: (1.8e-8 at s = 1e10), the bracket misses the root and the bound fails (first near s = 3e9).
+MAX_S = 1e9
 #: Terms of the series of P(3, x) below x = 1.
 SERIES_TERMS = 14
 #: The plugin's names of the strategies and the model's names they stand for.
@@ -527,6 +530,9 @@ class PatchExponentialBSDF(PatchBSDF):
             raise ValueError(f"{props.plugin_name()}: mis_density = {mis_density!r}; choose one of {self.MIS_DENSITIES}")
         self.mis_density = mis_density
         s = float(self.brdf.s)
+        if s > MAX_S:
+            raise ValueError(f"{props.plugin_name()}: s = {s!r}: at most {MAX_S:g} (the radius sampler's error "
+                             f"bound holds up to it; the lobe is then narrower than a float32 direction)")
         profile_c_max = self.brdf.C / self.brdf.total_weight
         self.s = dr.opaque(mi.Float, s)
         self.s64 = dr.opaque(mi.Float64, s)
