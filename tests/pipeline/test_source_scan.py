@@ -239,3 +239,22 @@ def test_a_module_that_misleads_the_bracket_count_is_read_from_its_syntax_tree(t
     path = tmp_path / "toy.py"
     path.write_text(source)
     assert _read(declarations._top_level(path)) == _read(ast.parse(source).body) != []
+
+
+def test_the_modules_a_package_imports_by_name_are_code_inputs_of_the_artifacts_that_import_it():
+    """The model modules (imported by ``physics.models`` from its directory) and the Mitsuba plugin
+    modules (imported by ``plugins`` from ``PLUGIN_MODULES``) are read by no import statement the
+    scan can see but the provenance imports of their packages: a changed model or plugin must rerun the
+    artifacts that use it (before, an edited ``plugins/patch.py`` left Figs. 4.9, 4.16, 4.17 as they were)."""
+    import pkgutil
+
+    import brdfs.physics.models as models
+    from brdfs.pipeline.registry import artifacts
+    from brdfs.render.mitsuba.plugins import PLUGIN_MODULES
+
+    sources = {name: set(artifact.sources) for name, artifact in artifacts().items()}
+    model_files = {f"src/brdfs/physics/models/{m.name}.py" for m in pkgutil.iter_modules(models.__path__)}
+    plugin_files = {f"src/brdfs/render/mitsuba/plugins/{name}.py" for name in (*PLUGIN_MODULES, "_common")}
+    assert model_files <= sources["fig_2_1_albedo_classical"], model_files - sources["fig_2_1_albedo_classical"]
+    for render in ("fig_4_16_patch_metals", "fig_3_8_material_spheres", "fig_4_18_generalized_lambert"):
+        assert plugin_files | model_files <= sources[render], (plugin_files | model_files) - sources[render]

@@ -8,8 +8,13 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
+from typing import TYPE_CHECKING
 
 from brdfs.physics.models.base import BRDF, MODELS, register
+
+if TYPE_CHECKING:   # what _import_model_modules() imports by name, named here for the workflow's code provenance
+    from brdfs.physics.models import (blinn, he_torrance, metal, microfacet, oren_nayar, patch, phong,  # noqa: F401
+                                      pumped, smith_microfacet)
 from brdfs.physics.models.phong import phong_constant
 
 #: The thesis's families in chapter order (chapters 2–4), then today's Smith microfacet models.

@@ -26,6 +26,10 @@ own sampler by default, or ``"cosine"``).
 from __future__ import annotations
 
 import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:   # what _modules() imports by name, named here for the workflow's code provenance
+    from brdfs.render.mitsuba.plugins import _common, generic, lambert, microfacet, patch, phong  # noqa: F401
 
 #: The modules holding plugins, each with a ``PLUGINS`` dict (model name -> class).
 PLUGIN_MODULES = ("lambert", "phong", "microfacet", "patch", "generic")
