@@ -97,8 +97,6 @@ MEANING = [
      "renders.preview.object_spp.fig_4_9_sampling_efficiency: the figure also has", "give one of them"),
     ("renders.preview.adaptive.fig_3_9_metals_new_model", 0.05,
      "renders.preview.adaptive.fig_3_9_metals_new_model: the figure also has renders.preview.object_spp", "give one of them"),
-    ("renders.preview.adaptive.fig_4_11_anisotropic_metals", 0.05,
-     "renders.preview.adaptive.fig_4_11_anisotropic_metals: the figure also has renders.preview.crop_spp", "give one of them"),
     ("renders.preview.object_spp.fig_4_9_sampling_efficiency", {"gold s=10": 16},
      "renders.preview.object_spp.fig_4_9_sampling_efficiency.gold s=10 = 16", "below the figure's spp (32)"),
     ("renders.preview.figure_spp.fig_2_8_pumping_render", [48, 48, 128, 48],
@@ -137,6 +135,15 @@ def test_a_config_a_job_would_reject_is_refused_with_one_line_naming_key_and_val
     message = str(error.value)
     assert "\n" not in message and len(message) < 300, message
     assert message.startswith(f"Error validating config file: {shown}") and reason in message, message
+
+
+def test_a_figure_with_a_crop_spp_and_an_adaptive_target_is_refused_with_one_line():
+    config = edited("renders.final.crop_spp", {"fig_3_12_plastics": 64})
+    config["renders"]["final"]["adaptive"] = {"fig_3_12_plastics": 0.05}
+    with pytest.raises(ConfigError) as error:
+        validate_config(config)
+    assert str(error.value) == ("Error validating config file: renders.final.adaptive.fig_3_12_plastics: the figure "
+                                "also has renders.final.crop_spp.fig_3_12_plastics = 64; give one of them")
 
 
 def test_the_shipped_values_of_those_keys_are_valid_and_sections_with_defaults_may_be_left_out():
