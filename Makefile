@@ -125,8 +125,8 @@ benchmark: llvm $(STAMP)
 renders-final: llvm $(STAMP)
 	@$(call locked,$(UNLOCK_STALE); set -x; $(SNAKEMAKE) --profile workflow/profiles/default --config "renders={preset: final}" $(TARGETS))
 
-# The nine deliberate renderer faults (issue 23's six, mis_weights_apart, issue 42's fresnel_at_theta_l and
-# tangent_flipped), each in a temporary copy; a named test must fail.
+# The eleven deliberate renderer faults (issue 23's six, mis_weights_apart, issue 42's fresnel_at_theta_l,
+# tangent_flipped, clamp_direct and clamp_half_kept), each in a temporary copy; a named test must fail.
 check-mutations: llvm $(STAMP)
 	bash workflow/scripts/check_mutations.sh
 
