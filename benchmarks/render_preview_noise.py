@@ -78,6 +78,8 @@ def reference_config(cfg: dict, name: str, factor: int) -> dict:
     preset = out["renders"][out["renders"]["preset"]]
     preset["figure_spp"] = {key: _scaled_spp(spp, factor) for key, spp in preset["figure_spp"].items()}
     preset["crop_spp"] = {key: int(spp) * factor for key, spp in (preset.get("crop_spp") or {}).items()}
+    preset["object_spp"] = {key: {label: int(spp) * factor for label, spp in objects.items()}
+                            for key, objects in (preset.get("object_spp") or {}).items()}
     preset["passes"] = preset["passes"] * factor
     preset["spp"] = preset["spp"] * factor
     # an adaptive figure: the same samples per pixel and pass (its pilot's and its map's), factor x the passes
