@@ -117,8 +117,6 @@ def settings(cfg: dict) -> dict:
             if not isinstance(spp, int) or spp < setup["passes"] or spp % setup["passes"]:
                 raise ValueError(f"renders.{preset}.object_spp.{name}.{label} = {spp!r}: must be a whole multiple of "
                                  f"passes = {setup['passes']}, >= passes")
-        if setup["figure_crop_spp"].get(name):
-            raise ValueError(f"renders.{preset}.object_spp.{name}: the figure also has a crop_spp; give one of them")
     setup["figure_adaptive"] = setup.pop("adaptive", None) or {}
     for name, target in setup["figure_adaptive"].items():
         if not isinstance(target, (int, float)) or not 0.0 < target < 1.0:
