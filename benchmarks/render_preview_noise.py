@@ -157,12 +157,12 @@ def caustic_choice(figures, cfg: dict, clamps, factor: int, out_csv: str) -> Non
     for name in figures:
         module = importlib.import_module(f"brdfs.artifacts.{name}")
         base = copy.deepcopy(cfg)
-        base["renders"]["clamp"] = {}
+        base["renders"][base["renders"]["preset"]]["clamp"] = {}
         reference, _, cpu_ref = _render(module, reference_config(base, name, factor), [])
         print(f"{name}: reference ({factor}x, no clamp) {cpu_ref:.1f} CPU-s", flush=True)
         for clamp in (0.0, *clamps):
             trial = copy.deepcopy(base)
-            trial["renders"]["clamp"] = {name: float(clamp)} if clamp else {}
+            trial["renders"][trial["renders"]["preset"]]["clamp"] = {name: float(clamp)} if clamp else {}
             df, _, cpu = _render(module, trial, [])
             for r in df.itertuples():
                 ref, ref_err = object_means(reference, r.panel)[r.object]

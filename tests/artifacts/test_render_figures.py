@@ -243,14 +243,20 @@ def test_no_sphere_of_figure_4_18_shadows_a_neighbour(tiny_cfg):
 
 
 def test_a_figures_clamp_reaches_its_integrator_and_its_taken_light_maps_to_the_panels_channels():
-    """``renders.clamp.<figure>`` (issue 42's caustic treatment) is that figure's integrator ``clamp``
-    (0 for the others); the light the clamp took (AOVs ``k<g>_*`` after the ``c<g>_*``) maps to the
-    eight wavelengths as the image's groups do; each object's ``clamp_bias`` is −taken / (kept + taken)."""
+    """``renders.<preset>.clamp.<figure>`` (issue 42's caustic treatment) is that figure's integrator
+    ``clamp`` in that preset (0 for the others); the light the clamp took (AOVs ``k<g>_*`` after the
+    ``c<g>_*``) maps to the eight wavelengths as the image's groups do; each object's ``clamp_bias`` is
+    −taken / (kept + taken)."""
     cfg = yaml.safe_load(CONFIG_YAML.read_text())
-    cfg["renders"]["clamp"] = {"fig_3_11_silver_mirror": 4.0}
+    cfg["renders"]["preview"]["clamp"] = {"fig_3_11_silver_mirror": 3.0}
+    cfg["renders"]["final"]["clamp"] = {"fig_3_9_metals_new_model": 5.0}
     setup = rf.settings(cfg)
-    assert rf.figure_setup(setup, "fig_3_11_silver_mirror")["clamp"] == 4.0
+    assert rf.figure_setup(setup, "fig_3_11_silver_mirror")["clamp"] == 3.0
     assert rf.figure_setup(setup, "fig_3_9_metals_new_model")["clamp"] == 0.0
+    cfg["renders"]["preset"] = "final"
+    final = rf.settings(cfg)
+    assert rf.figure_setup(final, "fig_3_11_silver_mirror")["clamp"] == 0.0
+    assert rf.figure_setup(final, "fig_3_9_metals_new_model")["clamp"] == 5.0
     assert rf._integrator(rf.Panel("p", [], [], {}), clamp=4.0)["clamp"] == 4.0
     groups = rf.WAVELENGTH_PASSES
     colour = 3 * len(groups)
@@ -297,3 +303,14 @@ def test_figure_4_9s_panel_titles_give_each_spheres_samples_where_they_differ_fr
     assert panel_costs(rows) == ["32 spp (spheres 96/160/96), 160 rays/px, 6.0 plugin evals/px; thesis 50 spp, 51 min"]
     uniform = rows.assign(object_spp=32)
     assert panel_costs(uniform)[0].startswith("32 spp, 160 rays/px")
+
+
+def test_each_presets_clamps_are_the_rules_choice_from_the_measured_noise_and_bias():
+    """config.yaml's ``renders.<preset>.clamp`` of Figs. 3.9, 4.11 and 4.16 is what the declared rule
+    picks from the committed measurements at that preset's samples (benchmarks/render_clamp_rule.py)."""
+    import subprocess
+    import sys
+
+    run = subprocess.run([sys.executable, str(REPO_ROOT / "benchmarks" / "render_clamp_rule.py")],
+                         capture_output=True, text=True, cwd=REPO_ROOT)
+    assert run.returncode == 0 and run.stdout.count(" rule ") == 6, run.stdout + run.stderr

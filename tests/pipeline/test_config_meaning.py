@@ -101,6 +101,16 @@ MEANING = [
      "renders.preview.object_spp.fig_4_9_sampling_efficiency.gold s=10 = 16", "below the figure's spp (32)"),
     ("renders.preview.figure_spp.fig_2_8_pumping_render", [48, 48, 128, 48],
      "renders.preview.object_spp.fig_2_8_pumping_render.tank = 120", "below the figure's spp (128)"),
+    # a per-figure mapping takes the render figures only (one list: the registry's), a per-panel list one per panel
+    ("renders.preview.clamp.fig_3_9_metals_new_mode", 2.0,
+     "renders.preview.clamp.fig_3_9_metals_new_mode: unknown key", "did you mean fig_3_9_metals_new_model?"),
+    ("renders.final.figure_spp.fig_2_1_models", 64,
+     "renders.final.figure_spp.fig_2_1_models: unknown key", "must be one of fig_2_8_pumping_render, "),
+    ("renders.preview.figure_spp.fig_3_9_metals_new_model", [32, 32],
+     "renders.preview.figure_spp.fig_3_9_metals_new_model = [32, 32]", "one entry per panel (1 panel)"),
+    ("renders.final.figure_spp.fig_2_8_pumping_render", [2584, 2584],
+     "renders.final.figure_spp.fig_2_8_pumping_render = [2584, 2584]", "one entry per panel (4 panels)"),
+    ("renders.clamp", {"fig_3_9_metals_new_model": 2.0}, "renders.clamp = ", "unknown key"),
     # an integer is an int
     ("patch.fig_4_10_grid", 121.0, "patch.fig_4_10_grid = 121.0", "integer"),
     ("grazing.per_decade", 10.0, "grazing.per_decade = 10.0", "integer"),

@@ -293,10 +293,16 @@ def test_every_key_of_the_schema_has_a_description_and_every_number_a_range():
     def walk(name, node):
         if node.get("type") == "object" or "properties" in node:
             # keysAre: keys the schema cannot list (a figure's object labels), refused by a named check
-            # with the whole config (test_config_meaning holds that check to refusing an unknown key)
-            assert node.get("additionalProperties") is False or "keysAre" in node, f"{name}: admits unknown keys"
+            # with the whole config (test_config_meaning holds that check to refusing an unknown key);
+            # propertyNames: keys from an enum the schema is filled in with (the render figures)
+            closed = node.get("additionalProperties") is False or "keysAre" in node
+            ref = node.get("propertyNames", {}).get("$ref", "#/").rsplit("/", 1)[1]
+            named = "enum" in load_schema()["$defs"].get(ref, {})
+            assert closed or named, f"{name}: admits unknown keys"
             for key, sub in node.get("properties", {}).items():
                 check(f"{name}.{key}", sub)
+            if isinstance(node.get("additionalProperties"), dict):
+                check(f"{name}.<key>", node["additionalProperties"])
         items = resolve(node.get("items", {})) if "items" in node else None
         if items:
             if items.get("type") in ("number", "integer"):
@@ -309,6 +315,17 @@ def test_every_key_of_the_schema_has_a_description_and_every_number_a_range():
 
 def test_the_schemas_model_names_are_the_registered_models():
     assert load_schema()["$defs"]["model_name"]["enum"] == sorted(MODELS)
+
+
+def test_the_schemas_render_figures_are_the_registered_artifacts_that_render():
+    """One list of the render figures, the registry's: every per-figure mapping of a preset takes them."""
+    from brdfs.pipeline import registry
+
+    rendering = sorted(name for name, artifact in registry.artifacts().items() if artifact.renders)
+    assert load_schema()["$defs"]["render_figure"]["enum"] == rendering and len(rendering) == 12
+    preset = load_schema()["properties"]["renders"]["properties"]["preview"]["properties"]
+    for key in ("figure_spp", "crop_spp", "object_spp", "adaptive", "clamp"):
+        assert preset[key]["propertyNames"] == {"$ref": "#/$defs/render_figure"}, key
 
 
 @dataclass(frozen=True)

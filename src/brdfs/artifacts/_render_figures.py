@@ -22,8 +22,8 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   uniform, or larger in crop windows around the objects (``crop_spp``), or chosen per pixel from an
   independent pilot (``adaptive``, :func:`adaptive_counts`).
 * **Caustics** (``renders.caustics``): off, the paths diffuse → metal → light are not traced
-  (:mod:`brdfs.render.mitsuba.integrator`); a figure listed in ``renders.clamp`` has its indirect
-  light clamped (Figs. 3.10, 3.11: their sparkles), the bias reported per object.
+  (:mod:`brdfs.render.mitsuba.integrator`); a figure listed in ``renders.<preset>.clamp`` has its indirect
+  light clamped (Figs. 3.10, 3.11: their sparkles; 3.9, 4.11, 4.16: metal → metal light), the bias reported per object.
 * **Timing**: each panel's measured wall and CPU seconds ride in ``df.attrs["timing"]`` to
   :func:`write_renders` (``timing.json`` beside the EXR files; the report's and docs' pages show them).
 * **Colour** (section 3.8, :mod:`brdfs.render.mitsuba.spectral`): a spectral panel carries eight
@@ -36,7 +36,7 @@ package's plugins and the path tracer ``brdfs_path`` in the variant ``renders.va
   ``object_fireflies``, ``object_sparkles``, ``object_noise_pixels`` (:func:`~brdfs.render.mitsuba.metrics.object_noise`),
   with ``spp`` (an adaptive panel's mean over the film), ``object_spp``, ``passes``, ``preset``, ``variant``,
   ``caustics`` (the integrator's setting, ``renders.caustics``; moot where ``max_depth`` = 1) and
-  ``clamp`` with each object's ``clamp_bias`` and ``clamp_bias_err`` (``renders.clamp.<figure>``:
+  ``clamp`` with each object's ``clamp_bias`` and ``clamp_bias_err`` (``renders.<preset>.clamp.<figure>``:
   the integrator's clamp of indirect light; the bias is the light it took, measured in the same passes). The
   display images (8-bit sRGB) ride along in ``df.attrs["images"]`` to ``plot``.
 * **Linear radiance** (``df.attrs["radiance"]``): each panel's mean over its passes in linear sRGB
@@ -97,7 +97,8 @@ def settings(cfg: dict) -> dict:
     if preset not in PRESETS:
         raise ValueError(f"renders.preset = {preset!r}: must be one of {PRESETS}")
     setup = {"preset": preset, "variant": section["variant"], "sampler": section["sampler"],
-             "caustics": section["caustics"], "figure_spp": {}, "figure_clamp": section.get("clamp", {}), **section[preset]}
+             "caustics": section["caustics"], "figure_spp": {}, **section[preset]}
+    setup["figure_clamp"] = setup.pop("clamp", None) or {}
     if setup["passes"] < metrics.MIN_PASSES or setup["spp"] % setup["passes"]:
         raise ValueError(f"renders.{preset}: spp = {setup['spp']} must be a multiple of passes = "
                          f"{setup['passes']} >= {metrics.MIN_PASSES}")
@@ -129,13 +130,22 @@ def settings(cfg: dict) -> dict:
     return setup
 
 
-def object_labels(name: str, cfg: dict) -> list[str]:
-    """The labels of rendered figure ``name``'s objects (the CSV's ``object`` column), every panel's, in order."""
+def _panels_of(name: str, cfg: dict) -> list:
+    """Rendered figure ``name``'s panels with ``cfg`` (its module's ``panels``)."""
     import importlib
 
-    module = importlib.import_module(f"brdfs.artifacts.{name}")
-    labels = [label for panel in module.panels(cfg) for label, _, _ in panel.objects]
+    return importlib.import_module(f"brdfs.artifacts.{name}").panels(cfg)
+
+
+def object_labels(name: str, cfg: dict) -> list[str]:
+    """The labels of rendered figure ``name``'s objects (the CSV's ``object`` column), every panel's, in order."""
+    labels = [label for panel in _panels_of(name, cfg) for label, _, _ in panel.objects]
     return list(dict.fromkeys(labels))
+
+
+def panel_count(name: str, cfg: dict) -> int:
+    """The number of rendered figure ``name``'s panels with ``cfg``."""
+    return len(_panels_of(name, cfg))
 
 
 def figure_setup(setup: dict, name: str) -> dict:

@@ -269,6 +269,14 @@ _REASONS = {
 }
 
 
+def _closest(key: str, known: list) -> str:
+    """What an unknown ``key`` may have meant, in a few words: the nearest of ``known``, else a few of them."""
+    import difflib
+
+    near = difflib.get_close_matches(key, known, n=1, cutoff=0.8)
+    return f"did you mean {near[0]}?" if near else f"must be one of {', '.join(known[:3])}, ... ({len(known)} names)"
+
+
 def describe_error(error: jsonschema.ValidationError) -> str:
     """One line naming the offending key and its value, and what the schema wants."""
     path = list(error.absolute_path)
@@ -283,6 +291,8 @@ def describe_error(error: jsonschema.ValidationError) -> str:
         return f"Error validating config file: {_key([*path, missing[0]])} is missing (required)"
     elif error.validator in _REASONS:
         reason = _REASONS[error.validator](error.validator_value)
+        if "propertyNames" in error.absolute_schema_path and error.validator == "enum":   # a key the mapping does not take
+            return f"Error validating config file: {_key([*path, value])}: unknown key; {_closest(value, error.validator_value)}"
     if reason is None:
         reason = error.message.splitlines()[0]
         reason = reason if len(reason) <= 100 else reason[:97] + "..."
@@ -354,13 +364,24 @@ def _fill_from_models(schema: dict, models: dict) -> None:
                                         "type": "array", "minItems": 1, "items": items}
 
 
+def _fill_render_figures(schema: dict) -> None:
+    """The enum of ``$defs/render_figure`` from the registry: the artifacts that read the renders
+    section (:attr:`.registry.Artifact.renders`), so that a new render figure needs no edit of the schema."""
+    from brdfs.pipeline import registry
+
+    names = sorted(name for name, artifact in registry.artifacts().items() if artifact.renders)
+    schema.setdefault("$defs", {}).setdefault("render_figure", {"type": "string"})["enum"] = names
+
+
 def load_schema(schema_path: str | os.PathLike = CONFIG_SCHEMA) -> dict:
-    """The config schema, with what it takes from the model classes filled in (:func:`_fill_from_models`)."""
+    """The config schema, with what it takes from the model classes (:func:`_fill_from_models`) and
+    the registry's render figures (:func:`_fill_render_figures`) filled in."""
     from brdfs.physics.models import MODELS
 
     path = os.fspath(schema_path)
     schema = copy.deepcopy(_read_schema(path, os.stat(path).st_mtime_ns))
     _fill_from_models(schema, MODELS)
+    _fill_render_figures(schema)
     return schema
 
 
@@ -397,16 +418,16 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
     if (found := _first_non_finite(config)) is not None:
         raise ConfigError(f"Error validating config file: {_key(found[0])} = {_short(found[1])}: {NOT_FINITE}")
     _check_model_entries(config)
-    _check_object_spp(config)
+    _check_render_figures(config)
     return config
 
 
-def _check_object_spp(config: dict) -> None:
+def _check_render_figures(config: dict) -> None:
     """``renders.<preset>``'s ways of spending samples per figure exclude each other (``crop_spp``,
-    ``object_spp``, ``adaptive``: one of them); an ``object_spp`` figure's labels are its objects' (the
-    figure's ``panels`` read with this config) and each count is at least the figure's ``spp`` (every
-    panel's, where ``figure_spp`` lists one per panel), so that the listed object has that count in
-    every panel."""
+    ``object_spp``, ``adaptive``: one of them); a ``figure_spp`` list has one entry per panel of its
+    figure, and an ``object_spp`` figure's labels are its objects' (the figure's ``panels`` read with
+    this config) with each count at least the figure's ``spp`` (every panel's, where ``figure_spp``
+    lists one per panel), so that the listed object has that count in every panel."""
     renders = config.get("renders") or {}
     presets = [(preset, settings) for preset, settings in renders.items()
                if isinstance(settings, dict) and {"spp", "passes"} <= set(settings)]
@@ -418,11 +439,18 @@ def _check_object_spp(config: dict) -> None:
             if len(given) > 1:
                 raise ConfigError(f"Error validating config file: renders.{preset}.{given[-1]}.{name}: the figure also "
                                   f"has renders.{preset}.{given[0]}.{name} = {_short(settings[given[0]][name])}; give one of them")
+    per_panel = [(preset, name, spp) for preset, settings in presets
+                 for name, spp in (settings.get("figure_spp") or {}).items() if isinstance(spp, list)]
     listed = [(preset, settings, name, labels) for preset, settings in presets
               for name, labels in (settings.get("object_spp") or {}).items()]
-    if not listed:
+    if not per_panel and not listed:
         return
-    from brdfs.artifacts._render_figures import object_labels
+    from brdfs.artifacts._render_figures import object_labels, panel_count
+
+    for preset, name, spp in per_panel:
+        if len(spp) != (count := panel_count(name, config)):
+            raise ConfigError(f"Error validating config file: renders.{preset}.figure_spp.{name} = {_short(spp)}: "
+                              f"needs one entry per panel ({count} panel{'s' * (count != 1)})")
 
     for preset, settings, name, labels in listed:
         path = f"renders.{preset}.object_spp.{name}"

@@ -27,7 +27,7 @@ measured error is 0.97–1.11× what the estimate predicts (the bound: 1/0.85 = 
 8-pass standard deviation is used, not rescaled. Where sparkles dominate an object, it understates:
 Fig. 3.11 without its clamp, 1.14× on the bust and 1.50× on the copper sphere (hundreds of
 ``object_fireflies``): there the estimate is a lower bound, and a figure treats its caustics
-(``renders.clamp``) rather than trust it.
+(``renders.<preset>.clamp``) rather than trust it.
 """
 from __future__ import annotations
 
