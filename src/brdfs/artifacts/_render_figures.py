@@ -130,22 +130,36 @@ def settings(cfg: dict) -> dict:
     return setup
 
 
-def _panels_of(name: str, cfg: dict) -> list:
-    """Rendered figure ``name``'s panels with ``cfg`` (its module's ``panels``)."""
+#: A preset's per-figure settings (``renders.<preset>.<setting>.<figure>``) that spend samples.
+SAMPLING_SETTINGS = ("figure_spp", "crop_spp", "object_spp", "adaptive")
+
+
+@dataclass(frozen=True)
+class FigureFacts:
+    """What the configuration checks need of a rendered figure, read from its ``panels(cfg)``."""
+
+    labels: tuple[str, ...]        # its objects' labels (the CSV's ``object`` column), every panel's, in order
+    panels: int                    # how many panels
+    own_spp: bool                  # every panel renders at its own spp (noise-free): the preset's sampling is moot
+    direct_only: bool              # every panel is direct light only (max_depth 1): a clamp has nothing to cut
+
+    def ignores(self, setting: str) -> str | None:
+        """Why the figure's panels would ignore preset setting ``setting`` (None: they use it)."""
+        if setting in SAMPLING_SETTINGS and self.own_spp:
+            return "its panels render at their own samples per pixel (noise-free), not the preset's"
+        if setting == "clamp" and self.direct_only:
+            return "its panels render direct light only (max_depth 1): there is no indirect light to clamp"
+        return None
+
+
+def figure_facts(name: str, cfg: dict) -> FigureFacts:
+    """:class:`FigureFacts` of rendered figure ``name`` with ``cfg`` (imports its module, no renderer)."""
     import importlib
 
-    return importlib.import_module(f"brdfs.artifacts.{name}").panels(cfg)
-
-
-def object_labels(name: str, cfg: dict) -> list[str]:
-    """The labels of rendered figure ``name``'s objects (the CSV's ``object`` column), every panel's, in order."""
-    labels = [label for panel in _panels_of(name, cfg) for label, _, _ in panel.objects]
-    return list(dict.fromkeys(labels))
-
-
-def panel_count(name: str, cfg: dict) -> int:
-    """The number of rendered figure ``name``'s panels with ``cfg``."""
-    return len(_panels_of(name, cfg))
+    panels = importlib.import_module(f"brdfs.artifacts.{name}").panels(cfg)
+    labels = tuple(dict.fromkeys(label for panel in panels for label, _, _ in panel.objects))
+    return FigureFacts(labels, len(panels), all(p.spp is not None for p in panels),
+                       all(p.max_depth == 1 for p in panels))
 
 
 def figure_setup(setup: dict, name: str) -> dict:

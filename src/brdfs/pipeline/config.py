@@ -269,6 +269,10 @@ _REASONS = {
 }
 
 
+#: Keys that moved, by their old path: an old config gets one line naming the new place.
+MOVED_KEYS = {"renders.clamp": "renders.<preset>.clamp (a clamp per preset)"}
+
+
 def _closest(key: str, known: list) -> str:
     """What an unknown ``key`` may have meant, in a few words: the nearest of ``known``, else a few of them."""
     import difflib
@@ -285,14 +289,18 @@ def describe_error(error: jsonschema.ValidationError) -> str:
         unknown = sorted(set(value) - set(error.schema.get("properties", {})))
         if unknown:
             path.append(unknown[0])
-            value, reason = value[unknown[0]], "unknown key"
+            moved = MOVED_KEYS.get(_key(path))
+            value, reason = value[unknown[0]], "unknown key" + (f"; it moved to {moved}" if moved else "")
     elif error.validator == "required" and isinstance(value, dict):
         missing = [k for k in error.validator_value if k not in value] or [error.message.split("'")[1]]
         return f"Error validating config file: {_key([*path, missing[0]])} is missing (required)"
+    elif "propertyNames" in error.absolute_schema_path and isinstance(value, str):   # a key the mapping does not take
+        names = error.validator_value if error.validator == "enum" else []
+        hint = f"; {_closest(value, names)}" if names else f"; {_REASONS.get(error.validator, str)(error.validator_value)}"
+        return f"Error validating config file: {_key([*path, value])}: unknown key{hint}"
     elif error.validator in _REASONS:
         reason = _REASONS[error.validator](error.validator_value)
-        if "propertyNames" in error.absolute_schema_path and error.validator == "enum":   # a key the mapping does not take
-            return f"Error validating config file: {_key([*path, value])}: unknown key; {_closest(value, error.validator_value)}"
+
     if reason is None:
         reason = error.message.splitlines()[0]
         reason = reason if len(reason) <= 100 else reason[:97] + "..."
@@ -423,14 +431,20 @@ def validate_config(config: dict, schema_path: str | os.PathLike = CONFIG_SCHEMA
 
 
 def _check_render_figures(config: dict) -> None:
-    """``renders.<preset>``'s ways of spending samples per figure exclude each other (``crop_spp``,
-    ``object_spp``, ``adaptive``: one of them); a ``figure_spp`` list has one entry per panel of its
-    figure, and an ``object_spp`` figure's labels are its objects' (the figure's ``panels`` read with
-    this config) with each count at least the figure's ``spp`` (every panel's, where ``figure_spp``
+    """``renders.<preset>``'s per-figure settings mean something for their figure (its ``panels`` read
+    with this config, :func:`brdfs.artifacts._render_figures.figure_facts`): the ways of spending
+    samples exclude each other (``crop_spp``, ``object_spp``, ``adaptive``: one of them); none is given
+    to a figure whose panels ignore it (noise-free panels at their own spp; a clamp where every panel is
+    direct light only); a ``figure_spp`` list has one entry per panel; an ``object_spp`` figure's labels
+    are its objects' with each count at least the figure's ``spp`` (every panel's, where ``figure_spp``
     lists one per panel), so that the listed object has that count in every panel."""
     renders = config.get("renders") or {}
     presets = [(preset, settings) for preset, settings in renders.items()
                if isinstance(settings, dict) and {"spp", "passes"} <= set(settings)]
+    if not presets:
+        return
+    from brdfs.artifacts._render_figures import SAMPLING_SETTINGS, figure_facts
+
     for preset, settings in presets:
         ways = {way: {name for name, value in (settings.get(way) or {}).items() if value}
                 for way in ("crop_spp", "object_spp", "adaptive")}
@@ -439,27 +453,25 @@ def _check_render_figures(config: dict) -> None:
             if len(given) > 1:
                 raise ConfigError(f"Error validating config file: renders.{preset}.{given[-1]}.{name}: the figure also "
                                   f"has renders.{preset}.{given[0]}.{name} = {_short(settings[given[0]][name])}; give one of them")
-    per_panel = [(preset, name, spp) for preset, settings in presets
-                 for name, spp in (settings.get("figure_spp") or {}).items() if isinstance(spp, list)]
-    listed = [(preset, settings, name, labels) for preset, settings in presets
-              for name, labels in (settings.get("object_spp") or {}).items()]
-    if not per_panel and not listed:
+    given = [(preset, settings, setting, name, value) for preset, settings in presets
+             for setting in (*SAMPLING_SETTINGS, "clamp") for name, value in (settings.get(setting) or {}).items() if value]
+    if not given:
         return
-    from brdfs.artifacts._render_figures import object_labels, panel_count
-
-    for preset, name, spp in per_panel:
-        if len(spp) != (count := panel_count(name, config)):
-            raise ConfigError(f"Error validating config file: renders.{preset}.figure_spp.{name} = {_short(spp)}: "
-                              f"needs one entry per panel ({count} panel{'s' * (count != 1)})")
-
-    for preset, settings, name, labels in listed:
-        path = f"renders.{preset}.object_spp.{name}"
+    facts = {name: figure_facts(name, config) for name in dict.fromkeys(g[3] for g in given)}
+    for preset, settings, setting, name, value in given:
+        path, fact = f"renders.{preset}.{setting}.{name}", facts[name]
+        if (why := fact.ignores(setting)) is not None:
+            raise ConfigError(f"Error validating config file: {path} = {_short(value)}: {name} does not use it: {why}")
+        if setting == "figure_spp" and isinstance(value, list) and len(value) != fact.panels:
+            raise ConfigError(f"Error validating config file: {path} = {_short(value)}: needs one entry per panel "
+                              f"({fact.panels} panel{'s' * (fact.panels != 1)})")
+        if setting != "object_spp":
+            continue
         film = max(_as_list(settings.get("figure_spp", {}).get(name, settings["spp"])))
-        known = object_labels(name, config)
-        for label, spp in labels.items():
-            if label not in known:
+        for label, spp in value.items():
+            if label not in fact.labels:
                 raise ConfigError(f"Error validating config file: {path}.{label} = {spp!r}: not an object of {name} "
-                                  f"(its objects: {', '.join(map(repr, known))})")
+                                  f"(its objects: {', '.join(map(repr, fact.labels))})")
             if spp < film:
                 raise ConfigError(f"Error validating config file: {path}.{label} = {spp!r}: below the figure's spp "
                                   f"({film}); an object's window never lowers the film's count")
