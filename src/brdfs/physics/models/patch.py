@@ -351,6 +351,33 @@ def _checked_weight_points(points):
     return tuple(sorted(out))
 
 
+@dataclass(frozen=True)
+class BoxWeight:
+    """p(R) = 1/(hi − lo) on [lo, hi], 0 elsewhere: a normalised weight (eq. 4.21) with a narrow peak, whose
+    jumps at ``lo`` and ``hi`` a mixture declares (``weight_points=box.points``).  A frozen value: a
+    mixture built with it compares and hashes by its ends."""
+
+    lo: float
+    hi: float
+
+    def __post_init__(self):
+        if not 0.0 <= self.lo < self.hi <= 2.0:
+            raise ValueError(f"BoxWeight: needs 0 <= lo < hi <= 2, got lo={self.lo!r}, hi={self.hi!r}")
+
+    def __call__(self, R):
+        R = np.asarray(R, float)
+        return np.where((R >= self.lo) & (R <= self.hi), 1.0 / (self.hi - self.lo), 0.0)
+
+    @property
+    def points(self) -> tuple[float, float]:
+        """Where p is not smooth: its two jumps."""
+        return (self.lo, self.hi)
+
+
+#: A box of width 1e-5 at R = 0.37 (:attr:`PatchMixture.feature_examples`).
+_NARROW_BOX = BoxWeight(0.37 - 5e-6, 0.37 + 5e-6)
+
+
 def _uniform_weight(R):
     """p(R) = 1/2 on [0, 2]: a normalised weight (eq. 4.21), the example mixture."""
     return np.full(np.shape(R), 0.5)
@@ -396,6 +423,11 @@ class PatchMixture(_MixtureSampling, BRDF):
     #: rtol, the tolerance of the mixture's own integral (no physical parameter), held at its default
     test_ranges = {"p_diffuse": log_range(1e-3, 10.0, zero=True), "rtol": log_range(1e-12, 1e-12)}
     examples = {"typical": {"weight": _uniform_weight}, "narrowest": {"weight": _falling_weight}}
+    #: Weights with features of their own, each with its declared ``weight_points``, beyond the examples
+    #: (whose answers the front door's stored cells hold to the bit): the sweep's family
+    #: ``patch_mixture_narrow_box`` covers them by the engine, the disk and ``auto``.  Undeclared, this box
+    #: gave 0 ± 0 "converged" by every route for an albedo of 1 at 0° and 0.4606 at 90° − 1e-9.
+    feature_examples = {"narrow_box": {"weight": _NARROW_BOX, "weight_points": _NARROW_BOX.points}}
     # conserves_energy = False: a ≤ W = ∫p + p_Diffuse, which is 1 only for a normalised weight
     # (eq. 4.21); the model takes any weight and does not normalise it
     conserves_energy = False
