@@ -407,7 +407,11 @@ class PatchMixture(_MixtureSampling, BRDF):
     or a kink at its R, and a peak by its ends, where p has fallen below the tolerance, with its centre
     (a box: its two ends; a Gaussian of width σ: c − 8σ, c, c + 8σ): each piece between declared points
     is then as wide as the feature, where the Gauss–Kronrod pair resolves it.  The centre alone leaves a
-    peak at the end of a piece much wider than the peak, which the nodes may miss.
+    peak at the end of a piece much wider than the peak, which the nodes may miss (a Gaussian of
+    σ = 1e-4 … 1e-6 at R = 0.37 declared by its centre alone: 0.5–1.0 off, "converged" at rtol 1e-10).
+    The error does not include p's own rounding: the nodes R carry ε R, which moves a feature of width w
+    at R by ~ε R/w relative (σ = 1e-6 at 0.37: 1.6e-11, 6× the error reported at rtol 1e-10); ask for
+    no rtol below that.
     """
 
     weight: Callable[[np.ndarray], np.ndarray]
@@ -420,6 +424,10 @@ class PatchMixture(_MixtureSampling, BRDF):
     # --- what the model says about itself
     chapter = 4                  # eqs. 4.20, 4.21
     param_ranges = {"p_diffuse": non_negative(), "rtol": positive()}
+    param_texts = {"weight": "a vectorised callable p(R) on [0, 2]",
+                   "weight_points": "R in [0, 2] where p is not smooth (jumps, kinks, poles, a peak's ends); "
+                                    "a weight not smooth between them and R = 1, 1 ∓ |L'_P| gives an unreliable "
+                                    "error estimate"}
     #: rtol, the tolerance of the mixture's own integral (no physical parameter), held at its default
     test_ranges = {"p_diffuse": log_range(1e-3, 10.0, zero=True), "rtol": log_range(1e-12, 1e-12)}
     examples = {"typical": {"weight": _uniform_weight}, "narrowest": {"weight": _falling_weight}}
