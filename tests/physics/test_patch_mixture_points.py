@@ -67,6 +67,41 @@ def test_a_narrow_box_weight_with_its_points_declared_gives_an_honest_and_tight_
     assert np.all(reference[:, 0] > 0.46)       # the box's mass is all there: a ≈ a_0.37(θ), not 0
 
 
+def narrow_triangle(R):
+    """p(R) = h (1 − |R − c|/(w/2)) on [a, b] (h = 2/w, normalised): kinks at a, c and b, and a slope
+    4/w² = 4e10 that turns the nodes' rounding (a few ε R) into ~1e-11 of the albedo."""
+    R = np.asarray(R, float)
+    return np.where((R >= LO) & (R <= HI), 2.0 / (HI - LO) * (1.0 - np.abs(R - CENTRE) / ((HI - LO) / 2)), 0.0)
+
+
+def _triangle_reference(theta_deg):
+    """∫ p a_R dR of :func:`narrow_triangle` in mpmath (30 digits; the lens of eq. 4.9 again, the same
+    doubles a, c, b): free of the rounding of R that the package's nodes carry."""
+    import mpmath as mp
+    with mp.workdps(30):
+        d, lo, c, hi = mp.sin(mp.radians(mp.mpf(theta_deg))), mp.mpf(LO), mp.mpf(CENTRE), mp.mpf(HI)
+
+        def integrand(R):
+            lens = 1 if d + R <= 1 else (mp.acos((d * d + 1 - R * R) / (2 * d)) + R * R * mp.acos((d * d + R * R - 1) / (2 * d * R))
+                                         - mp.sqrt((-d + R + 1) * (d + R - 1) * (d - R + 1) * (d + R + 1)) / 2) / (mp.pi * R * R)
+            return 2 / (hi - lo) * (1 - abs(R - c) / ((hi - lo) / 2)) * lens
+        return float(mp.quad(integrand, [lo, c, hi]))
+
+
+@pytest.mark.parametrize("rtol, status", [(1e-8, "converged"), (1e-10, "stalled")])
+def test_a_narrow_triangle_reports_the_rounding_of_its_own_nodes(rtol, status):
+    """Declared at its kinks, the triangle is resolved, but p at a node R stands for p a few ε R away: its
+    albedo moves by ~1.1e-11 where the quadrature's error was 1.2e-14.  Every route adds a bound of that
+    (``evaluation_error``, 2.7e-10 here): honest and not absurdly loose, ``stalled`` below it."""
+    brdf = brdfs.model("patch_mixture", weight=narrow_triangle, weight_points=(LO, CENTRE, HI))
+    angles = np.array([0.0, 60.0, 89.0])
+    truth = np.array([_triangle_reference(t) for t in angles])
+    est = brdfs.albedo(brdf, angles, rtol=rtol, warn=False)
+    true_error = np.abs(est.value - truth)
+    assert list(est.status) == [status] * 3
+    assert np.all(true_error <= est.error) and np.all(est.error <= np.maximum(1e3 * true_error, 1e-9)), (true_error, est.error)
+
+
 @pytest.mark.parametrize("m", [0.2, LO + 0.3 * WIDTH, HI + 1e-4])
 def test_f_itself_integrates_the_declared_box_below_inside_and_beyond_it(m):
     """f = ∫_m² p(R) c(R) dR (eq. 4.21) at projected distances m below the peak (the whole box), inside it,
@@ -107,4 +142,5 @@ def test_declared_points_are_a_value_of_the_model_sorted_and_hashable():
     a = brdfs.model("patch_mixture", weight=narrow_box, weight_points=[HI, np.float64(LO), HI])
     b = declared()
     assert a == b and hash(a) == hash(b) and a.weight_points == (LO, HI)
+    assert not b.has_evaluation_error          # p constant between its points: no rounding of its own to bound
     assert MODELS["patch_mixture"](weight=narrow_box).weight_points == ()

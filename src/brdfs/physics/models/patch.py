@@ -374,6 +374,9 @@ class BoxWeight:
         return (self.lo, self.hi)
 
 
+#: The relative distance of a quadrature node R from the point it stands for, bounded: R = c + h t is rounded
+#: in the product, the sum and the centre c itself, each by ε/2 of its size (|c|, |h t| ≤ |R| near R).
+NODE_ROUNDING = 4 * float(np.finfo(float).eps)
 #: A box of width 1e-5 at R = 0.37 (:attr:`PatchMixture.feature_examples`).
 _NARROW_BOX = BoxWeight(0.37 - 5e-6, 0.37 + 5e-6)
 
@@ -409,9 +412,10 @@ class PatchMixture(_MixtureSampling, BRDF):
     is then as wide as the feature, where the Gauss–Kronrod pair resolves it.  The centre alone leaves a
     peak at the end of a piece much wider than the peak, which the nodes may miss (a Gaussian of
     σ = 1e-4 … 1e-6 at R = 0.37 declared by its centre alone: 0.5–1.0 off, "converged" at rtol 1e-10).
-    The error does not include p's own rounding: the nodes R carry ε R, which moves a feature of width w
-    at R by ~ε R/w relative (σ = 1e-6 at 0.37: 1.6e-11, 6× the error reported at rtol 1e-10); ask for
-    no rtol below that.
+    With declared points, every route's error also bounds p's own rounding (:meth:`evaluation_error`): the
+    nodes R carry a few ε R, which moves a feature of width w at R by ~ε R/w relative (a Gaussian of
+    σ = 1e-6 at 0.37: 1.6e-11, 6× the quadrature's error at rtol 1e-10); a tolerance below it is
+    reported ``stalled``.
     """
 
     weight: Callable[[np.ndarray], np.ndarray]
@@ -454,6 +458,34 @@ class PatchMixture(_MixtureSampling, BRDF):
         """The kink of c(R) = 1/(π min(1, R²)) at m = 1, inherited by ∫_m² p(R) c(R) dR (eq. 4.21), and
         f's kinks at the weight's own points (f'(m) = −p(m) c(m) jumps where p does)."""
         return (1.0, *(r for r in self.weight_points if 0.0 < r < 2.0 and r != 1.0))
+
+    @property
+    def has_evaluation_error(self) -> bool:
+        """Whether p's own rounding moves the albedo (:meth:`evaluation_error`): looked for only where points
+        are declared (a weight without them keeps the answers it had, to the bit)."""
+        return bool(self.weight_points) and self._weight_rounding() > 0.0
+
+    def evaluation_error(self, theta_deg, albedo):
+        """Bound of |a as evaluated − a| from p's own rounding, for every route.  f and the albedo evaluate p
+        at quadrature nodes R that stand for points a few ε R away (:data:`NODE_ROUNDING`), which moves a
+        feature of width w at R by ~ε R/w relative (a triangle of width 1e-5 at R = 0.37: 1.1e-11, where
+        the quadrature's error was 1.2e-14).  Each route's error is ∫ δp(R) a_R dR with |δp| ≤ |p(R + δ) −
+        p(R)|, δ = NODE_ROUNDING R (the disk's through f = ∫_m² p c dR, eq. 4.21: the same integral in the
+        other order), so with a_R ≤ 1: ∫₀² |p(R + δ) − p(R)| dR, by a 21-point Kronrod rule on each piece
+        of the table of F (split at the declared points), times 2 (:meth:`_weight_rounding`)."""
+        return np.full(np.shape(theta_deg), self._weight_rounding())
+
+    def _weight_rounding(self) -> float:
+        """2 ∫₀² |p(R + δ) − p(R)| dR, δ = :data:`NODE_ROUNDING` R (:meth:`evaluation_error`); 0 for a weight
+        constant between its declared points (a box), cached on the model."""
+        cached = self.__dict__.get("_rounding_cache")
+        if cached is None:
+            edges = self._table_edges()
+            x = nodes_on(edges[:-1], edges[1:])
+            moved = np.abs(self.weight(x + NODE_ROUNDING * x) - self.weight(x))
+            cached = float(2.0 * np.sum(0.5 * np.diff(edges) * (moved @ KRONROD_WEIGHTS)))
+            object.__setattr__(self, "_rounding_cache", cached)
+        return cached
 
     def albedo_estimate(self, theta_deg, rtol, atol):
         """∫₀² p(R) a_R(L) dR + p_Diffuse over the basic patches' lens areas (eqs. 4.8, 4.22, 4.24):
@@ -509,12 +541,16 @@ class PatchMixture(_MixtureSampling, BRDF):
     #: split further at ``weight_points``.
     cdf_table_size = 1024
 
+    def _table_edges(self):
+        """The edges of the table of F: :attr:`cdf_table_size` equal pieces of [0, 2], split at the weight's
+        features (``weight_points``): every piece smooth, also the short ones of ``_pdf`` and F⁻¹."""
+        edges = np.linspace(0.0, 2.0, self.cdf_table_size + 1)
+        return np.unique(np.concatenate([edges, self.weight_points])) if self.weight_points else edges
+
     def _cdf_table(self):
         cached = self.__dict__.get("_cdf_cache")
         if cached is None:
-            edges = np.linspace(0.0, 2.0, self.cdf_table_size + 1)
-            if self.weight_points:       # edges at the weight's features: every piece smooth, also the
-                edges = np.unique(np.concatenate([edges, self.weight_points]))   # short ones of _pdf and F⁻¹
+            edges = self._table_edges()
             pieces = integrate(lambda R, e: self.weight(R), np.stack([edges[:-1], edges[1:]], 1),
                                rtol=self.rtol, atol=1e-15).value
             cached = (edges, np.concatenate([[0.0], np.cumsum(pieces)]))
