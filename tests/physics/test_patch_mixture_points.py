@@ -55,7 +55,7 @@ def test_a_narrow_box_weight_with_its_points_declared_gives_an_honest_and_tight_
     brdf = declared()
     reference = np.array([reference_albedo(t) for t in angles])
     batch = brdfs.albedo(brdf, angles, method=method, rtol=1e-10)
-    singles = [brdfs.albedo(brdf, float(t), method=method, rtol=1e-10) for t in angles[:2]]
+    singles = [brdfs.albedo(brdf, float(t), method=method, rtol=1e-10) for t in angles[:2]] if angles.size > 1 else []
     for est, (truth, truth_err) in [*zip(zip(batch.value, batch.error, batch.status), reference),
                                     *((( float(s.value), float(s.error), str(s.status)), r)
                                       for s, r in zip(singles, reference))]:
