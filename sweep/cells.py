@@ -61,6 +61,14 @@ class OrenNayarIntegrated(MODELS["oren_nayar"]):
         return None
 
 
+def mixture_feature_params(cls) -> list[dict]:
+    """The parameter sets (JSON) of a mixture class's declared ``feature_examples`` whose weight is a box:
+    ``["box", a, b]`` (rewritten by :func:`sweep.independent.box_weight`), its declared points, no Dirac part."""
+    return [{"weight": ["box", float(ex["weight"].lo), float(ex["weight"].hi)], "p_diffuse": 0.0,
+             "weight_points": [float(r) for r in ex["weight_points"]]}
+            for ex in cls.feature_examples.values() if hasattr(ex["weight"], "lo")]
+
+
 @dataclass(frozen=True)
 class Family:
     """A model with its choices fixed: ``swept`` parameters drawn, ``fixed`` ones set."""
@@ -145,6 +153,10 @@ FAMILIES = (
            param_sets=({"d": 1.0, "m_clip": 2.0 - 1e-7}, {"d": 1.0, "m_clip": 2.0 - 1e-9},
                        {"d": 0.5, "m_clip": 2.0 - 1e-9}),
            n_random_angles=0, grazing=(89.9, 89.97, 89.99, 89.995, 89.999)),
+    # a mixture's weight with features of its own, declared with its points (the class's feature_examples:
+    # a box of width 1e-5 at R = 0.37, undeclared 0 ± 0 "converged" by every route)
+    Family("patch_mixture_narrow_box", "patch_mixture", ("weight", "p_diffuse", "weight_points"),
+           param_sets=tuple(mixture_feature_params(MODELS["patch_mixture"])), n_random_angles=4),
 )
 #: Families declared but left out of the committed sweep: He–Torrance's density alone (term 'dd'),
 #: the same integral as ``he_torrance_total`` without the delta's closed form.
@@ -230,7 +242,8 @@ def build(family_name: str, params: dict, tables: dict | None = None):
     kwargs = {**family.fixed_dict, **params}
     if family.model == "patch_mixture":
         weight = {"uniform": lambda R: np.full(np.shape(R), 0.5), "falling": lambda R: 1.0 - 0.5 * np.asarray(R, float)}
-        kwargs = {"weight": weight[params["weight"]], "p_diffuse": params["p_diffuse"]}
+        kwargs = {"weight": ind.box_weight(params["weight"]) if ind.box_ends(params["weight"]) else weight[params["weight"]],
+                  "p_diffuse": params["p_diffuse"], "weight_points": tuple(params.get("weight_points", ()))}
     if needs_table(family):
         tables = load_tables() if tables is None else tables
         table = table_from_json(tables[table_key(family, params)])
@@ -324,7 +337,7 @@ def _patch_truth(family: Family, params: dict, model, theta: float) -> Truth:
     if name == "patch_mixture":
         xi = ind.patch_mixture_xi(params["weight"], params["p_diffuse"])
         # ξ ~ 1/m + ln(m)/2 at m → 0: ρ ξ(ρ) has a ρ ln ρ end, taken by cuts geometric toward 0
-        return disk_albedo(lambda rho, psi: xi(rho), theta, radial_kinks=(1.0,),
+        return disk_albedo(lambda rho, psi: xi(rho), theta, radial_kinks=(1.0, *(ind.box_ends(params["weight"]) or ())),
                            radial_scales=tuple(10.0 ** -np.arange(1, 13)))
     if name == "patch_elliptical":
         rho_e = ind.ellipse_radius(params["b"], params["ratio"], params["u_angle_deg"])

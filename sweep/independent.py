@@ -229,11 +229,36 @@ def generalized_lambert_xi(d, m_clip, C):
     return xi
 
 
+def box_ends(kind):
+    """(a, b) of a box weight p = 1/(b − a) on [a, b] ⊂ (0, 1] given as ``["box", a, b]``, else None."""
+    if isinstance(kind, (list, tuple)) and len(kind) == 3 and kind[0] == "box":
+        a, b = float(kind[1]), float(kind[2])
+        if not 0.0 < a < b <= 1.0:
+            raise ValueError(f"a box weight in (0, 1], got {kind!r}")
+        return a, b
+    return None
+
+
+def box_weight(kind):
+    """p(R) of ``["box", a, b]``: 1/(b − a) on [a, b], 0 elsewhere."""
+    a, b = box_ends(kind)
+    return lambda R: np.where((np.asarray(R, float) >= a) & (np.asarray(R, float) <= b), 1.0 / (b - a), 0.0)
+
+
 def patch_mixture_xi(kind, p_diffuse=0.0):
     """ξ(m) = ∫_m² p(R) c(R) dR + p_Diffuse c(2) (eq. 4.21) in closed form, c(R) = 1/(π min(1, R²)),
-    for p(R) = 1/2 ('uniform') and p(R) = 1 − R/2 ('falling'):
+    for p(R) = 1/2 ('uniform'), p(R) = 1 − R/2 ('falling') and a box ``["box", a, b]`` (h = 1/(b − a)):
     uniform: (1/m − 1)/2 + 1/2 (m < 1), (2 − m)/2 (m ≥ 1); falling: (1/m − 1) + ln(m)/2 + 1/4 (m < 1),
-    (1 − m/2)² (m ≥ 1); all over π."""
+    (1 − m/2)² (m ≥ 1); box: h (1/max(m, a) − 1/b) (m < b), 0 (m ≥ b); all over π."""
+    box = box_ends(kind)
+    if box is not None:
+        a, b = box
+
+        def xi_box(m):
+            m = np.asarray(m, float)
+            return np.where(m < b, (1.0 / np.maximum(m, a) - 1.0 / b) / (b - a), 0.0) / np.pi + p_diffuse / np.pi
+        return xi_box
+
     def xi(m):
         m = np.minimum(np.asarray(m, float), 2.0)
         small = np.minimum(m, 1.0)

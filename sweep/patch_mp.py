@@ -112,6 +112,8 @@ def mixture_phi(kind, p_diffuse):
     """Φ of :func:`sweep.independent.patch_mixture_xi` (times π): uniform: ξπ = 1/(2m) + p (m < 1),
     (2 − m)/2 + p (1 ≤ m ≤ 2); falling: ξπ = 1/m − 1 + ln(m)/2 + 1/4 + p (m < 1), (1 − m/2)² + p (m ≥ 1)."""
     p = mp.mpf(p_diffuse)
+    if isinstance(kind, (list, tuple)):                # ["box", a, b]: ξπ = h (1/max(m, a) − 1/b) + p below b
+        return _box_phi(mp.mpf(kind[1]), mp.mpf(kind[2]), p)
     if kind == "uniform":
         low = lambda r: r / 2
         high = lambda r: r * r / 2 - r ** 3 / 6
@@ -123,6 +125,21 @@ def mixture_phi(kind, p_diffuse):
         r = min(r, mp.mpf(2))
         out = low(r) if r <= 1 else low(mp.mpf(1)) + high(r) - high(mp.mpf(1))
         return (out + p * r * r / 2) / mp.pi
+    return phi
+
+
+def _box_phi(a, b, p):
+    """Φ (times π) of the box weight h = 1/(b − a) on [a, b] ⊂ (0, 1]: h (1/a − 1/b) r²/2 up to a, then
+    + h ((r − a) − (r² − a²)/(2b)) up to b, constant beyond; plus p r²/2."""
+    h = 1 / (b - a)
+
+    def phi(r):
+        r = min(r, mp.mpf(2))
+        inner = h * (1 / a - 1 / b) * min(r, a) ** 2 / 2
+        if r > a:
+            top = min(r, b)
+            inner += h * ((top - a) - (top * top - a * a) / (2 * b))
+        return (inner + p * r * r / 2) / mp.pi
     return phi
 
 

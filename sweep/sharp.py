@@ -82,7 +82,8 @@ PATCH_ROUTES = {
     "patch_exponential": lambda p, m, t: pm.radial_albedo(pm.exponential_phi(p["s"], m.C), (), t),
     "generalized_lambertian": lambda p, m, t: pm.radial_albedo(pm.generalized_lambert_phi(p["d"], m.m_clip, m.C),
                                                                (m.m_clip,), t),
-    "patch_mixture": lambda p, m, t: pm.radial_albedo(pm.mixture_phi(p["weight"], p["p_diffuse"]), (1.0,), t),
+    "patch_mixture": lambda p, m, t: pm.radial_albedo(pm.mixture_phi(p["weight"], p["p_diffuse"]),
+                                                      (1.0, *(ind.box_ends(p["weight"]) or ())), t),
 }
 
 

@@ -5,7 +5,7 @@ On ``builder-inited`` it writes ``models/index.rst`` and ``models/<name>.rst`` w
 
 * the class's docstring (its formula, with the thesis's or the paper's equation number), its chapter
   and its claims (reciprocity, energy conservation);
-* a table of its parameters: declared range or choices, default, the ``typical`` and ``narrowest``
+* a table of its parameters: declared range, choices or text (``param_texts``), default, the ``typical`` and ``narrowest``
   examples and the range the generic tests draw from;
 * lobe plots at the typical example: f in the plane of incidence at θ_L = 0°, 30°, 60° (log scale),
   and the same as a polar plot;
@@ -69,7 +69,7 @@ def _parameter_rows(cls):
         elif key in cls.param_ranges:
             allowed = cls.param_ranges[key].text()
         else:
-            allowed = "(see the class)"
+            allowed = getattr(cls, "param_texts", {}).get(key, "(see the class)")
         draw = cls.test_range(key) if key in cls.param_ranges else None
         drawn = "" if draw is None else (f"{draw.lo:g} … {draw.hi:g}" + (" (log)" if draw.log else "")
                                          + (", 0" if draw.zero else "") + (", None" if draw.none else ""))

@@ -45,6 +45,9 @@ def test_every_declared_range_and_choice_names_a_parameter(name):
         assert interval.lo < interval.hi
     for key, choices in cls.param_choices.items():
         assert key in cls.param_columns() and len(choices) >= 1, (name, key)
+    for key, text in cls.param_texts.items():          # words for what is neither a range nor a choice
+        assert key in cls.param_columns() and key not in cls.param_ranges and key not in cls.param_choices
+        assert isinstance(text, str) and text, (name, key)
 
 
 def _outside(interval: Interval):

@@ -672,8 +672,8 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_gr
 def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, points=(), single_graded=False,
                             covered=None, steep_layer=None):
     """a^p(L) = ∫₀² p(R) a_R(L) dR + p_Diffuse  (eqs. 4.22, 4.24) of any weight: ``p`` a vectorised
-    callable p(R) on [0, 2] (smooth between the kinks 1, 1 ∓ |L'_P| of a_R and its own ``points``),
-    ``p_diffuse`` the Dirac weight at R = 2, whose a_2 = 1.  The error adds each lens area's rounding
+    callable p(R) on [0, 2] (smooth between the kinks 1, 1 ∓ |L'_P| of a_R and its own ``points``: a weight not
+    smooth between them gives an unreliable error estimate), ``p_diffuse`` the Dirac weight at R = 2, whose a_2 = 1.  The error adds each lens area's rounding
     bound, weighted by |p|, to the quadrature's.  ``single_graded``: as :func:`mixture_albedo`; ``covered``: p_Diffuse
     + ∫₁² p in closed form, as :func:`_weighted_mixture_integral` takes it; ``steep_layer``: (end, pole) of a
     weight that grows toward a pole (:func:`weight_layer_cuts`).

@@ -72,8 +72,8 @@ What the model says about itself (class attributes, defaults here), read by swee
 config schema and the artifacts instead of lists keyed by model name:
 
 * ``param_ranges`` (name -> :class:`Interval`, the ranges the constructor accepts: the base class
-  refuses a value outside them, :meth:`BRDF.check_declared_parameters`) and ``param_choices`` (the
-  values of categorical parameters);
+  refuses a value outside them, :meth:`BRDF.check_declared_parameters`), ``param_choices`` (the
+  values of categorical parameters) and ``param_texts`` (what any other parameter takes, in words);
 * ``test_ranges`` (name -> :class:`DrawRange`, bounded and inside ``param_ranges``): where the
   generic tests draw each numeric parameter (an infinite range needs one), and ``energy_test_ranges``
   (narrower ones for the energy-conservation property, where a wide draw costs too much);
@@ -567,6 +567,9 @@ class BRDF:
     pumping_ranges: ClassVar[dict[str, "Interval"]] = {}
     #: The choices of the model's categorical parameters (e.g. Cook–Torrance's G), name -> values.
     param_choices: ClassVar[dict[str, tuple]] = {}
+    #: What a parameter that is neither a number in a range nor a choice takes (a function, a tuple), in
+    #: words, name -> text: the model reference shows it where it shows the ranges; the model checks it.
+    param_texts: ClassVar[dict[str, str]] = {}
     #: Where the generic tests (properties, protocol, chi-square) draw each numeric parameter: name ->
     #: :class:`DrawRange`, bounded and inside :attr:`param_ranges` (the thesis's narrowest lobes
     #: included).  A bounded declared range needs none (it is drawn linearly); an unbounded one does.
