@@ -28,6 +28,7 @@ integrates) has φ run over [0, π] and the result doubled.
 """
 from __future__ import annotations
 
+import bisect
 import math
 from typing import NamedTuple
 
@@ -189,7 +190,11 @@ def _horizon_onset_of_one(bp, t0, min_span):
             lo, hi = t0, end
     if math.isfinite(lo) and hi > ONSET_SPLIT * lo:
         hi = 0.5 * (lo + hi)
-        bp = np.sort(np.concatenate([bp, [[hi]]], axis=1), axis=1)
+        if row[-1] == row[-1]:                          # no NaN padding (ascending rows keep it last)
+            bisect.insort(row, hi)
+            bp = np.array([row])
+        else:
+            bp = np.sort(np.concatenate([bp, [[hi]]], axis=1), axis=1)
     return bp, np.array([lo]), np.array([hi])
 
 
@@ -381,10 +386,21 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
         points += [t_max * h for h in _HEAD]
     if (graded or 1.0 - TAIL[0] < t_max) and t_max < 1.0:
         points += t_end
-    row = np.array(sorted({p for p in points if 0.0 <= p <= t_max}))
+    row = np.array(_sorted_distinct_within(points, t_max))
     onset_frame = lobe.frame is HALF or lobe.frame is MIRROR
     t0 = t_cand[0] if onset_frame and cand[0] < beta_max else math.nan
     return [row], [(np.empty(0), np.empty(0))], np.array([t0])
+
+
+def _sorted_distinct_within(points, t_max) -> list:
+    """The distinct ``points`` (Python floats) in [0, ``t_max``], ascending: ``sorted({p for p in points
+    if 0.0 <= p <= t_max})``, by ``set``, ``sorted`` and two bisections (C loops, where the comprehension
+    tests each point in Python) wherever no point is NaN (their sum is not: a NaN would not sort)."""
+    total = sum(points)
+    if total != total:
+        return sorted({p for p in points if 0.0 <= p <= t_max})
+    found = sorted(set(points))
+    return found[bisect.bisect_left(found, 0.0):bisect.bisect_right(found, t_max)]
 
 
 def _ends_of_tail(tail) -> list:
