@@ -114,7 +114,7 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
     tail = TAIL if tail is None else tail
     layer_max = TANGENCY_LAYER_MAX if layer_max is None else layer_max
     root_rtol = ROOT_RTOL if root_rtol is None else root_rtol
-    groups = indices_by_model(models)
+    groups = [range(1)] if len(models) == 1 else indices_by_model(models)
     if len(groups) == 1:                   # one model (a curve, or a single angle): no regrouping
         rows, brackets, t0 = _radial_breakpoints(models[0], mu, st, theta_deg, tail, root_rtol, layer_max, graded)
     else:
@@ -135,13 +135,18 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
     result = (out,)
     if kinks and len(brackets) == 1:
         lo, hi = brackets[0]
-        result += (Kinks(np.zeros(lo.size, np.intp), lo, hi),)
+        result += (Kinks(np.zeros(lo.size, np.intp) if lo.size else _NO_ELEMENTS, lo, hi),)
     elif kinks:
         element = np.concatenate([np.full(lo.size, i) for i, (lo, _) in enumerate(brackets)]).astype(np.intp)
         result += (Kinks(element, np.concatenate([lo for lo, _ in brackets]), np.concatenate([hi for _, hi in brackets])),)
     if touch:
         result += (t0,)
     return result[0] if len(result) == 1 else result
+
+
+#: The elements of no kinks (read only: a single angle without kinks found numerically shares it).
+_NO_ELEMENTS = np.zeros(0, np.intp)
+_NO_ELEMENTS.flags.writeable = False
 
 
 def horizon_onset(bp, t0, min_span=None):
