@@ -42,6 +42,7 @@ breakpoints; the tests compare the two, and the accuracy map compares both with 
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -120,10 +121,9 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     else:
         mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
-        tight = _tight(rtol)
-        bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
-                                                root_rtol=single_angle_root_rtol(rtol), kinks=True, touch=True,
-                                                graded=tight)
+        tight, tail, root_rtol = _single_angle_settings(rtol)
+        bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=tail, root_rtol=root_rtol, kinks=True,
+                                                touch=True, graded=tight)
     else:
         tight = False
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
@@ -258,6 +258,19 @@ TIGHT_RTOL = 1e-7
 #: is mapped, the short ones too (corrected Blinn, n = 2, 8°: [0.5692, 0.625], the onset at t0 and a
 #: breakpoint of the tail 1.1 t0 beyond it, kept K − G 5.1e-9 and cost a second round).
 TIGHT_ONSET_MIN_SPAN = 1.0
+
+
+def _single_angle_settings(rtol):
+    """A single angle's (:func:`_tight`, :func:`_single_angle_tail`, :func:`single_angle_root_rtol`) at
+    ``rtol``, kept per float (a call's tolerance is one of a few)."""
+    if type(rtol) is float:
+        return _single_angle_settings_of(rtol)
+    return _tight(rtol), _single_angle_tail(rtol), single_angle_root_rtol(rtol)
+
+
+@functools.lru_cache(maxsize=64)
+def _single_angle_settings_of(rtol: float):
+    return _tight(rtol), _single_angle_tail(rtol), single_angle_root_rtol(rtol)
 
 
 def _single_angle_tail(rtol):
