@@ -61,6 +61,8 @@ GAUSS_WEIGHTS[20 - _gauss_idx] = _WG_HALF
 _EPS = np.finfo(float).eps
 #: Room for every status a caller may write into the array later (one element's status is built alone).
 _STATUS_DTYPE = f"<U{len(BUDGET_EXHAUSTED)}"
+#: A single element's status array of each status, copied for each answer (``np.array`` with a dtype costs more).
+_STATUS_OF_ONE = {s: np.array([s], _STATUS_DTYPE) for s in (CONVERGED, BUDGET_EXHAUSTED, STALLED)}
 SAFETY = 2.0
 # Splits without gain before an interval is frozen; 3 froze resolvable intervals of pumped Blinn
 # models (a smooth but poorly resolved start looks like a jump three splits running).
@@ -215,7 +217,8 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         error_1 = SAFETY * total_1 + extra_1 + 50 * _EPS * absval_1
         met = error_1 <= max(rtol_1 * abs(low_1), atol_1)
         status = CONVERGED if met else BUDGET_EXHAUSTED if exhausted else STALLED
-        est = Estimate(np.array([low_1]), np.array([error_1]), evaluations, np.array([status], _STATUS_DTYPE))
+        value_error = np.array((low_1, error_1))          # one array, two views: a numpy call less per array
+        est = Estimate(value_error[:1], value_error[1:], evaluations, _STATUS_OF_ONE[status].copy())
     else:
         high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
         total = np.bincount(elem, err, n_el)

@@ -242,7 +242,8 @@ def check_albedo_call(model, theta_deg, method, methods, options, strict=False, 
     for argument, value in (("strict", strict), ("warn", warn)):
         if not isinstance(value, (bool, np.bool_)):
             _fail(where, argument, value, f"must be True or False, not {type(value).__name__}")
-    _check_options(f"albedo(method={method!r})", methods[method], options)
+    if options:                                       # (its name is formatted only where there is one to check)
+        _check_options(f"albedo(method={method!r})", methods[method], options)
 
 
 def _check_declared_ranges(where, model):

@@ -42,6 +42,7 @@ breakpoints; the tests compare the two, and the accuracy map compares both with 
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -120,10 +121,9 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     else:
         mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
-        tight = _tight(rtol)
-        bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=_single_angle_tail(rtol),
-                                                root_rtol=single_angle_root_rtol(rtol), kinks=True, touch=True,
-                                                graded=tight)
+        tight, tail, root_rtol = _single_angle_settings(rtol)
+        bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=tail, root_rtol=root_rtol, kinks=True,
+                                                touch=True, graded=tight)
     else:
         tight = False
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
@@ -260,6 +260,19 @@ TIGHT_RTOL = 1e-7
 TIGHT_ONSET_MIN_SPAN = 1.0
 
 
+def _single_angle_settings(rtol):
+    """A single angle's (:func:`_tight`, :func:`_single_angle_tail`, :func:`single_angle_root_rtol`) at
+    ``rtol``, kept per float (a call's tolerance is one of a few)."""
+    if type(rtol) is float:
+        return _single_angle_settings_of(rtol)
+    return _tight(rtol), _single_angle_tail(rtol), single_angle_root_rtol(rtol)
+
+
+@functools.lru_cache(maxsize=64)
+def _single_angle_settings_of(rtol: float):
+    return _tight(rtol), _single_angle_tail(rtol), single_angle_root_rtol(rtol)
+
+
 def _single_angle_tail(rtol):
     """The initial tail breakpoints 1 − t of a single-angle call at ``rtol``: finer where the
     tolerance is tight, so that the first evaluation meets it (a round costs more than its nodes)."""
@@ -292,33 +305,35 @@ class _RadialKernel:
 
     def __call__(self, t, mu, st):
         """Values and rounding bounds at nodes t (m, 21) of elements at cos θ ``mu``, sin θ ``st``."""
+        # one context for the lobe and the kernel (whose parts ask no other: ``quiet``), once per round
         with np.errstate(divide="ignore", invalid="ignore"):
             cb, sb = self.lobe.angle(np.minimum(t, 1.0 - _EPS))
-        value, rounding = self.kernel(cb, sb, mu, st)
+            value, rounding = self.kernel(cb, sb, mu, st)
         weight = self.weight(cb)
         value = weight * np.where(t < 1.0, value, 0.0)
         rounding = weight * rounding + (self.lobe.rounding + 3) * _EPS * np.abs(value)
         return value, rounding
 
 
+# --- the kernels: called by _RadialKernel under np.errstate(divide="ignore", invalid="ignore") ---
+
 # --- mirror frame: V at angle α from R -------------------------------------------------------
 
 def _mirror_nv(cb, sb, mu, st):
     """J(A, B) = ∫₀^{2π} [N·V]₊ dφ."""
-    full = positive_part_azimuth(cb * mu, sb * st)
+    full = positive_part_azimuth(cb * mu, sb * st, quiet=True)
     return full, 4 * _EPS * np.abs(full)
 
 
 def _mirror_nv_over_max(cb, sb, mu, st):
     """∫₀^{2π} [N·V]₊ / max(N·L, N·V) dφ = (J(A, B) − J(A − cos θ, B)) / cos θ."""
     a, b = cb * mu, sb * st
-    full, low = positive_part_azimuth(np.stack((a, a - mu)), b)    # both in one pass (a − mu has a's shape)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        quotient = (full - low) / mu
-        rounding = 8 * _EPS * (np.abs(full) + np.abs(low)) / mu
+    full, low = positive_part_azimuth(np.stack((a, a - mu)), b, quiet=True)    # both in one pass (a − mu has a's shape)
+    quotient = (full - low) / mu
+    rounding = 8 * _EPS * (np.abs(full) + np.abs(low)) / mu
     if np.all(mu > 0):
         return quotient, rounding
-    grazing = 2 * level_azimuth(a, b, 0.0)        # N·L = 0: N·V / max(0, N·V) = 1 where N·V > 0
+    grazing = 2 * level_azimuth(a, b, 0.0, quiet=True)        # N·L = 0: N·V / max(0, N·V) = 1 where N·V > 0
     value = np.where(mu > 0, quotient, grazing)
     return value, np.where(mu > 0, rounding, 4 * _EPS * grazing)
 
@@ -343,7 +358,7 @@ def _i2_rounding(p, q, a, b):
 def _half_nv(cb, sb, mu, st):
     """8 I₂(φ_h)."""
     p, q, a, b = _half_lines(cb, sb, mu, st)
-    phi = level_azimuth(a, b, 0.0)
+    phi = level_azimuth(a, b, 0.0, quiet=True)
     return 8 * _i2(p, q, a, b, phi, np.sin(phi)), 64 * _EPS * _i2_rounding(p, q, a, b)
 
 
@@ -355,13 +370,12 @@ def _half_nv_over_max(cb, sb, mu, st):
     # evaluated by the same operations on nearly equal angles (their roundings cancel): sin φ as
     # √(1 − cos² φ), exact for the exact angle, lost that (1e-6 relative at 90° − 1e-9, within the
     # ε / cos θ bound but 1e4 times the error of these same operations).
-    phis = level_azimuth(a, b, np.stack((0.0 * mu, mu)))
+    phis = level_azimuth(a, b, np.stack((0.0 * mu, mu)), quiet=True)
     sines = np.sin(phis)
     i2_h, i2_mu = _i2(p, q, a, b, phis, sines)
     i1_h, i1_mu = p * phis + q * sines
-    with np.errstate(divide="ignore", invalid="ignore"):
-        band = (i2_h - i2_mu) / mu
-        rounding = 16 * _EPS * _i2_rounding(p, q, a, b) / mu
+    band = (i2_h - i2_mu) / mu
+    rounding = 16 * _EPS * _i2_rounding(p, q, a, b) / mu
     value = np.where(mu > 0, i1_mu + band, i1_h)   # N·L = 0: the weight is 1 where N·V > 0
     return 8 * value, 8 * np.where(mu > 0, rounding + 4 * _EPS * np.abs(i1_mu), 4 * _EPS * np.abs(value))
 
@@ -370,8 +384,7 @@ def _half_sqrt(cb, sb, mu, st):
     """8 ∫₀^π L·H √([N·V]₊ / N·L) dφ (Ward, eq. 2.8): a complete elliptic integral."""
     p, q, a, b = _half_lines(cb, sb, mu, st)
     w, rounding = sqrt_positive_part_moment(p, q, a, b)
-    with np.errstate(divide="ignore"):
-        root = np.sqrt(mu)
+    root = np.sqrt(mu)
     return 8 * w / root, 8 * (rounding + _EPS * np.abs(w)) / root
 
 
@@ -379,21 +392,19 @@ def _half_torrance_sparrow(cb, sb, mu, st):
     """8 ∫₀^{φ_h} min(L·H / cos δ, 2 N·V, 2 N·L) dφ / N·L (eq. 2.10: L·H G = min(L·H, 2 N·H N·V,
     2 N·H N·L)); at N·L = 0 the minimum over N·L tends to 2 wherever N·V > 0."""
     _, _, a, b = _half_lines(cb, sb, mu, st)
-    c_h = level_cos(a, b, 0.0)
+    c_h = level_cos(a, b, 0.0, quiet=True)
     lines = [(mu, sb / cb * st), (2 * a, 2 * b), (2 * mu, 0.0)]
     integral, rounding = _lower_envelope_integral(lines, c_h)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        value = np.where(mu > 0, integral / mu, 2 * np.arccos(c_h))
-        rounding = np.where(mu > 0, rounding / mu, 4 * _EPS * value)
+    value = np.where(mu > 0, integral / mu, 2 * np.arccos(c_h))
+    rounding = np.where(mu > 0, rounding / mu, 4 * _EPS * value)
     return 8 * value, 8 * rounding
 
 
 def _half_over_nl(cb, sb, mu, st):
     """8 ∫₀^{φ_h} L·H / (cos δ N·L) dφ (Cook–Torrance with G = 1; infinite at N·L = 0)."""
     _, _, a, b = _half_lines(cb, sb, mu, st)
-    phi_h = level_azimuth(a, b, 0.0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        value = 8 * (phi_h + sb / cb * st * np.sin(phi_h) / mu)
+    phi_h = level_azimuth(a, b, 0.0, quiet=True)
+    value = 8 * (phi_h + sb / cb * st * np.sin(phi_h) / mu)
     return value, 8 * _EPS * np.abs(value)
 
 
@@ -413,15 +424,13 @@ def _lower_envelope_integral(lines, c_end):
     k = len(lines)
     for i in range(k):
         for j in range(i + 1, k):
-            with np.errstate(divide="ignore", invalid="ignore"):
-                c = (alpha[..., i] - alpha[..., j]) / (beta[..., j] - beta[..., i])
+            c = (alpha[..., i] - alpha[..., j]) / (beta[..., j] - beta[..., i])
             cuts.append(np.minimum(np.maximum(np.nan_to_num(c, nan=1.0, posinf=1.0, neginf=1.0), c_end), 1.0))
     cuts = -np.sort(-np.stack(cuts, -1), -1)                     # descending cos φ: ascending φ
     c1, c2 = cuts[..., :-1], cuts[..., 1:]
     s1, s2 = np.sqrt((1 - c1) * (1 + c1)), np.sqrt((1 - c2) * (1 + c2))
     d_phi = np.arctan2(s2 * c1 - c2 * s1, c1 * c2 + s1 * s2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        d_sin = np.where(s1 + s2 > 0, (c1 - c2) * (c1 + c2) / (s1 + s2), 0.0)
+    d_sin = np.where(s1 + s2 > 0, (c1 - c2) * (c1 + c2) / (s1 + s2), 0.0)
     levels = alpha[..., None, :] + beta[..., None, :] * (0.5 * (c1 + c2))[..., None]
     lowest = np.argmin(levels, axis=-1)[..., None]
     a_low = np.take_along_axis(np.broadcast_to(alpha[..., None, :], levels.shape), lowest, -1)[..., 0]

@@ -28,6 +28,7 @@ integrates) has φ run over [0, π] and the result doubled.
 """
 from __future__ import annotations
 
+import bisect
 import math
 from typing import NamedTuple
 
@@ -37,6 +38,7 @@ from brdfs.physics.geometry import cos_incidence, sin_incidence
 from brdfs.physics.lobes import HALF, MIRROR
 from brdfs.core.gauss_kronrod import GAUSS_WEIGHTS, KRONROD_WEIGHTS, NODES, NodeValues, integrate, node_values
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
+from brdfs.numerics.integrate.mean import QUIET
 
 _U = 0.5 * (NODES + 1.0)            # Kronrod nodes on [0, 1]
 _WK = 0.5 * KRONROD_WEIGHTS
@@ -112,7 +114,7 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
     tail = TAIL if tail is None else tail
     layer_max = TANGENCY_LAYER_MAX if layer_max is None else layer_max
     root_rtol = ROOT_RTOL if root_rtol is None else root_rtol
-    groups = indices_by_model(models)
+    groups = [range(1)] if len(models) == 1 else indices_by_model(models)
     if len(groups) == 1:                   # one model (a curve, or a single angle): no regrouping
         rows, brackets, t0 = _radial_breakpoints(models[0], mu, st, theta_deg, tail, root_rtol, layer_max, graded)
     else:
@@ -133,13 +135,18 @@ def radial_breakpoints_many(models, mu, st, theta_deg, tail=None, root_rtol=None
     result = (out,)
     if kinks and len(brackets) == 1:
         lo, hi = brackets[0]
-        result += (Kinks(np.zeros(lo.size, np.intp), lo, hi),)
+        result += (Kinks(np.zeros(lo.size, np.intp) if lo.size else _NO_ELEMENTS, lo, hi),)
     elif kinks:
         element = np.concatenate([np.full(lo.size, i) for i, (lo, _) in enumerate(brackets)]).astype(np.intp)
         result += (Kinks(element, np.concatenate([lo for lo, _ in brackets]), np.concatenate([hi for _, hi in brackets])),)
     if touch:
         result += (t0,)
     return result[0] if len(result) == 1 else result
+
+
+#: The elements of no kinks (read only: a single angle without kinks found numerically shares it).
+_NO_ELEMENTS = np.zeros(0, np.intp)
+_NO_ELEMENTS.flags.writeable = False
 
 
 def horizon_onset(bp, t0, min_span=None):
@@ -188,7 +195,11 @@ def _horizon_onset_of_one(bp, t0, min_span):
             lo, hi = t0, end
     if math.isfinite(lo) and hi > ONSET_SPLIT * lo:
         hi = 0.5 * (lo + hi)
-        bp = np.sort(np.concatenate([bp, [[hi]]], axis=1), axis=1)
+        if row[-1] == row[-1]:                          # no NaN padding (ascending rows keep it last)
+            bisect.insort(row, hi)
+            bp = np.array([row])
+        else:
+            bp = np.sort(np.concatenate([bp, [[hi]]], axis=1), axis=1)
     return bp, np.array([lo]), np.array([hi])
 
 
@@ -211,13 +222,13 @@ def square_root_onset(integrand, lo, hi):
     (A plain t = lo + (hi − lo) u² removes the onset but leaves the knee at u ≈ √(lo / hi), unseen
     by the nodes of one interval: Phong n = 512 at 89.9995° was 1.7× over-confident with it.)
     Unchanged where every ``lo`` is NaN."""
+    if lo.size == 1:
+        return _square_root_onset_of_one(integrand, float(lo[0]), float(hi[0]))
     if not np.isfinite(lo).any():
         return integrand
     with np.errstate(invalid="ignore"):
         # sinh² W = (hi − lo) / lo from the difference, which is exact next to t = 1 (hi / lo is not)
         span = np.arcsinh(np.sqrt((hi - lo) / lo))
-    if lo.size == 1:
-        return _square_root_onset_of_one(integrand, float(lo[0]), float(hi[0]), float(span[0]))
 
     def substituted(s, elem):
         # an interval lies inside [lo, hi] or outside it (lo and hi are breakpoints): its middle node says which
@@ -249,10 +260,23 @@ def _mapped(integrand, s, elem, rows, a, scale):
     return NodeValues(high, low, None if out.extra_err is None else scaled(out.extra_err))
 
 
-def _square_root_onset_of_one(integrand, lo, hi, span):
-    """:func:`square_root_onset` of a single element (``lo``, ``hi``, ``span`` = W as Python floats):
-    the same arithmetic, with the element's numbers as numbers instead of gathered per interval (IEEE
-    operations give the same bits either way), in fewer numpy calls."""
+def _square_root_onset_of_one(integrand, lo, hi):
+    """:func:`square_root_onset` of a single element (``lo``, ``hi`` as Python floats): the same
+    arithmetic, with the element's numbers as numbers instead of gathered per interval (IEEE operations
+    give the same bits either way, ``math.sqrt`` and ``np.sqrt`` are both correctly rounded, and W is
+    numpy's ``arcsinh``), in fewer numpy calls and without a ``np.errstate``: :func:`horizon_onset`
+    gives one element either no interval (NaN) or 0 < lo < hi, where nothing can warn."""
+    if 0.0 < lo < hi:                                   # NaN (no onset interval) compares False
+        return _square_root_onset_of_one_with(integrand, lo, hi, float(np.arcsinh(math.sqrt((hi - lo) / lo))))
+    if not math.isfinite(lo):
+        return integrand
+    with np.errstate(invalid="ignore"):                 # not from horizon_onset: the arrays' way
+        span = float(np.arcsinh(np.sqrt((np.float64(hi) - lo) / lo)))
+    return _square_root_onset_of_one_with(integrand, lo, hi, span)
+
+
+def _square_root_onset_of_one_with(integrand, lo, hi, span):
+    """:func:`_square_root_onset_of_one` once W = ``span`` is known."""
     scale = span / (hi - lo)
 
     def substituted(s, elem):
@@ -358,7 +382,7 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
     graded_pts = [c * (1.0 - g) if c < beta_max else beta_max for g in LEVEL_GRADING for c in touching]
     layers = _tangency_layer_radii(a[1:], theta, float(st[0]), scale, beta_max, layer_max)
     cone = [scale * theta] if model.kink_at_normal else []
-    ends = [beta_max * (1.0 - e) for e in END]
+    ends = [beta_max * f for f in _BEFORE_END]
     t_all = lobe.t_of(np.array([beta_max] + cand + ends + graded_pts + cone + layers)).tolist()
     t_max, t_cand = t_all[0], t_all[1:1 + len(cand)]
     t_end, t_rest = t_all[1 + len(cand):1 + len(cand) + len(ends)], t_all[1 + len(cand) + len(ends):]
@@ -367,10 +391,21 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
         points += [t_max * h for h in _HEAD]
     if (graded or 1.0 - TAIL[0] < t_max) and t_max < 1.0:
         points += t_end
-    row = np.array(sorted({p for p in points if 0.0 <= p <= t_max}))
+    row = np.array(_sorted_distinct_within(points, t_max))
     onset_frame = lobe.frame is HALF or lobe.frame is MIRROR
     t0 = t_cand[0] if onset_frame and cand[0] < beta_max else math.nan
     return [row], [(np.empty(0), np.empty(0))], np.array([t0])
+
+
+def _sorted_distinct_within(points, t_max) -> list:
+    """The distinct ``points`` (Python floats) in [0, ``t_max``], ascending: ``sorted({p for p in points
+    if 0.0 <= p <= t_max})``, by ``set``, ``sorted`` and two bisections (C loops, where the comprehension
+    tests each point in Python) wherever no point is NaN (their sum is not: a NaN would not sort)."""
+    total = sum(points)
+    if total != total:
+        return sorted({p for p in points if 0.0 <= p <= t_max})
+    found = sorted(set(points))
+    return found[bisect.bisect_left(found, 0.0):bisect.bisect_right(found, t_max)]
 
 
 def _ends_of_tail(tail) -> list:
@@ -482,6 +517,9 @@ _HEAD = HEAD.tolist()
 #: last 1e-7 and its K − G understated the error 110 times (Blinn, n = 8, 64°: 5.4e-11 off at
 #: rtol 1e-10).
 END = 10.0 ** -np.arange(1.0, 7.0, 1.0)
+#: 1 − :data:`END` as Python floats (the arrays' subtraction, to the bit), for a single angle's breakpoints:
+#: the same products on numpy scalars cost it ~1.5 µs.
+_BEFORE_END = (1.0 - END).tolist()
 #: Initial breakpoints β = β_c (1 − g) before each radius β_c where a declared N·V level touches the
 #: circles, for a single angle at a tight tolerance (``graded``).  Where the level's layer is wide
 #: (w ≈ β_c, :data:`TANGENCY_LAYER`) the radial integrand closes onto β_c like (β_c − β)^(3/2), and the
@@ -608,18 +646,19 @@ def _multisection(fn, a, b, sign_a, root_rtol=ROOT_RTOL):
     return a, b
 
 
-def level_cos(A, B, c):
+def level_cos(A, B, c, quiet=False):
     """cos φ, φ in [0, π], where A + B cos φ = c (B ≥ 0): the set A + B cos φ > c is [0, φ);
-    −1 (φ = π) if the level is never reached from above, 1 (φ = 0) if always below."""
-    with np.errstate(divide="ignore", invalid="ignore"):
+    −1 (φ = π) if the level is never reached from above, 1 (φ = 0) if always below.  ``quiet``: the
+    caller already ignores numpy's divide and invalid errors (:data:`.mean.QUIET`)."""
+    with QUIET if quiet else np.errstate(divide="ignore", invalid="ignore"):
         x = (c - A) / B
     x = np.where(B > 0, x, np.where(A >= c, -1.0, 1.0))
     return np.minimum(np.maximum(x, -1.0), 1.0)        # np.clip, without its dispatch cost (a hot path)
 
 
-def level_azimuth(A, B, c):
+def level_azimuth(A, B, c, quiet=False):
     """φ of :func:`level_cos`."""
-    return np.arccos(level_cos(A, B, c))
+    return np.arccos(level_cos(A, B, c, quiet))
 
 
 def _azimuthal(model, t, mu, st):

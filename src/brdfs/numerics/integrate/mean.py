@@ -21,11 +21,16 @@ Independent of the albedo engine's hemisphere coordinates; the tests compare the
 """
 from __future__ import annotations
 
+import contextlib
+
 import numpy as np
 
 from brdfs.core.gauss_kronrod import NodeValues, integrate
 from brdfs.physics.lobes import MIRROR
 
+
+#: The context of a caller that already ignores numpy's divide and invalid errors (``quiet=True``).
+QUIET = contextlib.nullcontext()
 
 def mean_albedo_lobe(n, C, frame, cosmin, rtol=1e-10, atol=1e-14):
     """A for w = C cos^n β in ``frame`` (:data:`~brdfs.physics.lobes.MIRROR` or ``HALF``), g = 1/max(N·L, N·V) if ``cosmin``.
@@ -62,9 +67,11 @@ def _mirror_inner(alpha, theta, cosmin):
     return np.sin(theta) * m
 
 
-def positive_part_azimuth(a, b):
-    """J(a, b) = ∫₀^{2π} [a + b cos φ]₊ dφ for b ≥ 0."""
-    with np.errstate(divide="ignore", invalid="ignore"):
+def positive_part_azimuth(a, b, quiet=False):
+    """J(a, b) = ∫₀^{2π} [a + b cos φ]₊ dφ for b ≥ 0.  ``quiet``: the caller already ignores numpy's
+    divide and invalid errors (a kernel of :mod:`.azimuthal`, which enters one ``np.errstate`` per
+    round for all of its parts: each costs a single-angle call ~1 µs)."""
+    with QUIET if quiet else np.errstate(divide="ignore", invalid="ignore"):
         phi0 = np.arccos(np.minimum(np.maximum(-a / b, -1.0), 1.0))     # np.clip, without its dispatch cost
     # the sine of the rounded angle, not √(1 − x²): J is stationary in φ₀ (a + b cos φ₀ = 0), so an
     # angle off by δ costs O(δ²) only while both terms see the same angle
