@@ -102,6 +102,14 @@ def test_a_narrow_triangle_reports_the_rounding_of_its_own_nodes(rtol, status):
     assert np.all(true_error <= est.error) and np.all(est.error <= np.maximum(1e3 * true_error, 1e-9)), (true_error, est.error)
 
 
+def test_a_stalled_mixture_is_told_what_its_own_error_is_and_not_to_build_finer_tables():
+    """The warning names the model's own source of error (:attr:`BRDF.evaluation_error_source`)."""
+    brdf = brdfs.model("patch_mixture", weight=narrow_triangle, weight_points=(LO, CENTRE, HI))
+    with pytest.warns(brdfs.NotConvergedWarning, match="p's own rounding") as caught:
+        brdfs.albedo(brdf, 30.0, rtol=1e-10)
+    assert "finer tables" not in str(caught[0].message)
+
+
 @pytest.mark.parametrize("m", [0.2, LO + 0.3 * WIDTH, HI + 1e-4])
 def test_f_itself_integrates_the_declared_box_below_inside_and_beyond_it(m):
     """f = ∫_m² p(R) c(R) dR (eq. 4.21) at projected distances m below the peak (the whole box), inside it,

@@ -670,8 +670,8 @@ def _report_not_converged(est, model, theta, method, tol, strict, warn):
     by_model = float(np.ravel(model.evaluation_error(np.ravel(theta)[worst:worst + 1],
                                                      value.ravel()[worst:worst + 1]))[0]) if model.has_evaluation_error else 0.0
     if by_model > float(target.ravel()[worst]):
-        advice = (f"a looser rtol: the model's own values (its tables) carry an error of {by_model:.3g} there, "
-                  "more than the tolerance asked for; or build it with finer tables")
+        advice = (f"a looser rtol: the model's own values ({model.evaluation_error_source}) carry an error of "
+                  f"{by_model:.3g} there, more than the tolerance asked for; or {model.evaluation_error_remedy}")
     else:
         advice = ("method='disk'" if method != "disk" else "method='engine'") + " or a looser rtol"
     message = (f"albedo of {model.name!r} by method {method!r}: {int(short.sum())} of {status.size} values "

@@ -308,6 +308,10 @@ class BRDF:
     #: Bound of |f as evaluated / f of the exact model − 1| (a model built from tables: the pumped
     #: models' ε, :mod:`brdfs.numerics.pumping`): :func:`brdfs.albedo` adds it × |a| to every error.
     evaluation_rtol: ClassVar[float] = 0.0
+    #: Where :meth:`evaluation_error` comes from and what lowers it, in words (the not-converged warning's
+    #: advice where that error exceeds the tolerance asked for).
+    evaluation_error_source: ClassVar[str] = "its tables"
+    evaluation_error_remedy: ClassVar[str] = "build it with finer tables"
 
     def __call__(self, L, V):
         """f(L, V) on unit vectors L, V (…, 3) (broadcast against each other), N = (0, 0, 1); 0 below

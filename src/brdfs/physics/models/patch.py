@@ -440,6 +440,8 @@ class PatchMixture(_MixtureSampling, BRDF):
     #: ``patch_mixture_narrow_box`` covers them by the engine, the disk and ``auto``.  Undeclared, this box
     #: gave 0 ± 0 "converged" by every route for an albedo of 1 at 0° and 0.4606 at 90° − 1e-9.
     feature_examples = {"narrow_box": {"weight": _NARROW_BOX, "weight_points": _NARROW_BOX.points}}
+    evaluation_error_source = "p's own rounding at the nodes, where its declared features are narrow"
+    evaluation_error_remedy = "widen the weight's narrow features"
     # conserves_energy = False: a ≤ W = ∫p + p_Diffuse, which is 1 only for a normalised weight
     # (eq. 4.21); the model takes any weight and does not normalise it
     conserves_energy = False
