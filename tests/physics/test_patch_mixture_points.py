@@ -152,3 +152,12 @@ def test_declared_points_are_a_value_of_the_model_sorted_and_hashable():
     assert a == b and hash(a) == hash(b) and a.weight_points == (LO, HI)
     assert not b.has_evaluation_error          # p constant between its points: no rounding of its own to bound
     assert MODELS["patch_mixture"](weight=narrow_box).weight_points == ()
+
+
+def test_a_weight_that_is_not_finite_between_its_points_is_refused_in_one_line():
+    """p(R) = √(1 − R) is NaN beyond R = 1: its rounding bound is NaN, which would drop silently."""
+    brdf = brdfs.model("patch_mixture", weight=lambda R: np.sqrt(np.abs(1 - np.asarray(R))) * np.where(np.asarray(R) > 1.5, np.nan, 1.0),
+                       weight_points=(1.0,))
+    with pytest.raises(ValueError, match="weight is not finite") as error:
+        brdfs.albedo(brdf, 30.0, rtol=1e-6)
+    assert "\n" not in str(error.value)
