@@ -54,8 +54,11 @@ def test_models_lists_every_registered_model_with_its_parameters(capsys):
     rows = {r["model"]: r for r in json.loads(out)}
     assert status == 0 and set(rows) == set(MODELS)
     assert "n" in rows["phong"]["parameters"] and rows["phong"]["typical"] == MODELS["phong"].examples["typical"]
+    # what a parameter takes in words, where it is neither a range nor a choice (the model's param_texts)
+    assert all(rows[name]["described"] == dict(cls.param_texts) for name, cls in MODELS.items())
     status, out, _ = run(["models"], capsys)
     assert status == 0 and all(name in out for name in MODELS)
+    assert all(f"{key}: {text}" in out for cls in MODELS.values() for key, text in cls.param_texts.items())
 
 
 def test_chi2_passes_a_models_own_sampler_and_reports_the_statistic(capsys):

@@ -127,9 +127,10 @@ def _model_rows():
     for name, cls in MODELS.items():
         ranges = {k: v.text() for k, v in cls.param_ranges.items()}
         choices = {k: list(v) for k, v in getattr(cls, "param_choices", {}).items()}
+        texts = dict(cls.param_texts)             # what a parameter takes that is neither a range nor a choice
         unbuildable = _not_buildable(cls)
         typical = cls.examples.get("typical", {})
-        rows.append({"model": name, "chapter": str(cls.chapter), "parameters": {**ranges, **choices},
+        rows.append({"model": name, "chapter": str(cls.chapter), "parameters": {**ranges, **choices}, "described": texts,
                      "typical": None if unbuildable else typical,
                      "example_param": None if unbuildable else " ".join(f"{k}={_value_text(v)}"
                                                                         for k, v in typical.items()),
@@ -144,8 +145,9 @@ def _models(args) -> int:
         print(json.dumps(rows, indent=1))
         return 0
     for row in rows:
-        params = ", ".join(f"{k} in {v}" if isinstance(v, str) else f"{k} in {{{', '.join(map(str, v))}}}"
-                           for k, v in row["parameters"].items())
+        params = ", ".join([*(f"{k}: {v}" for k, v in row["described"].items()),
+                            *(f"{k} in {v}" if isinstance(v, str) else f"{k} in {{{', '.join(map(str, v))}}}"
+                              for k, v in row["parameters"].items())])
         if row["command_line"]:
             usage = f"e.g. --param {row['example_param']}" if row["example_param"] else "no parameters needed"
         else:
