@@ -111,6 +111,7 @@ MEANING = [
     ("renders.final.figure_spp.fig_2_8_pumping_render", [2584, 2584],
      "renders.final.figure_spp.fig_2_8_pumping_render = [2584, 2584]", "one entry per panel (4 panels)"),
     ("renders.clamp", {"fig_3_9_metals_new_model": 2.0}, "renders.clamp = ", "unknown key; it moved to renders.<preset>.clamp"),
+    ("renders.preview.clamp.3", 2.0, "renders.preview.clamp.3: unknown key", "the keys are names (strings)"),
     ("renders.preview.clamp.Fig_3_9_metals_new_model", 2.0,
      "renders.preview.clamp.Fig_3_9_metals_new_model: unknown key", "did you mean fig_3_9_metals_new_model?"),
     # a setting the figure's panels would ignore: sampling on noise-free panels, a clamp on direct light only

@@ -65,6 +65,7 @@ _STATUS_DTYPE = f"<U{len(BUDGET_EXHAUSTED)}"
 _STATUS_OF_ONE = {s: np.array([s], _STATUS_DTYPE) for s in (CONVERGED, BUDGET_EXHAUSTED, STALLED)}
 for _status in _STATUS_OF_ONE.values():
     _status.flags.writeable = False        # templates: a single element's status is a copy of one
+del _status
 SAFETY = 2.0
 # Splits without gain before an interval is frozen; 3 froze resolvable intervals of pumped Blinn
 # models (a smooth but poorly resolved start looks like a jump three splits running).

@@ -294,10 +294,10 @@ def describe_error(error: jsonschema.ValidationError) -> str:
     elif error.validator == "required" and isinstance(value, dict):
         missing = [k for k in error.validator_value if k not in value] or [error.message.split("'")[1]]
         return f"Error validating config file: {_key([*path, missing[0]])} is missing (required)"
-    elif "propertyNames" in error.absolute_schema_path and isinstance(value, str):   # a key the mapping does not take
+    elif "propertyNames" in error.absolute_schema_path:     # a key the mapping does not take
         names = error.validator_value if error.validator == "enum" else []
-        hint = f"; {_closest(value, names)}" if names else f"; {_REASONS.get(error.validator, str)(error.validator_value)}"
-        return f"Error validating config file: {_key([*path, value])}: unknown key{hint}"
+        hint = _closest(str(value), names) if names else "the keys are names (strings)"
+        return f"Error validating config file: {_key([*path, str(value)])}: unknown key; {hint}"
     elif error.validator in _REASONS:
         reason = _REASONS[error.validator](error.validator_value)
 

@@ -454,6 +454,17 @@ class PatchMixture(_MixtureSampling, BRDF):
         check_positive("p_diffuse", self.p_diffuse, allow_zero=True)
         check_positive("rtol", self.rtol)
         object.__setattr__(self, "weight_points", _checked_weight_points(self.weight_points))
+        self._check_weight_is_finite()
+
+    def _check_weight_is_finite(self):
+        """p must be a bounded function: refused in one line where it is not finite at the ends or the
+        midpoints of the table of F's pieces (a NaN weight otherwise gave NaN ± NaN after 63,756 evaluations)."""
+        edges = self._table_edges()
+        probe = np.concatenate([edges, 0.5 * (edges[:-1] + edges[1:])])
+        values = np.broadcast_to(np.asarray(self.weight(probe), float), probe.shape)
+        if not np.all(np.isfinite(values)):
+            i = int(np.flatnonzero(~np.isfinite(values))[0])
+            raise ValueError(f"patch_mixture: weight p(R) must be finite on [0, 2], got {float(values[i])!r} at R = {probe[i]:.6g}")
 
     #: No lobe: the albedo is the mixture of lens areas (eqs. 4.22, 4.24), its own route.
     lobe = None
