@@ -300,7 +300,6 @@ def describe_error(error: jsonschema.ValidationError) -> str:
         return f"Error validating config file: {_key([*path, str(value)])}: unknown key; {hint}"
     elif error.validator in _REASONS:
         reason = _REASONS[error.validator](error.validator_value)
-
     if reason is None:
         reason = error.message.splitlines()[0]
         reason = reason if len(reason) <= 100 else reason[:97] + "..."

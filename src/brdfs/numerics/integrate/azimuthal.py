@@ -263,13 +263,11 @@ TIGHT_ONSET_MIN_SPAN = 1.0
 def _single_angle_settings(rtol):
     """A single angle's (:func:`_tight`, :func:`_single_angle_tail`, :func:`single_angle_root_rtol`) at
     ``rtol``, kept per float (a call's tolerance is one of a few)."""
-    if type(rtol) is float:
-        return _single_angle_settings_of(rtol)
-    return _tight(rtol), _single_angle_tail(rtol), single_angle_root_rtol(rtol)
+    return (_single_angle_settings_of if type(rtol) is float else _single_angle_settings_of.__wrapped__)(rtol)
 
 
 @functools.lru_cache(maxsize=64)
-def _single_angle_settings_of(rtol: float):
+def _single_angle_settings_of(rtol):
     return _tight(rtol), _single_angle_tail(rtol), single_angle_root_rtol(rtol)
 
 

@@ -32,6 +32,7 @@ from brdfs.physics.lobes import MIRROR
 #: The context of a caller that already ignores numpy's divide and invalid errors (``quiet=True``).
 QUIET = contextlib.nullcontext()
 
+
 def mean_albedo_lobe(n, C, frame, cosmin, rtol=1e-10, atol=1e-14):
     """A for w = C cos^n β in ``frame`` (:data:`~brdfs.physics.lobes.MIRROR` or ``HALF``), g = 1/max(N·L, N·V) if ``cosmin``.
 

@@ -404,11 +404,12 @@ class PatchMixture(_MixtureSampling, BRDF):
     R = 1, at the lens's kinks and at ``weight_points``.
 
     ``weight_points``: the R in [0, 2] where p is not smooth — jumps, kinks, and the ends of a narrow
-    peak.  p must be bounded: a pole, even an integrable one ((R − a)^(−q)), is not supported, declared or
-    not (Gauss–Kronrod's K − G under-rates an endpoint singularity: q = 0.5 at a = 0.37 was 1.5e-8 off
-    at a reported 8.5e-10, "converged").  The quadrature sees p only at its nodes and judges its error by two rules on the same
-    nodes, so a feature between two breakpoints that no node meets is neither integrated nor reported
-    (a box of width 1e-5 at R = 0.37, undeclared: 0 ± 0 "converged" for an albedo of 1).  Declare a jump
+    peak.  p must be bounded: a pole, even an integrable one ((R − a)^(−q)), is not supported, declared
+    or not (Gauss–Kronrod's K − G under-rates an endpoint singularity: q = 0.5 at a = 0.37 was 1.5e-8
+    off at a reported 8.5e-10, "converged").  The quadrature sees p only at its nodes and judges its
+    error by two rules on the same nodes, so a feature between two breakpoints that no node meets is
+    neither integrated nor reported (a box of width 1e-5 at R = 0.37, undeclared: 0 ± 0 "converged" for
+    an albedo of 1).  Declare a jump
     or a kink at its R, and a peak by its ends, where p has fallen below the tolerance, with its centre
     (a box: its two ends; a Gaussian of width σ: c − 8σ, c, c + 8σ): each piece between declared points
     is then as wide as the feature, where the Gauss–Kronrod pair resolves it.  The centre alone leaves a
