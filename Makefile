@@ -64,7 +64,7 @@ UNLOCK_STALE = if [ -n "$$(ls -A .snakemake/locks 2>/dev/null)" ]; then \
 .PHONY: all test venv llvm docs docs-check sweep sweep-truths renders-final check-mutations benchmark clean baseline lock report report-check chromium lint \
         check-reproducible check-crash check-cluster check-slurm-plan check-wheel checks
 
-# Exact versions and hashes of every (transitive) dependency of the pipeline, cluster, render, docs
+# Exact versions and hashes of every (transitive) dependency of the pipeline, cluster, render, docs, fast
 # and test extras from requirements.lock, then the package itself (its core needs only numpy, scipy).
 $(STAMP): requirements.lock pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -80,7 +80,7 @@ venv: $(STAMP)
 llvm:
 	@workflow/scripts/ensure_llvm.sh
 
-LOCK_EXTRAS := --extra pipeline --extra cluster --extra render --extra docs --extra test
+LOCK_EXTRAS := --extra pipeline --extra cluster --extra render --extra docs --extra fast --extra test
 # Regenerate requirements.lock after changing the dependencies in pyproject.toml (keeps every
 # existing pin; `--upgrade` is yours to add).
 lock: $(STAMP)
