@@ -63,11 +63,16 @@ def _larger(a, b):
 def start(breakpoints, rtol, atol, fill):
     """The state before the first evaluation: the pieces of ``breakpoints`` pending."""
     row = np.asarray(breakpoints, np.float64)
-    n = max(row.size - 1, 0)
-    keep = np.zeros(n, np.bool_)
-    for i in range(n):
-        keep[i] = row[i + 1] > row[i] and math.isfinite(row[i]) and math.isfinite(row[i + 1])
-    p_lo, p_hi = row[:-1][keep].copy(), row[1:][keep].copy()
+    count = 0
+    for i in range(row.size - 1):
+        if _kept_piece(row[i], row[i + 1]):
+            count += 1
+    p_lo, p_hi = np.empty(count), np.empty(count)
+    count = 0
+    for i in range(row.size - 1):
+        if _kept_piece(row[i], row[i + 1]):
+            p_lo[count], p_hi[count] = row[i], row[i + 1]
+            count += 1
     ints = np.zeros(8, np.int64)
     ints[_FILL] = fill
     ints[_EXHAUSTED] = 1
@@ -77,6 +82,12 @@ def start(breakpoints, rtol, atol, fill):
     groups = np.zeros((2, 2), np.int64)          # (pieces, count) of at most two groups
     return (empty_f, empty_f, np.zeros((4, 0)), empty_f, np.zeros(0, np.bool_), empty_i,
             p_lo, p_hi, empty_i, groups, np.zeros(0, np.bool_), ints, floats)
+
+
+@numba.njit(cache=True)
+def _kept_piece(a, b):
+    """Whether the numpy driver keeps the piece [a, b] of a breakpoint row: not empty, both ends finite."""
+    return b > a and math.isfinite(a) and math.isfinite(b)
 
 
 @numba.njit(cache=True)
@@ -141,17 +152,40 @@ def absorb(st, high, low, extra):
         ints[_ROUNDS] += 1
         c_stalls = _child_stalls(groups, g_idx, c_err, err, stalls)
         c_fixed = _unrefinable(p_lo, p_hi, c_err, c_vals[2])
-        keep = ~split
-        lo = np.concatenate((lo[keep], p_lo))
-        hi = np.concatenate((hi[keep], p_hi))
-        vals = np.concatenate((vals[:, keep], c_vals), axis=1)
-        err = np.concatenate((err[keep], c_err))
-        fixed = np.concatenate((fixed[keep], c_fixed))
-        stalls = np.concatenate((stalls[keep], c_stalls))
+        lo, hi, vals, err, fixed, stalls = _merged(split, lo, hi, vals, err, fixed, stalls,
+                                                   p_lo, p_hi, c_vals, c_err, c_fixed, c_stalls)
         if ints[_ROUNDS] >= MAX_ROUNDS:
             _finish_from_intervals(vals, err, ints, floats)
             return (lo, hi, vals, err, fixed, stalls, p_lo, p_hi, g_idx, groups, split, ints, floats)
     return _decide(lo, hi, vals, err, fixed, stalls, ints, floats)
+
+
+@numba.njit(cache=True)
+def _merged(split, lo, hi, vals, err, fixed, stalls, c_lo, c_hi, c_vals, c_err, c_fixed, c_stalls):
+    """The intervals not split, in order, then the pieces: the numpy driver's order."""
+    kept = 0
+    for i in range(split.size):
+        if not split[i]:
+            kept += 1
+    n = kept + c_lo.size
+    n_lo, n_hi, n_vals, n_err = np.empty(n), np.empty(n), np.empty((4, n)), np.empty(n)
+    n_fixed, n_stalls = np.empty(n, np.bool_), np.empty(n, np.int64)
+    j = 0
+    for i in range(split.size):
+        if not split[i]:
+            _copy_interval(lo, hi, vals, err, fixed, stalls, i, n_lo, n_hi, n_vals, n_err, n_fixed, n_stalls, j)
+            j += 1
+    for i in range(c_lo.size):
+        _copy_interval(c_lo, c_hi, c_vals, c_err, c_fixed, c_stalls, i, n_lo, n_hi, n_vals, n_err, n_fixed, n_stalls, j)
+        j += 1
+    return n_lo, n_hi, n_vals, n_err, n_fixed, n_stalls
+
+
+@numba.njit(cache=True)
+def _copy_interval(lo, hi, vals, err, fixed, stalls, i, n_lo, n_hi, n_vals, n_err, n_fixed, n_stalls, j):
+    n_lo[j], n_hi[j], n_err[j], n_fixed[j], n_stalls[j] = lo[i], hi[i], err[i], fixed[i], stalls[i]
+    for r in range(4):
+        n_vals[r, j] = vals[r, i]
 
 
 @numba.njit(cache=True)
@@ -244,22 +278,28 @@ def _decide(lo, hi, vals, err, fixed, stalls, ints, floats):
     cand = np.zeros(n, np.bool_)
     worst = -np.inf
     if open_:
+        open_ = False
         for i in range(n):
             cand[i] = not (fixed[i] or stalls[i] >= _STALL_LIMIT)
             if cand[i]:
+                open_ = True
                 worst = max(worst, err[i])
-    if not cand.any():
+    if not open_:
         ints[_EXHAUSTED] = 0
         _finish(low, extra, absval, total, ints, floats)
         return (lo, hi, vals, err, fixed, stalls, empty_f, empty_f, empty_i, groups, np.zeros(n, np.bool_), ints, floats)
     if n > MAX_INTERVALS:
         _finish(low, extra, absval, total, ints, floats)
         return (lo, hi, vals, err, fixed, stalls, empty_f, empty_f, empty_i, groups, np.zeros(n, np.bool_), ints, floats)
-    split = cand & (err >= worst / 8)
+    split = np.empty(n, np.bool_)
+    for i in range(n):
+        split[i] = cand[i] and err[i] >= worst / 8
     fill = ints[_FILL]
     if fill:
-        split |= _needed(cand, err, total, budget)
-    idx = np.flatnonzero(split)
+        needed = _needed(cand, err, total, budget)
+        for i in range(n):
+            split[i] = split[i] or needed[i]
+    idx = _indices(split)
     g_idx, groups = _split_groups(idx, stalls, lo, hi, fill)
     p_lo, p_hi = _children(lo, hi, g_idx, groups)
     return (lo, hi, vals, err, fixed, stalls, p_lo, p_hi, g_idx, groups, split, ints, floats)
@@ -267,14 +307,64 @@ def _decide(lo, hi, vals, err, fixed, stalls, ints, floats):
 
 @numba.njit(cache=True)
 def _needed(cand, err, total, budget):
-    idx = np.flatnonzero(cand)
-    order = idx[np.argsort(-err[idx], kind="mergesort")]
+    """The numpy driver's :func:`.gauss_kronrod._needed` for one element: the candidates by descending
+    error (ties in index order, as a stable sort), taken until the rest is within ``budget``."""
+    order = _by_descending_error(_indices(cand), err)
     out = np.zeros(cand.size, np.bool_)
     cum = 0.0
     for i in order:
         cum += err[i]
         out[i] = total - (cum - err[i]) > budget
     return out
+
+
+@numba.njit(cache=True)
+def _indices(mask):
+    """``np.flatnonzero(mask)``."""
+    count = 0
+    for i in range(mask.size):
+        if mask[i]:
+            count += 1
+    out = np.empty(count, np.int64)
+    count = 0
+    for i in range(mask.size):
+        if mask[i]:
+            out[count] = i
+            count += 1
+    return out
+
+
+@numba.njit(cache=True)
+def _by_descending_error(idx, err):
+    """``idx`` ordered by descending ``err[idx]``, equal errors in their order (a stable merge sort;
+    the candidates' errors are finite)."""
+    order = idx.copy()
+    scratch = np.empty_like(order)
+    width = 1
+    n = order.size
+    while width < n:
+        for left in range(0, n, 2 * width):
+            mid, right = min(left + width, n), min(left + 2 * width, n)
+            i, j, k = left, mid, left
+            while i < mid and j < right:
+                if err[order[j]] > err[order[i]]:        # strictly larger moves ahead: stable
+                    scratch[k] = order[j]
+                    j += 1
+                else:
+                    scratch[k] = order[i]
+                    i += 1
+                k += 1
+            while i < mid:
+                scratch[k] = order[i]
+                i += 1
+                k += 1
+            while j < right:
+                scratch[k] = order[j]
+                j += 1
+                k += 1
+        order, scratch = scratch, order
+        width *= 2
+    return order
 
 
 @numba.njit(cache=True)
@@ -291,17 +381,27 @@ def _split_groups(idx, stalls, lo, hi, fill):
         j = idx[i]
         wide = (hi[j] - lo[j]) > s * 64 * _EPS * max(abs(lo[j]), abs(hi[j]))
         many[i] = stalls[j] == 0 and wide
-    if many.all():
+    n_many = 0
+    for i in range(k):
+        if many[i]:
+            n_many += 1
+    if n_many == k:
         groups[0, 0], groups[0, 1] = s, k
         return idx, groups
-    two, more = idx[~many], idx[many]
+    ordered = np.empty(k, np.int64)
+    j = 0
+    for want in (False, True):               # two pieces first, then s
+        for i in range(k):
+            if many[i] == want:
+                ordered[j] = idx[i]
+                j += 1
     row = 0
-    if two.size:
-        groups[row, 0], groups[row, 1] = 2, two.size
+    if n_many < k:
+        groups[row, 0], groups[row, 1] = 2, k - n_many
         row += 1
-    if more.size:
-        groups[row, 0], groups[row, 1] = s, more.size
-    return np.concatenate((two, more)), groups
+    if n_many:
+        groups[row, 0], groups[row, 1] = s, n_many
+    return ordered, groups
 
 
 @numba.njit(cache=True)
