@@ -2,7 +2,8 @@
 (``method="disk"``) to the sweep's committed truths (``tests/data/sweep_truths.csv``).
 
 For every cell and every rtol of :data:`RTOLS` each method is called (vectorised over the angles of
-one model) and a row is
+one model; ``single``: the default method called once per angle, which is the single-angle path —
+compiled where numba is installed) and a row is
 
 * ``dishonest`` where |value − truth| > reported error + truth_err (also a non-finite value where
   the truth is finite);
@@ -45,7 +46,9 @@ import pandas as pd
 from sweep.cells import TRUTHS, build, load_tables
 
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
-METHODS = ("default", "engine", "disk")
+METHODS = ("default", "engine", "disk", "single")
+#: The method that calls the default method one angle at a time (the single-angle routes).
+SINGLE = "single"
 #: A judged row needs truth_err ≤ reported error / JUDGE_FACTOR.
 JUDGE_FACTOR = 10.0
 KEYS = ["family", "params", "theta_deg"]
@@ -69,16 +72,15 @@ class _Answer(dict):
 
 def _call(model, theta, method, rtol):
     """``albedo(model, theta, method, rtol)`` as an :class:`_Answer`; a raise is a refusal."""
-    albedo = _albedo()
     t0, c0 = time.perf_counter(), time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            est = (albedo(model, theta, rtol=rtol) if method == "default"
-                   else albedo(model, theta, method=method, rtol=rtol))
-            value, error = np.ravel(est.value), np.ravel(est.error)
-            status = np.ravel(est.status) if est.status is not None else np.full(theta.size, "")
-            route = np.ravel(est.route) if est.route is not None else np.full(theta.size, method)
+            if method == SINGLE:
+                parts = [_estimate(model, np.array([t]), "default", rtol) for t in theta]
+                value, error, status, route = (np.concatenate(column) for column in zip(*parts))
+            else:
+                value, error, status, route = _estimate(model, theta, method, rtol)
             note = ""
         except Exception as exc:           # noqa: BLE001 — a refusal is a row, not a crash
             value = error = np.full(theta.size, np.nan)
@@ -87,6 +89,18 @@ def _call(model, theta, method, rtol):
     return _Answer(value=value, error=error, status=status.astype(str), route=route.astype(str), note=note,
                    seconds=(time.perf_counter() - t0) / theta.size,
                    cpu_seconds=(time.process_time() - c0) / theta.size, source="call")
+
+
+def _estimate(model, theta, method, rtol):
+    """(value, error, status, route) of one ``albedo()`` call on the angles ``theta`` (one angle: a
+    scalar call, the single-angle path)."""
+    albedo = _albedo()
+    angles = float(theta[0]) if theta.size == 1 else theta
+    est = albedo(model, angles, rtol=rtol) if method == "default" else albedo(model, angles, method=method, rtol=rtol)
+    value, error = np.ravel(est.value), np.ravel(est.error)
+    status = np.ravel(est.status) if est.status is not None else np.full(theta.size, "")
+    route = np.ravel(est.route) if est.route is not None else np.full(theta.size, method)
+    return value, error, status, route
 
 
 def rows_the_default_call_answers(answer, default=None) -> set[str]:
@@ -193,7 +207,7 @@ def _cell(x, method):
     return f"{x['judged']}{refused}", str(x["dishonest"]), worst
 
 
-def family_table(summary: pd.DataFrame, methods=("engine", "disk", "default")) -> list[str]:
+def family_table(summary: pd.DataFrame, methods=("engine", "disk", "default", SINGLE)) -> list[str]:
     """Markdown: one line per family, its cells and for each method judged rows, dishonest rows and the
     worst true/reported ratio (of judged rows)."""
     methods = [m for m in methods if m in set(summary["method"])]

@@ -1,5 +1,6 @@
-"""A seeded subset of the independent sweep (``sweep/``, issue 24) in the suite: the engine and the
-certifier (``method="disk"``) against truths computed once by a third route that shares no code with
+"""A seeded subset of the independent sweep (``sweep/``, issue 24) in the suite: the engine, the
+certifier (``method="disk"``) and the single-angle path (``single``: the default method one angle per
+call, compiled where numba is) against truths computed once by a third route that shares no code with
 :mod:`brdfs.numerics` (``tests/data/sweep_truths.csv``; ``make sweep`` runs all of them).
 
 The subset: :data:`N_CELLS` cells drawn with config.yaml's seed, spread over the families (one per
@@ -19,8 +20,8 @@ from sweep.config import config_seed
 N_CELLS = 40
 RTOL = 1e-8
 #: Families the engine refuses (no lobe of its own and no albedo route, or not symmetric about
-#: the plane of incidence): only the disk is held to them.
-METHODS = ("engine", "disk")
+#: the plane of incidence): only the disk and the single calls (the default method) are held to them.
+METHODS = ("engine", "disk", "single")
 #: Dishonest cells found by the sweep and still open, each held by a strict xfail reproducer in
 #: ``test_honesty_families.py``: (method, family, params) at the grazing angles 90° − 1e-7 and beyond.
 KNOWN_OPEN = {("engine", "ggx_height_correlated", '{"alpha": 0.700492}'):
@@ -62,10 +63,11 @@ def test_the_subset_spreads_over_every_family_and_reaches_grazing_angles(cells):
     assert (cells["theta_deg"] > 90 - 1e-6).sum() >= 5
 
 
-def test_engine_and_disk_are_honest_on_a_seeded_subset_of_the_independent_sweep(cells):
+def test_engine_disk_and_single_calls_are_honest_on_a_seeded_subset_of_the_independent_sweep(cells):
     rows = sweep_rows(cells)
     answered = rows[rows["verdict"] != "refused"]
     assert len(answered[answered["method"] == "disk"]) >= 0.9 * N_CELLS
+    assert len(answered[answered["method"] == "single"]) == N_CELLS       # the default method answers every cell
     known = [(m, f, p) in KNOWN_OPEN and t >= 90 - 1e-7 for m, f, p, t in
              zip(rows["method"], rows["family"], rows["params"], rows["theta_deg"])]
     bad = rows[rows["dishonest"] & ~np.array(known, bool)]
