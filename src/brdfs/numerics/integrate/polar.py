@@ -131,17 +131,27 @@ def _compiled_kernel(distribution, S):
     missing or switched off (:func:`brdfs.core.compiled.available`), or factors it does not know."""
     if not compiled.available():
         return None
-    from brdfs.numerics.integrate import polar_compiled        # numba's import: on the first use only
-    return polar_compiled.kernel_of(distribution, S)
+    return _polar_compiled().kernel_of(distribution, S)
+
+
+_COMPILED_MODULE = []
+
+
+def _polar_compiled():
+    """:mod:`.polar_compiled`, imported on the first use (it imports numba), then kept (an import
+    statement per call costs a single angle half a µs)."""
+    if not _COMPILED_MODULE:
+        from brdfs.numerics.integrate import polar_compiled
+        _COMPILED_MODULE.append(polar_compiled)
+    return _COMPILED_MODULE[0]
 
 
 def _albedo_one_compiled(brdf, kernel, theta_l, mu_l, s_l, rtol, atol) -> Estimate:
     """:func:`_albedo_one` in one compiled call (:func:`.polar_compiled.albedo_one`): the same breakpoints'
     candidates (the lobe's offsets and the levels' angles from the same caches), integrand and driver."""
-    from brdfs.numerics.integrate import polar_compiled
-    dist, form, alpha = kernel
-    value, error, evaluations, status = polar_compiled.albedo_one(
-        dist, form, alpha, theta_l, mu_l, s_l, _lobe_offsets_of(alpha), _level_angles_of_one(brdf, mu_l),
+    dist, form, alpha, scale = kernel
+    value, error, evaluations, status = _polar_compiled().albedo_one(
+        dist, form, alpha, scale, theta_l, mu_l, s_l, _lobe_offsets_of(alpha), _level_angles_of_one(brdf, mu_l),
         _number(rtol), _number(atol), FILL_CHEAP)
     value_error = np.array((value, error))
     return Estimate(value_error[:1], value_error[1:], int(evaluations),

@@ -8,9 +8,11 @@ the factors a model declares (:meth:`BRDF.half_vector_factors`), never from a mo
 * the distribution, by its exact type (a subclass may change any formula): :class:`GGX` (the rational
   ∫D dφ) and :class:`Beckmann` (Kummer's functions, :func:`kummer_half_integers`: its series, its
   asymptotic series, Cephes' i0e and the bounds, with the tables of :mod:`brdfs.physics.distributions`);
-* the masking S, by the function the model declares: Smith's G2/(4 N·L N·V) of the Smith microfacet
-  models (:meth:`_SmithMicrofacet.g2_over_4_nl_nv`), separable or height-correlated as the model's G2
-  form says, with λ of the same distribution object.
+* the masking S, by the function the model declares (:data:`_MASKINGS`): Smith's G2/(4 N·L N·V) of the
+  Smith microfacet models (:meth:`_SmithMicrofacet.g2_over_4_nl_nv`), separable or height-correlated as
+  the model's G2 form says, with λ of the same distribution; Cook–Torrance's C G*(N·L) G*(N·V)/(4 N·L N·V)
+  with the thesis's G* (:meth:`CookTorrance._smith_over_4_nl_nv`) of the same Beckmann roughness.
+  A subclass that overrides the function declares another one, and takes the numpy path.
 
 Anything else (a user's distribution or S, a float32 or array α) goes to the numpy path, which stays
 the reference: every formula here is a replica of its numpy twin, operation by operation, and
@@ -29,6 +31,7 @@ from brdfs.core import gauss_kronrod_compiled as gkc
 from brdfs.numerics.integrate.polar import GRAZING_GRADING, S_ROUNDING
 from brdfs.physics import distributions as _dist
 from brdfs.physics.distributions import GGX, Beckmann
+from brdfs.physics.models.microfacet import CookTorrance
 from brdfs.physics.models.smith_microfacet import G2_FORMS, _SmithMicrofacet
 
 _EPS = float(np.finfo(float).eps)
@@ -37,8 +40,9 @@ _HALF_PI = 0.5 * np.pi
 
 #: Distribution codes of the kernel.
 GGX_CODE, BECKMANN_CODE = 0, 1
-#: Masking codes of the kernel: Smith's G2/(4 N·L N·V), separable and height-correlated (G2_FORMS' order).
-SEPARABLE_CODE, HEIGHT_CORRELATED_CODE = 0, 1
+#: Masking codes of the kernel: Smith's G2/(4 N·L N·V), separable and height-correlated, and
+#: C G*(N·L) G*(N·V)/(4 N·L N·V) with the thesis's G* (eq. 1.38).
+SEPARABLE_CODE, HEIGHT_CORRELATED_CODE, THESIS_SMITH_CODE = 0, 1, 2
 _DISTRIBUTIONS = {GGX: GGX_CODE, Beckmann: BECKMANN_CODE}
 _G2_CODES = {"separable": SEPARABLE_CODE, "height_correlated": HEIGHT_CORRELATED_CODE}
 assert set(_G2_CODES) == set(G2_FORMS)
@@ -84,16 +88,30 @@ CHUNK = 4096
 
 
 def kernel_of(distribution, S):
-    """``(distribution code, masking code, α)`` of the factors ``(distribution, S)`` a model declares, or
-    None where the compiled kernel does not know them (the numpy path takes those)."""
+    """``(distribution code, masking code, α, scale)`` of the factors ``(distribution, S)`` a model
+    declares, or None where the compiled kernel does not know them (the numpy path takes those)."""
     code = _DISTRIBUTIONS.get(type(distribution))
-    owner = getattr(S, "__self__", None)
-    if (code is None or type(distribution.alpha) is not float
-            or getattr(S, "__func__", None) is not _SmithMicrofacet.g2_over_4_nl_nv
-            or owner.distribution is not distribution):
+    reader = _MASKINGS.get(getattr(S, "__func__", None))
+    if code is None or reader is None or type(distribution.alpha) is not float:
         return None
-    masking = _G2_CODES.get(owner.G2)
-    return None if masking is None else (code, masking, distribution.alpha)
+    masking = reader(S.__self__, distribution)
+    return None if masking is None else (code, *masking)
+
+
+def _smith_g2(owner, distribution):
+    """:meth:`_SmithMicrofacet.g2_over_4_nl_nv`: its G2 form, λ of the same distribution."""
+    form = _G2_CODES.get(owner.G2)
+    return None if form is None or owner.distribution != distribution else (form, distribution.alpha, 1.0)
+
+
+def _thesis_smith(owner, distribution):
+    """:meth:`CookTorrance._smith_over_4_nl_nv`: C and the thesis's G* of the same Beckmann roughness."""
+    same = type(owner.C) is float and owner.distribution == distribution
+    return (THESIS_SMITH_CODE, distribution.alpha, owner.C) if same else None
+
+
+#: The maskings S the kernel knows, by the function a model declares, and what it reads of them.
+_MASKINGS = {_SmithMicrofacet.g2_over_4_nl_nv: _smith_g2, CookTorrance._smith_over_4_nl_nv: _thesis_smith}
 
 
 # --- the kernel --------------------------------------------------------------------------------
@@ -197,16 +215,38 @@ def smith_lambda_cos(dist, alpha, c):
 
 
 @numba.njit(cache=True)
-def masking(dist, form, alpha, nl, lam_l, nv):
-    """Smith's G2/(4 N·L N·V) (:meth:`_SmithMicrofacet.g2_over_4_nl_nv`), λ(N·L) given."""
-    lam_v = smith_lambda_cos(dist, alpha, nv)
-    if form == HEIGHT_CORRELATED_CODE:
-        return 1.0 / (4.0 * (nl * nv + nv * lam_l + nl * lam_v))
-    return 1.0 / (4.0 * (nl + lam_l) * (nv + lam_v))
+def thesis_g1(alpha, x):
+    """The thesis's G* (eq. 1.38, :meth:`Beckmann.smith_g1_thesis`)."""
+    if x >= 1.0:
+        return 1.0
+    h = x * x / (2 * alpha ** 2 * (1 - x * x))
+    g = math.sqrt(math.pi * h) * (2 - math.erfc(math.sqrt(h)))
+    return g / (g + 1)
 
 
 @numba.njit(cache=True)
-def radial_integrand(dist, form, alpha, theta_l, mu_l, s_l, theta_v, value, rounding, start, stop):
+def light_factor(dist, form, alpha, nl):
+    """The masking's factor of N·L alone, computed once per call: λ(N·L), or G*(N·L)."""
+    if form == THESIS_SMITH_CODE:
+        return thesis_g1(alpha, nl)
+    return smith_lambda_cos(dist, alpha, nl)
+
+
+@numba.njit(cache=True)
+def masking(dist, form, alpha, scale, nl, light, nv):
+    """S(N·L, N·V), ``light`` its factor of N·L (:func:`light_factor`): Smith's G2/(4 N·L N·V)
+    (:meth:`_SmithMicrofacet.g2_over_4_nl_nv`) or C G*(N·L) G*(N·V)/(4 N·L N·V)
+    (:meth:`CookTorrance._smith_over_4_nl_nv`)."""
+    if form == THESIS_SMITH_CODE:
+        return scale * (light * thesis_g1(alpha, nv)) / (4 * nl * nv)
+    lam_v = smith_lambda_cos(dist, alpha, nv)
+    if form == HEIGHT_CORRELATED_CODE:
+        return 1.0 / (4.0 * (nl * nv + nv * light + nl * lam_v))
+    return 1.0 / (4.0 * (nl + light) * (nv + lam_v))
+
+
+@numba.njit(cache=True)
+def radial_integrand(dist, form, alpha, scale, theta_l, mu_l, s_l, theta_v, value, rounding, start, stop):
     """:func:`.polar.radial_integrand` at the nodes ``theta_v[start:stop]`` (rows of 21) into ``value`` and
     ``rounding`` (same rows): 2 sin θ_V cos θ_V S Φ and its rounding bound.  The rows are one call of
     the numpy integrand (the Kummer series' terms follow the call's largest x)."""
@@ -228,7 +268,7 @@ def radial_integrand(dist, form, alpha, theta_l, mu_l, s_l, theta_v, value, roun
         terms = series_terms(x, n)
     powers = np.empty(max(terms, _ASYMPTOTIC_TERMS + 2))
     f = np.empty(6)
-    lam_l = smith_lambda_cos(dist, alpha, mu_l)
+    light = light_factor(dist, form, alpha, mu_l)
     for i in range(n):
         mu_v, s_v = mu[i], s[i]
         if dist == GGX_CODE:
@@ -236,7 +276,7 @@ def radial_integrand(dist, form, alpha, theta_l, mu_l, s_l, theta_v, value, roun
         else:
             kummer(2.0 * b[i] / a2, terms, powers, f)
             phi, phi_err = _beckmann_azimuthal(a2, q[i], b[i], f)
-        weight = 2.0 * s_v * mu_v * masking(dist, form, alpha, mu_l, lam_l, mu_v)
+        weight = 2.0 * s_v * mu_v * masking(dist, form, alpha, scale, mu_l, light, mu_v)
         v = weight * phi
         if phi == 0:
             v = 0.0                      # D vanishes (e^−q/α² underflows): zero, not 0·∞
@@ -315,7 +355,7 @@ def _keep(cand, n, c):
 # --- one angle, one call -----------------------------------------------------------------------
 
 @numba.njit(cache=True)
-def albedo_one(dist, form, alpha, theta_l, mu_l, s_l, lobe_offsets, level_angles, rtol, atol, fill):
+def albedo_one(dist, form, alpha, scale, theta_l, mu_l, s_l, lobe_offsets, level_angles, rtol, atol, fill):
     """The polar route's albedo at one angle (:func:`.polar._albedo_one`): its breakpoints, the radial
     integrand and the driver's single-element path, compiled.  (value, error, evaluations, status code)."""
     st = gkc.start(breakpoints_of_one(theta_l, mu_l, alpha, lobe_offsets, level_angles), rtol, atol, fill)
@@ -323,7 +363,7 @@ def albedo_one(dist, form, alpha, theta_l, mu_l, s_l, lobe_offsets, level_angles
         x = gkc.pending(st)
         value, rounding = np.empty_like(x), np.empty_like(x)
         for start in range(0, x.shape[0], CHUNK):
-            radial_integrand(dist, form, alpha, theta_l, mu_l, s_l, x, value, rounding, start,
+            radial_integrand(dist, form, alpha, scale, theta_l, mu_l, s_l, x, value, rounding, start,
                              min(start + CHUNK, x.shape[0]))
         st = gkc.absorb(st, value, value, rounding)
     value, error, evaluations, status, _ = gkc.result(st)
