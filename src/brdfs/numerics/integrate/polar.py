@@ -38,7 +38,8 @@ Gauss–Kronrod driver reports the Gauss sum with SAFETY Σ|K − G| plus the ke
 the tests check it against both and against nested ``scipy.integrate.quad``.
 
 A single angle of a distribution and masking that :mod:`.polar_compiled` knows (GGX and Beckmann with
-Smith's masking, by the factors the model declares) runs compiled where numba is available
+Smith's masking, Cook–Torrance with the thesis's Smith G, by the factors the model declares) runs
+compiled where numba is available
 (:func:`brdfs.core.compiled.available`): breakpoints, integrand and driver in one call, a replica of
 the numpy path below, which stays the reference and the fallback.
 """
