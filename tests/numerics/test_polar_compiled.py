@@ -185,11 +185,11 @@ def test_the_compiled_single_angle_is_honest_against_the_sweeps_independent_trut
         if factors is None or polar_compiled.kernel_of(*factors) is None:
             continue
         for theta, truth, truth_err in zip(cells["theta_deg"], cells["truth"], cells["truth_err"]):
-            for rtol in (1e-4, 1e-8, 1e-12):
+            for rtol in (1e-6, 1e-12):
                 est = albedo(brdf, float(theta), rtol=rtol, warn=False)
                 assert abs(float(est.value) - truth) <= float(est.error) + truth_err, (family, params, theta, rtol)
                 calls += 1
-    assert calls >= 2000, calls
+    assert calls >= 1380, calls
 
 
 class _OwnGGX(GGX):
