@@ -192,6 +192,18 @@ def test_the_compiled_single_angle_is_honest_against_the_sweeps_independent_trut
     assert calls >= 1380, calls
 
 
+@pytest.mark.parametrize("name", ["ggx", "beckmann"])
+def test_a_numpy_float_alpha_takes_the_compiled_route_as_its_python_float(name):
+    """np.float64 is a float (the same arithmetic): a roughness drawn from numpy answers as the float."""
+    plain, drawn = MODELS[name](alpha=0.3), MODELS[name](alpha=np.float64(0.3))
+    assert polar_compiled.kernel_of(*drawn.half_vector_factors()) == polar_compiled.kernel_of(*plain.half_vector_factors())
+    for theta in (0.0, 30.0, 89.9):
+        reference, got = _both(drawn, theta, 1e-10)
+        assert got.evaluations == reference.evaluations and got.status[0] == reference.status[0]
+        assert abs(got.value[0] - reference.value[0]) <= VALUE_ULPS * EPS * reference.value[0]
+        assert got.value[0] == polar.albedo_many([plain], [theta], rtol=1e-10).value[0]
+
+
 class _OwnGGX(GGX):
     """A user's distribution: a subclass may change any formula."""
 
@@ -203,6 +215,7 @@ def test_only_the_factors_the_kernel_knows_take_it_the_rest_the_numpy_path():
     assert polar_compiled.kernel_of(_OwnGGX(0.3), S) is None                        # not its distribution
     assert polar_compiled.kernel_of(distribution, lambda nl, nv: S(nl, nv)) is None  # a user's S
     assert polar_compiled.kernel_of(*MODELS["ggx"](alpha=np.float32(0.3)).half_vector_factors()) is None
+    assert polar_compiled.kernel_of(*MODELS["ggx"](alpha=np.array(0.3)).half_vector_factors()) is None
     assert polar_compiled.kernel_of(*MODELS["cook_torrance"](m=0.3, G="smith", C=2).half_vector_factors()) is None
 
     class OwnMasking(MODELS["ggx"]):

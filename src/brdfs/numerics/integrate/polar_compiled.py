@@ -14,7 +14,7 @@ the factors a model declares (:meth:`BRDF.half_vector_factors`), never from a mo
   with the thesis's G* (:meth:`CookTorrance._smith_over_4_nl_nv`) of the same Beckmann roughness.
   A subclass that overrides the function declares another one, and takes the numpy path.
 
-Anything else (a user's distribution or S, a float32 or array α) goes to the numpy path, which stays
+Anything else (a user's distribution or S, a float32 or 0-d array α) goes to the numpy path, which stays
 the reference: every formula here is a replica of its numpy twin, operation by operation, and
 ``tests/numerics/test_polar_compiled.py`` holds the two together.  They differ in the last bits where
 numpy's SIMD exp, tan, arccos and log and scipy's erfc differ from the C library's by an ulp, and where
@@ -92,7 +92,7 @@ def kernel_of(distribution, S):
     declares, or None where the compiled kernel does not know them (the numpy path takes those)."""
     code = _DISTRIBUTIONS.get(type(distribution))
     reader = _MASKINGS.get(getattr(S, "__func__", None))
-    if code is None or reader is None or type(distribution.alpha) is not float:
+    if code is None or reader is None or not isinstance(distribution.alpha, float):   # (np.float64 is one)
         return None
     masking = reader(S.__self__, distribution)
     return None if masking is None else (code, *masking)
@@ -101,13 +101,13 @@ def kernel_of(distribution, S):
 def _smith_g2(owner, distribution):
     """:meth:`_SmithMicrofacet.g2_over_4_nl_nv`: its G2 form, λ of the same distribution."""
     form = _G2_CODES.get(owner.G2)
-    return None if form is None or owner.distribution != distribution else (form, distribution.alpha, 1.0)
+    return None if form is None or owner.distribution != distribution else (form, float(distribution.alpha), 1.0)
 
 
 def _thesis_smith(owner, distribution):
     """:meth:`CookTorrance._smith_over_4_nl_nv`: C and the thesis's G* of the same Beckmann roughness."""
-    same = type(owner.C) is float and owner.distribution == distribution
-    return (THESIS_SMITH_CODE, distribution.alpha, owner.C) if same else None
+    same = isinstance(owner.C, float) and owner.distribution == distribution
+    return (THESIS_SMITH_CODE, float(distribution.alpha), float(owner.C)) if same else None
 
 
 #: The maskings S the kernel knows, by the function a model declares, and what it reads of them.
