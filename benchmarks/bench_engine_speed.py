@@ -322,8 +322,9 @@ def _model_rows(name, brdf, rounds, other):
 
 def _closed_form(brdf, rtol):
     """Whether single calls of ``brdf`` are answered without the adaptive driver (no call of
-    ``gauss_kronrod._evaluate``): a closed form, whose target is :data:`OWN_MS_TARGET`; a model's own
-    route that integrates (the patch mixtures) has an integral route's target, :data:`RATIO_TARGET`."""
+    ``gauss_kronrod._evaluate``, and no evaluations counted: a compiled route's driver is not the numpy
+    one): a closed form, whose target is :data:`OWN_MS_TARGET`; a model's own route that integrates (the
+    patch mixtures) has an integral route's target, :data:`RATIO_TARGET`."""
     rounds, evaluate = [0], gauss_kronrod._evaluate
 
     def counted(*args, **kwargs):
@@ -332,11 +333,10 @@ def _closed_form(brdf, rtol):
 
     gauss_kronrod._evaluate = counted
     try:
-        for t in SINGLE_THETA:
-            albedo(brdf, float(t), rtol=rtol)
+        evaluations = sum(albedo(brdf, float(t), rtol=rtol).evaluations for t in SINGLE_THETA)
     finally:
         gauss_kronrod._evaluate = evaluate
-    return rounds[0] == 0
+    return rounds[0] == 0 and evaluations == 0
 
 
 def smith_evaluations():
@@ -369,7 +369,8 @@ def polar_parts(rounds=ROUNDS):
     the route (``route_us``: ``polar.albedo_many`` of the one element), its breakpoints
     (``breakpoints_us``), the driver's integration (``integrate_us``) and, in it, the radial integrand
     at the nodes (``integrand_us``); the front door's share is call − route, the driver's own
-    integrate − integrand.  ``curve_point_us`` is a point of the 100-angle curve (the same arithmetic
+    integrate − integrand; with numba, ``compiled_us`` is the compiled single angle's own call
+    (breakpoints, integrand and driver; route − compiled is its Python glue).  ``curve_point_us`` is a point of the 100-angle curve (the same arithmetic
     on arrays of ~17,000 nodes instead of ~170), ``nodes`` the mean nodes of a single call.  The
     integrand's and the driver's numpy calls on ~170-element arrays cost their dispatch (~0.5 µs each)
     whatever the arithmetic: ``fixed_over_curve`` = (call − integrand) / curve point is the ratio a
@@ -378,7 +379,9 @@ def polar_parts(rounds=ROUNDS):
     from brdfs.numerics.integrate import polar
     from brdfs.physics.models import MODELS
 
-    spent = {k: [0.0] for k in ("route", "breakpoints", "integrate", "integrand")}
+    from brdfs.core import compiled
+
+    spent = {k: [0.0] for k in ("route", "breakpoints", "integrate", "integrand", "compiled")}
 
     def timed(fn, into):
         def run(*args, **kwargs):
@@ -391,6 +394,9 @@ def polar_parts(rounds=ROUNDS):
 
     patched = [(front_door.ENGINE_ROUTES, "polar", "route"), (polar, "_breakpoints_of_one", "breakpoints"),
                (polar, "integrate", "integrate"), (polar, "radial_integrand", "integrand")]
+    if compiled.available():                     # the compiled single angle: one call of its own
+        from brdfs.numerics.integrate import polar_compiled
+        patched.append((polar_compiled, "albedo_one", "compiled"))
     get = lambda owner, attr: owner[attr] if isinstance(owner, dict) else getattr(owner, attr)    # noqa: E731
 
     def put(owner, attr, fn):
@@ -421,7 +427,8 @@ def polar_parts(rounds=ROUNDS):
             per = {f"{k}_us": 1e6 * v / SINGLE_THETA.size for k, v in best.items()}
             rows.append({"model": name, **per, "curve_point_us": 1e6 * curve / CURVE_THETA.size, "nodes": nodes,
                          "single_over_curve": per["call_us"] / (1e6 * curve / CURVE_THETA.size),
-                         "fixed_over_curve": (per["call_us"] - per["integrand_us"]) / (1e6 * curve / CURVE_THETA.size)})
+                         "fixed_over_curve": (per["call_us"] - per["integrand_us"] - per["compiled_us"])
+                         / (1e6 * curve / CURVE_THETA.size)})
     finally:
         for (owner, attr, _), fn in zip(patched, originals):
             put(owner, attr, fn)

@@ -9,6 +9,7 @@ import functools
 import numpy as np
 import pytest
 
+from brdfs.core import compiled
 from front_door_cells import DATA, WITHIN_ERRORS, answer, calls
 
 CALLS = calls()
@@ -32,7 +33,8 @@ def test_the_front_door_gives_the_stored_answer(k):
     label, name, call = CALLS[k]
     stored = _stored()
     rows = stored["call"] == k
-    value, error, status, route, evaluations, warned, shape = answer(call)
+    with compiled.numpy_only():          # the numpy routes, the reference (the compiled ones: below)
+        value, error, status, route, evaluations, warned, shape = answer(call)
     ndim = stored["per_call"][k, 2]
     assert shape == tuple(stored["per_call"][k, 3:3 + ndim]) and warned == bool(stored["per_call"][k, 1])
     assert list(route) == list(stored["route"][rows]) and list(status) == list(stored["status"][rows])
@@ -42,3 +44,25 @@ def test_the_front_door_gives_the_stored_answer(k):
     np.testing.assert_array_equal(value, stored["value"][rows])
     np.testing.assert_array_equal(error, stored["error"][rows])
     assert evaluations == stored["per_call"][k, 0]
+
+
+#: The compiled single-angle routes' values against the stored numpy ones: in ulps of the value and in
+#: parts of the stored error (tests/numerics/test_polar_compiled.py measures both over a finer grid).
+COMPILED_ULPS, COMPILED_WITHIN_ERROR = 8, 0.05
+SINGLES = [k for k, (label, *_) in enumerate(CALLS) if label.startswith("single ")]
+
+
+@pytest.mark.skipif(not compiled.available(), reason="numba missing or BRDFS_COMPILED=0")
+@pytest.mark.parametrize("k", SINGLES, ids=[CALLS[k][0] for k in SINGLES])
+def test_a_single_angle_on_a_compiled_route_gives_the_stored_answer_within_ulps(k):
+    label, name, call = CALLS[k]
+    stored = _stored()
+    rows = stored["call"] == k
+    value, error, status, route, evaluations, warned, shape = answer(call)
+    ndim = stored["per_call"][k, 2]
+    assert shape == tuple(stored["per_call"][k, 3:3 + ndim]) and warned == bool(stored["per_call"][k, 1])
+    assert list(route) == list(stored["route"][rows]) and list(status) == list(stored["status"][rows])
+    assert evaluations == stored["per_call"][k, 0]
+    eps = np.finfo(float).eps
+    assert np.all(np.abs(value - stored["value"][rows]) <= COMPILED_ULPS * eps * np.abs(stored["value"][rows]))
+    assert np.all(np.abs(value - stored["value"][rows]) <= COMPILED_WITHIN_ERROR * stored["error"][rows])

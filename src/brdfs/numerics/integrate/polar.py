@@ -36,6 +36,12 @@ range of μ_V, on which the rule resolves the layer and its tail.  The adaptive
 Gauss–Kronrod driver reports the Gauss sum with SAFETY Σ|K − G| plus the kernel's rounding bound.
 ``evaluations`` counts the kernel's nodes.  Shares no code with :mod:`.hemisphere` or :mod:`.disk`:
 the tests check it against both and against nested ``scipy.integrate.quad``.
+
+A single angle of a distribution and masking that :mod:`.polar_compiled` knows (GGX and Beckmann with
+Smith's masking, Cook–Torrance with the thesis's Smith G, by the factors the model declares) runs
+compiled where numba is available
+(:func:`brdfs.core.compiled.available`): breakpoints, integrand and driver in one call, a replica of
+the numpy path below, which stays the reference and the fallback.
 """
 from __future__ import annotations
 
@@ -43,7 +49,8 @@ import functools
 
 import numpy as np
 
-from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, integrate
+from brdfs.core import compiled
+from brdfs.core.gauss_kronrod import _STATUS_OF_ONE, FILL_CHEAP, Estimate, NodeValues, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
 _EPS = np.finfo(float).eps
@@ -101,12 +108,16 @@ def _albedo_one(brdf, theta_deg, rtol, atol) -> Estimate:
     """:func:`albedo_many` of one element (a single angle): the same breakpoints, integrand and driver,
     without the batch's grouping (:func:`_breakpoints_of_one`), θ_L, cos θ_L and sin θ_L as numbers
     (computed once, by the arrays' own cos and sin, where the batch gathers them per node: IEEE
-    operations with a number or with a column of copies give the same bits)."""
+    operations with a number or with a column of copies give the same bits).  Compiled where
+    :func:`_compiled_kernel` knows the factors (:func:`_albedo_one_compiled`)."""
     factors = brdf.half_vector_factors()
     if factors is None:
         raise ValueError(f"the polar route needs a model that declares half_vector_factors, got {brdf.name!r}")
     theta_l = np.radians(theta_deg)
     t, mu_l, s_l = theta_l.item(), np.cos(theta_l).item(), np.sin(theta_l).item()
+    kernel = _compiled_kernel(*factors)
+    if kernel is not None:
+        return _albedo_one_compiled(brdf, kernel, t, mu_l, s_l, rtol, atol)
 
     def integrand(theta_v, elem):
         value, rounding = radial_integrand(*factors, t, theta_v, mu_l, s_l)
@@ -114,6 +125,60 @@ def _albedo_one(brdf, theta_deg, rtol, atol) -> Estimate:
 
     return integrate(integrand, _breakpoints_of_one(brdf, factors[0], t, mu_l), rtol=rtol, atol=atol,
                      fill=FILL_CHEAP)
+
+
+def _compiled_kernel(distribution, S):
+    """The compiled kernel's codes of these factors (:func:`.polar_compiled.kernel_of`), or None: numba
+    missing or switched off (:func:`brdfs.core.compiled.available`), or factors it does not know."""
+    if not compiled.available():
+        return None
+    return _polar_compiled().kernel_of(distribution, S)
+
+
+_COMPILED_MODULE = []
+
+
+def _polar_compiled():
+    """:mod:`.polar_compiled`, imported on the first use (it imports numba), then kept (an import
+    statement per call costs a single angle half a µs)."""
+    if not _COMPILED_MODULE:
+        from brdfs.numerics.integrate import polar_compiled
+        _COMPILED_MODULE.append(polar_compiled)
+    return _COMPILED_MODULE[0]
+
+
+def _albedo_one_compiled(brdf, kernel, theta_l, mu_l, s_l, rtol, atol) -> Estimate:
+    """:func:`_albedo_one` in one compiled call (:func:`.polar_compiled.albedo_one`): the same breakpoints'
+    candidates (the lobe's offsets and the levels' angles from the same caches), integrand and driver."""
+    dist, form, alpha, scale = kernel
+    value, error, evaluations, status = _polar_compiled().albedo_one(
+        dist, form, alpha, scale, theta_l, mu_l, s_l, _lobe_offsets_of(alpha), _level_angles_of_one(brdf, mu_l),
+        _number(rtol), _number(atol), FILL_CHEAP)
+    value_error = np.array((value, error))
+    return Estimate(value_error[:1], value_error[1:], int(evaluations),
+                    _STATUS_OF_ONE[compiled.status_name(status)].copy())
+
+
+def _number(tol) -> float:
+    """A tolerance of one element as a Python float (as :func:`integrate` reads it)."""
+    return tol if isinstance(tol, float) else float(np.ravel(tol)[0])
+
+
+_NO_LEVELS = np.empty(0)
+_NO_LEVELS.flags.writeable = False
+
+
+def _level_angles_of_one(brdf, mu_l):
+    """The polar angles of the model's ``nv_levels`` at one μ_L, one read-only row (the cached row of
+    constant levels, as :func:`_breakpoints_of_one` takes them)."""
+    levels = brdf.nv_levels(np.array([mu_l]))
+    if not levels:
+        return _NO_LEVELS
+    if all(isinstance(c, float) for c in levels):
+        return _constant_level_angles(tuple(levels))
+    angles = np.ascontiguousarray(_level_angles(levels, 1)[0], float)
+    angles.flags.writeable = False
+    return angles
 
 
 def radial_integrand(distribution, S, theta_l, theta_v, mu_l=None, s_l=None):
