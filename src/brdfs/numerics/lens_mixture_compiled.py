@@ -1,0 +1,201 @@
+"""The compiled twin of a single angle's lens-mixture albedo (eqs. 4.8, 4.9, 4.22, 4.24): the lens
+areas a_R(d) with their rounding bounds, node by node, and the rounds of the compiled driver.
+
+A replica, operation for operation, of :func:`brdfs.physics.patch_geometry._basic_albedo_of_one` (itself
+the one-value form of :func:`~brdfs.physics.patch_geometry.basic_albedo_at`'s array formulas:
+:func:`~brdfs.physics.patch_geometry.circle_intersection`, ``_lens_rounding``, ``_angle_rounding``,
+``_segment``, ``_segment_series``, ``_four_triangle_area(_near_unit)``, ``basic_constant``) with
+``cos θ`` known, and of the integrand of ``_weighted_mixture_integral``: p(R) a_R, p(R) (a_R − [R ≥ 1])
+with a covered weight, and p(R) times the lens's rounding bound as the known error.  Python's ``max`` and
+``min`` keep their argument order (a NaN first stays).  The transcendental functions are libm's, where
+numpy's arrays take SIMD loops: a value can differ in its last ulps (the tests measure it).
+
+The weight p(R) is the model's (a profile's closed form or a user's callable): the caller evaluates it in
+numpy on each round's nodes, between the compiled rounds (:mod:`brdfs.numerics.lens_mixture`).  Imports
+numba: import it only where :func:`brdfs.core.compiled.available` says so.
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from brdfs.core import gauss_kronrod_compiled as gkc
+from brdfs.physics.patch_geometry import _SEGMENT_TERMS, _UNDERFLOWING
+
+_EPS = float(np.finfo(float).eps)
+_SIGNS = np.array([float(sign) for sign, _, _ in _SEGMENT_TERMS])
+_POWERS = np.array([float(power) for _, power, _ in _SEGMENT_TERMS])
+_FACTORIALS = np.array([factorial for _, _, factorial in _SEGMENT_TERMS])
+_TINY = float(_UNDERFLOWING)
+_NO_NODES = np.empty((0, 21))
+
+
+@numba.njit(cache=True)
+def _larger(a, b):
+    """Python's ``max(a, b)``."""
+    return b if b > a else a
+
+
+@numba.njit(cache=True)
+def _smaller(a, b):
+    """Python's ``min(a, b)``."""
+    return b if b < a else a
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _segment(t):
+    """``_segment`` of one angle: (x − sin x)/2, x = 2t, by its series (summed term by term) for 0 < |x| < 1/4.
+    x³ is ``pow``'s, as numpy's; the higher powers x³ (x²)^k are products (7 ``pow`` calls cost 150 ns an
+    angle): they are ≤ 2.6e-4 of x³ (x < 1/4), so their ulps move the sum by less than one of its own."""
+    x = 2.0 * t
+    if abs(x) < 0.25 and x != 0.0:
+        square = x * x
+        power = x ** _POWERS[0]
+        total = 0.0
+        for k in range(_SIGNS.size):
+            total += _SIGNS[k] * power / _FACTORIALS[k]
+            power *= square
+        return 0.5 * total
+    return 0.5 * (x - math.sin(x))
+
+
+#: The segments and sines of the lens's special angles 0 and π (nested or apart circles), once.
+_SEGMENT_PI = 0.5 * (2.0 * math.pi - math.sin(2.0 * math.pi))
+_SIN_PI = math.sin(math.pi)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _four_triangle_area(a, b, c):
+    """``_four_triangle_area_of_one``: Kahan's Heron formula on the sides sorted descending."""
+    if a < b:
+        a, b = b, a
+    if b < c:
+        b, c = c, b
+    if a < b:
+        a, b = b, a
+    f0, f1, f2, f3 = (a + (b + c)), (c - (a - b)), (c + (a - b)), (a + (b - c))
+    prod = f0 * f1 * f2 * f3
+    if prod < _TINY:
+        return (math.sqrt(_larger(f0, 0.0)) * math.sqrt(_larger(f1, 0.0))
+                * math.sqrt(_larger(f2, 0.0)) * math.sqrt(_larger(f3, 0.0)))
+    return math.sqrt(_larger(prod, 0.0))
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _spread(y_rel, x, x_abs, y):
+    """``_spread``: the first term of the angle's rounding (0 where not finite)."""
+    denominator = x * x + y * y
+    if denominator == 0.0:
+        return 0.0
+    spread = (abs(x) * y_rel * y + y * (4 * _EPS) * x_abs) / denominator
+    return spread if math.isfinite(spread) else 0.0
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _sin_of_atan2(y, square, angle):
+    """sin(atan2(y, x)) = y / √(x² + y²) for y ≥ 0, ``square`` = x² + y² (the error terms' sines, a few ulps
+    from libm's sin of the rounded angle: a bound needs no more, and two sines cost a fifth of a node);
+    libm's sin where x² + y² is near underflow or not finite."""
+    if square > 1e-280 and square < math.inf:
+        return y / math.sqrt(square)
+    return math.sin(angle)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def basic_albedo_of_one(d, R, mu):
+    """(value, error) of a_R at |L'_P| = d with cos θ = ``mu`` (eq. 4.8): ``_basic_albedo_of_one(d, R, mu)``."""
+    d2, one_minus_r, one_plus_r = d * d, 1.0 - R, 1.0 + R
+    product, gap = one_minus_r * one_plus_r, abs(one_minus_r)
+    x_alpha, alpha_abs = d2 + product, d2 + gap * one_plus_r
+    if d <= gap or d >= one_plus_r:          # nested or apart: the angles 0 and π, the area's rounding ε area
+        if d >= one_plus_r:
+            seg_alpha = seg_beta = sin_alpha = 0.0
+        elif R <= 1.0:
+            seg_alpha, seg_beta, sin_alpha = 0.0, _SEGMENT_PI, 0.0
+        else:
+            seg_alpha, seg_beta, sin_alpha = _SEGMENT_PI, 0.0, _SIN_PI
+        area = seg_alpha + R * R * seg_beta
+        area_error = _EPS * area
+    else:                                    # the triangle O, Q, P of the chord's end P
+        if d > 0.5:
+            mu2 = mu * mu
+            u = mu2 / (1.0 + d)
+            last = d - (R - 1.0) if R >= 0.5 else d + (1.0 - R)
+            four_delta = math.sqrt(_larger((R + u) * (1.0 + R + d) * (R - u) * last, 0.0))
+            x_beta, beta_abs = (R - mu) * (R + mu), R * R + mu2
+            y_rel = 16 * _EPS + (4 * _EPS * u / abs(R - u) if R != u else math.inf)
+        else:
+            four_delta = _four_triangle_area(1.0, R, d)
+            x_beta, beta_abs, y_rel = d2 - product, alpha_abs, 16 * _EPS
+        alpha, beta = math.atan2(four_delta, x_alpha), math.atan2(four_delta, x_beta)
+        seg_alpha, seg_beta = _segment(alpha), _segment(beta)
+        area = seg_alpha + R * R * seg_beta
+        square_alpha, square_beta = x_alpha * x_alpha + four_delta * four_delta, x_beta * x_beta + four_delta * four_delta
+        sin_alpha = _sin_of_atan2(four_delta, square_alpha, alpha)
+        sin_beta = _sin_of_atan2(four_delta, square_beta, beta)
+        d_alpha = _spread(y_rel, x_alpha, alpha_abs, four_delta) + _EPS * abs(alpha)
+        d_beta = _spread(y_rel, x_beta, beta_abs, four_delta) + _EPS * abs(beta)
+        rounding_alpha = 4 * _EPS * (seg_alpha if abs(alpha) < 0.125 else abs(alpha))
+        rounding_beta = 4 * _EPS * (seg_beta if abs(beta) < 0.125 else abs(beta))
+        propagated = 2 * (sin_alpha * sin_alpha) * d_alpha + 2 * R * R * (sin_beta * sin_beta) * d_beta
+        area_error = propagated + rounding_alpha + R * R * rounding_beta + 2 * _EPS * area
+    area_of_patch = math.pi * _smaller(1.0, R * R)
+    c = 1.0 / area_of_patch if area_of_patch else math.inf
+    value = area * c
+    moved = _smaller(d, mu * mu / d if d else math.inf)
+    from_input = abs(sin_alpha) * (4 * _EPS) * moved
+    return value, c * (area_error + from_input) + 3 * _EPS * value
+
+
+@numba.njit(cache=True, error_model="numpy")
+def lens_values(x, w, d, mu, covered):
+    """The integrand at the nodes ``x`` (m, 21) with the weight ``w`` = p(x): p a_R (p (a_R − [R ≥ 1]) with a
+    ``covered`` weight) and p times a_R's rounding bound."""
+    m = x.shape[0]
+    high, extra = np.empty((m, 21)), np.empty((m, 21))
+    for i in range(m):
+        for j in range(21):
+            value, error = basic_albedo_of_one(d, x[i, j], mu)
+            if covered and x[i, j] >= 1.0:
+                value = value - 1.0
+            high[i, j] = w[i, j] * value
+            extra[i, j] = w[i, j] * error
+    return high, extra
+
+
+@numba.njit(cache=True)
+def _next_nodes(st):
+    return _NO_NODES if gkc.finished(st) else gkc.pending(st)
+
+
+@numba.njit(cache=True)
+def begin(breakpoints, rtol, atol):
+    """The driver's state on ``breakpoints`` (plain bisection) and its first nodes."""
+    st = gkc.start(breakpoints, rtol, atol, 0)
+    return st, gkc.pending(st)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def lens_round(st, x, w, d, mu, covered):
+    """One round: the integrand at the pending nodes ``x`` with the weight ``w`` = p(x) absorbed; the state,
+    the integrand's values (high = low, extra) and the next nodes (none once finished)."""
+    high, extra = lens_values(x, w, d, mu, covered)
+    st = gkc.absorb(st, high, high, extra)
+    return st, high, extra, _next_nodes(st)
+
+
+@numba.njit(cache=True)
+def resume(breakpoints, rtol, atol, high, extra):
+    """A new pass on ``breakpoints`` whose first evaluation is ``high``, ``extra`` (the rough pass's first
+    round, on the same intervals): its state and next nodes."""
+    st = gkc.start(breakpoints, rtol, atol, 0)
+    st = gkc.absorb(st, high, high, extra)
+    return st, _next_nodes(st)
+
+
+@numba.njit(cache=True)
+def result(st):
+    """(value, error, evaluations, status code, rounds) of a finished state."""
+    return gkc.result(st)
