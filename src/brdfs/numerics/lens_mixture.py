@@ -37,29 +37,38 @@ def compiled_lens_albedo(mixture, theta_deg, rtol, atol):
     """:func:`brdfs.physics.patch_geometry.lens_mixture_albedo` of one angle with ``single_graded``, by the
     compiled lens areas and driver: an :class:`Estimate` of ``theta_deg``'s shape (value and error, as the
     numpy route's, without status: the front door judges it)."""
-    from brdfs.numerics import lens_mixture_compiled as lmc
+    from brdfs.core import gauss_kronrod_compiled as gkc
 
     theta = np.asarray(theta_deg, float)
     d = float(np.ravel(sin_incidence(theta))[0])
     mu = float(np.ravel(_cos_incidence_near_grazing(theta))[0])
     covered, p_diffuse = mixture.covered, mixture.p_diffuse
     partition = _single_element_partition(mixture.points, d, mixture.steep_layer)
-    st, x = lmc.begin(partition, ROUGH_RTOL, atol)
-    first = None
-    while x.shape[0]:
-        st, high, extra, x = lmc.lens_round(st, x, _weight_at(mixture.weight, x), d, mu, covered is not None)
-        if first is None:
-            first = high, extra
-    value, error, _, _, rounds = lmc.result(st)
+    first = []                                            # the rough pass's first evaluation
+    value, error, _, _, rounds = _passes(gkc.start(partition, ROUGH_RTOL, atol, 0), mixture, d, mu, first)
     constant = p_diffuse if covered is None else covered
     target = max(0.5 * rtol * abs(value + constant), atol)
     if not (rounds == 0 and error <= 0.25 * target):      # else the rough answer is the final one, to the bit
-        st, x = lmc.resume(partition, 0.0, target, *first)
-        while x.shape[0]:
-                st, _, _, x = lmc.lens_round(st, x, _weight_at(mixture.weight, x), d, mu, covered is not None)
-        value, error = lmc.result(st)[:2]
+        st = gkc.absorb(gkc.start(partition, 0.0, target, 0), first[0], first[0], first[1])
+        value, error = _passes(st, mixture, d, mu)[:2]
     rounding = abs(p_diffuse) if covered is None else abs(covered) + abs(p_diffuse)
     return Estimate(np.full(theta.shape, value + constant), np.full(theta.shape, error + CLOSED_FORM_RTOL * rounding))
+
+
+def _passes(st, mixture, d, mu, first=None):
+    """The compiled driver's rounds from state ``st`` to its result, p(R) in numpy on each round's nodes and
+    the lens areas compiled; ``first`` (a list) receives the first round's (values, known errors)."""
+    from brdfs.core import gauss_kronrod_compiled as gkc
+    from brdfs.numerics import lens_mixture_compiled as lmc
+
+    covered = mixture.covered is not None
+    while not gkc.finished(st):
+        x = gkc.pending(st)
+        high, extra = lmc.lens_values(x, _weight_at(mixture.weight, x), d, mu, covered)
+        if first is not None and not first:
+            first += high, extra
+        st = gkc.absorb(st, high, high, extra)
+    return gkc.result(st)
 
 
 def _weight_at(weight, x):

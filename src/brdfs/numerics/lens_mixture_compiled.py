@@ -1,7 +1,10 @@
 """The compiled twin of a single angle's lens-mixture albedo (eqs. 4.8, 4.9, 4.22, 4.24): the lens
-areas a_R(d) with their rounding bounds, node by node, and the rounds of the compiled driver.
+areas a_R(d) with their rounding bounds, node by node (:func:`lens_values`), for the rounds of the compiled
+driver (:mod:`brdfs.core.gauss_kronrod_compiled`, called from Python: a function of this module that called
+the driver would compile its own copy of it, 4.5 s more on a cold cache).
 
-A replica, operation for operation, of :func:`brdfs.physics.patch_geometry._basic_albedo_of_one` (itself
+A replica, operation for operation (but for two, where they are: the series's higher powers, the error
+terms' sines), of :func:`brdfs.physics.patch_geometry._basic_albedo_of_one` (itself
 the one-value form of :func:`~brdfs.physics.patch_geometry.basic_albedo_at`'s array formulas:
 :func:`~brdfs.physics.patch_geometry.circle_intersection`, ``_lens_rounding``, ``_angle_rounding``,
 ``_segment``, ``_segment_series``, ``_four_triangle_area(_near_unit)``, ``basic_constant``) with
@@ -21,7 +24,6 @@ import math
 import numba
 import numpy as np
 
-from brdfs.core import gauss_kronrod_compiled as gkc
 from brdfs.physics.patch_geometry import _SEGMENT_TERMS, _UNDERFLOWING
 
 _EPS = float(np.finfo(float).eps)
@@ -29,7 +31,6 @@ _SIGNS = np.array([float(sign) for sign, _, _ in _SEGMENT_TERMS])
 _POWERS = np.array([float(power) for _, power, _ in _SEGMENT_TERMS])
 _FACTORIALS = np.array([factorial for _, _, factorial in _SEGMENT_TERMS])
 _TINY = float(_UNDERFLOWING)
-_NO_NODES = np.empty((0, 21))
 
 
 @numba.njit(cache=True)
@@ -163,39 +164,3 @@ def lens_values(x, w, d, mu, covered):
             high[i, j] = w[i, j] * value
             extra[i, j] = w[i, j] * error
     return high, extra
-
-
-@numba.njit(cache=True)
-def _next_nodes(st):
-    return _NO_NODES if gkc.finished(st) else gkc.pending(st)
-
-
-@numba.njit(cache=True)
-def begin(breakpoints, rtol, atol):
-    """The driver's state on ``breakpoints`` (plain bisection) and its first nodes."""
-    st = gkc.start(breakpoints, rtol, atol, 0)
-    return st, gkc.pending(st)
-
-
-@numba.njit(cache=True, error_model="numpy")
-def lens_round(st, x, w, d, mu, covered):
-    """One round: the integrand at the pending nodes ``x`` with the weight ``w`` = p(x) absorbed; the state,
-    the integrand's values (high = low, extra) and the next nodes (none once finished)."""
-    high, extra = lens_values(x, w, d, mu, covered)
-    st = gkc.absorb(st, high, high, extra)
-    return st, high, extra, _next_nodes(st)
-
-
-@numba.njit(cache=True)
-def resume(breakpoints, rtol, atol, high, extra):
-    """A new pass on ``breakpoints`` whose first evaluation is ``high``, ``extra`` (the rough pass's first
-    round, on the same intervals): its state and next nodes."""
-    st = gkc.start(breakpoints, rtol, atol, 0)
-    st = gkc.absorb(st, high, high, extra)
-    return st, _next_nodes(st)
-
-
-@numba.njit(cache=True)
-def result(st):
-    """(value, error, evaluations, status code, rounds) of a finished state."""
-    return gkc.result(st)
