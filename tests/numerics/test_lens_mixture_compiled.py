@@ -227,3 +227,20 @@ def test_the_compiled_lens_area_is_the_numpy_one_node_by_node():
         value, error = lmc.lens_values(R[k].reshape(-1, 21), np.ones((R.shape[1] // 21, 21)), d[k], mu[k], False)
         assert np.all(np.abs(value.ravel() - expected.value) <= VALUE_ULPS * _EPS * np.abs(expected.value)), (d[k], R[k])
         assert np.all(np.abs(error.ravel() - expected.error) <= 1e-12 * expected.error), (d[k], R[k])
+
+
+def test_the_compiled_first_partition_is_the_numpy_one_to_the_bit():
+    """``single_element_partition`` against ``patch_geometry._single_element_partition`` over the declared points
+    of every example (and points at and past the ends of [0, 2]), steep layers and angles to 90°: equal arrays."""
+    from brdfs.numerics import lens_mixture_compiled as lmc
+    from brdfs.physics.patch_geometry import _single_element_partition
+
+    declared = {(brdf.lens_mixture().points, brdf.lens_mixture().steep_layer) for _, brdf in _models()}
+    cases = declared | {((0.0, 2.0), None), ((1e-3, 1.0 + 1e-12), None), ((), (2.0 - 1e-6, 2.0)), ((0.3,), (0.05, 2.0))}
+    rng = np.random.default_rng(7)
+    d = np.concatenate([np.sin(np.radians(ANGLES)), rng.uniform(0.0, 1.0, 40)])
+    for points, layer in cases:
+        for k in d:
+            expected = _single_element_partition(points, float(k), layer)
+            got = lmc.single_element_partition(np.array(points, float), float(k), layer is not None, *(layer or (0.0, 0.0)))
+            assert got.shape == expected.shape and np.array_equal(got, expected), (points, layer, k)

@@ -3,7 +3,7 @@
 The patch mixtures (:class:`brdfs.physics.models.patch.LensMixtureAlbedo`) integrate the lens areas a_R,
 weighted by p(R), in R.  A single angle's call is one or two evaluations of a few hundred nodes, which numpy
 spends mostly on the overhead of its ~80 calls of the lens's formulas; :func:`own_albedo_estimate` answers
-it instead by :func:`compiled_lens_albedo`: the same first partition, the same two passes (a rough one at
+it instead by :func:`compiled_lens_albedo`: the same first partition (compiled too), the same two passes (a rough one at
 rtol 1e-4, the final one from its first evaluation, to the target the rough sum sets), the same error terms,
 with the lens areas and the driver compiled (:mod:`.lens_mixture_compiled`) and the model's p(R) evaluated in
 numpy on each round's nodes.  Everything else (a batch of angles, a model whose ``albedo_estimate`` is its
@@ -11,13 +11,15 @@ own, no numba, ``BRDFS_COMPILED=0``) is the model's ``albedo_estimate``.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from brdfs.core import compiled
 from brdfs.core.gauss_kronrod import Estimate
 from brdfs.physics.geometry import sin_incidence
 from brdfs.physics.models.patch import LensMixtureAlbedo
-from brdfs.physics.patch_geometry import CLOSED_FORM_RTOL, _cos_incidence_near_grazing, _single_element_partition
+from brdfs.physics.patch_geometry import CLOSED_FORM_RTOL, _cos_incidence_near_grazing
 
 #: The rough pass's tolerance (``_weighted_mixture_integral``'s: it sizes the sum the target is relative to).
 ROUGH_RTOL = 1e-4
@@ -37,13 +39,13 @@ def compiled_lens_albedo(mixture, theta_deg, rtol, atol):
     """:func:`brdfs.physics.patch_geometry.lens_mixture_albedo` of one angle with ``single_graded``, by the
     compiled lens areas and driver: an :class:`Estimate` of ``theta_deg``'s shape (value and error, as the
     numpy route's, without status: the front door judges it)."""
-    from brdfs.core import gauss_kronrod_compiled as gkc
-
+    gkc, lmc = _compiled()
     theta = np.asarray(theta_deg, float)
-    d = float(np.ravel(sin_incidence(theta))[0])
-    mu = float(np.ravel(_cos_incidence_near_grazing(theta))[0])
+    d, mu = sin_incidence(theta).item(), _cos_incidence_near_grazing(theta).item()
     covered, p_diffuse = mixture.covered, mixture.p_diffuse
-    partition = _single_element_partition(mixture.points, d, mixture.steep_layer)
+    steep = mixture.steep_layer is not None
+    partition = lmc.single_element_partition(np.array(mixture.points, float), d, steep,
+                                             *(mixture.steep_layer if steep else (0.0, 0.0)))
     first = []                                            # the rough pass's first evaluation
     value, error, _, _, rounds = _passes(gkc.start(partition, ROUGH_RTOL, atol, 0), mixture, d, mu, first)
     constant = p_diffuse if covered is None else covered
@@ -52,15 +54,14 @@ def compiled_lens_albedo(mixture, theta_deg, rtol, atol):
         st = gkc.absorb(gkc.start(partition, 0.0, target, 0), first[0], first[0], first[1])
         value, error = _passes(st, mixture, d, mu)[:2]
     rounding = abs(p_diffuse) if covered is None else abs(covered) + abs(p_diffuse)
-    return Estimate(np.full(theta.shape, value + constant), np.full(theta.shape, error + CLOSED_FORM_RTOL * rounding))
+    pair = np.array((value + constant, error + CLOSED_FORM_RTOL * rounding))     # one array, two views
+    return Estimate(pair[:1].reshape(theta.shape), pair[1:].reshape(theta.shape))
 
 
 def _passes(st, mixture, d, mu, first=None):
     """The compiled driver's rounds from state ``st`` to its result, p(R) in numpy on each round's nodes and
     the lens areas compiled; ``first`` (a list) receives the first round's (values, known errors)."""
-    from brdfs.core import gauss_kronrod_compiled as gkc
-    from brdfs.numerics import lens_mixture_compiled as lmc
-
+    gkc, lmc = _compiled()
     covered = mixture.covered is not None
     while not gkc.finished(st):
         x = gkc.pending(st)
@@ -69,6 +70,15 @@ def _passes(st, mixture, d, mu, first=None):
             first += high, extra
         st = gkc.absorb(st, high, high, extra)
     return gkc.result(st)
+
+
+@functools.cache
+def _compiled():
+    """The compiled driver and lens areas, imported at the first compiled call (they import numba)."""
+    from brdfs.core import gauss_kronrod_compiled
+    from brdfs.numerics import lens_mixture_compiled
+
+    return gauss_kronrod_compiled, lens_mixture_compiled
 
 
 def _weight_at(weight, x):

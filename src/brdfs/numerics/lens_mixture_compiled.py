@@ -24,13 +24,19 @@ import math
 import numba
 import numpy as np
 
-from brdfs.physics.patch_geometry import _SEGMENT_TERMS, _UNDERFLOWING
+from brdfs.physics.patch_geometry import (_LAYERS, _SEGMENT_TERMS, _UNDERFLOWING, LENS_KINK_GRADING,
+                                          WEIGHT_LAYER_GRADING, WEIGHT_LAYER_TRIGGER, WEIGHT_POINT_GRADING)
 
 _EPS = float(np.finfo(float).eps)
 _SIGNS = np.array([float(sign) for sign, _, _ in _SEGMENT_TERMS])
 _POWERS = np.array([float(power) for _, power, _ in _SEGMENT_TERMS])
 _FACTORIALS = np.array([factorial for _, _, factorial in _SEGMENT_TERMS])
 _TINY = float(_UNDERFLOWING)
+_LAYER_FACTORS = np.array(_LAYERS)
+_KINK_GRADING = np.array(LENS_KINK_GRADING)
+_POINT_GRADING = np.array(WEIGHT_POINT_GRADING)
+_WEIGHT_LAYER = np.array(WEIGHT_LAYER_GRADING)
+_TRIGGER = float(WEIGHT_LAYER_TRIGGER)
 
 
 @numba.njit(cache=True)
@@ -164,3 +170,98 @@ def lens_values(x, w, d, mu, covered):
             high[i, j] = w[i, j] * value
             extra[i, j] = w[i, j] * error
     return high, extra
+
+
+@numba.njit(cache=True)
+def _distinct(values, count):
+    """The first ``count`` of ``values`` that lie in [0, 2], distinct and ascending (a zero's sign dropped, as
+    a set of floats that holds 0.0 first)."""
+    kept = np.empty(count)
+    n = 0
+    for k in range(count):
+        if 0.0 <= values[k] <= 2.0:
+            kept[n] = values[k] + 0.0
+            n += 1
+    for k in range(1, n):                  # insertion sort: a few dozen points
+        value, j = kept[k], k - 1
+        while j >= 0 and kept[j] > value:
+            kept[j + 1] = kept[j]
+            j -= 1
+        kept[j + 1] = value
+    m = 0
+    for k in range(n):
+        if m == 0 or kept[k] != kept[m - 1]:
+            kept[m] = kept[k]
+            m += 1
+    return kept[:m]
+
+
+@numba.njit(cache=True)
+def _last_below(row, value):
+    """The largest point of the ascending ``row`` below ``value``, NaN if none."""
+    out = math.nan
+    for p in row:
+        if p < value:
+            out = p
+    return out
+
+
+@numba.njit(cache=True)
+def _copied(row, values):
+    """``row`` copied to the start of ``values``; its length."""
+    for k in range(row.size):
+        values[k] = row[k]
+    return row.size
+
+
+@numba.njit(cache=True)
+def single_element_partition(points, d, steep, end, pole):
+    """``_single_element_partition(points, d, (end, pole) if steep else None)``: the same points, the same
+    arithmetic (a single angle's first partition, graded toward the lens's kinks and the weight's points)."""
+    lo, hi = 1.0 - d, 1.0 + d
+    values = np.empty(5 + points.size + _LAYER_FACTORS.size + _WEIGHT_LAYER.size + 2 * _KINK_GRADING.size
+                      + points.size * _POINT_GRADING.size)
+    values[0], values[1], values[2], values[3], values[4] = 0.0, 1.0, 2.0, lo, hi
+    n = 5
+    for p in points:
+        values[n] = p
+        n += 1
+    for g in _LAYER_FACTORS:
+        if lo * g < 1.0:
+            values[n] = lo * g
+            n += 1
+    row = _distinct(values, n)
+    if steep:                              # the weight's layer below min(1 + d, end): weight_layer_cuts
+        r_end = end if end < hi else hi
+        prev = _last_below(row, r_end)
+        r = pole - r_end
+        n = _copied(row, values)
+        if r > 0.0 and r_end - prev > _TRIGGER * r:
+            for g in _WEIGHT_LAYER:
+                cut = r_end - r * g
+                if cut > prev:
+                    values[n] = cut
+                    n += 1
+        row = _distinct(values, n)
+    n = _copied(row, values)
+    if lo < hi:
+        above = math.nan
+        for k in range(row.size - 1, -1, -1):
+            if row[k] > lo:
+                above = row[k]
+        below = _last_below(row, hi)
+        if not math.isnan(above):
+            for g in _KINK_GRADING:
+                values[n] = lo + (above - lo) * g
+                n += 1
+        if not math.isnan(below):
+            for g in _KINK_GRADING:
+                values[n] = hi - (hi - below) * g
+                n += 1
+    for point in points:                   # the weight's own features inside (0, 2], graded toward from below
+        before = _last_below(row, point)
+        if 0.0 < point <= 2.0 and not math.isnan(before):
+            for g in _POINT_GRADING:
+                values[n] = point - (point - before) * g
+                n += 1
+    return _distinct(values, n)
