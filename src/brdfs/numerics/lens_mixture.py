@@ -3,10 +3,10 @@
 The patch mixtures (:class:`brdfs.physics.models.patch.LensMixtureAlbedo`) integrate the lens areas a_R,
 weighted by p(R), in R.  A single angle's call is one or two evaluations of a few hundred nodes, which numpy
 spends mostly on the overhead of its ~80 calls of the lens's formulas; :func:`own_albedo_estimate` answers
-it instead by :func:`compiled_lens_albedo`: the same first partition (compiled too), the same two passes (a rough one at
-rtol 1e-4, the final one from its first evaluation, to the target the rough sum sets), the same error terms,
-with the lens areas and the driver compiled (:mod:`.lens_mixture_compiled`) and the model's p(R) evaluated in
-numpy on each round's nodes.  Everything else (a batch of angles, a model whose ``albedo_estimate`` is its
+it instead by :func:`compiled_lens_albedo`: the same first partition (compiled too), the same two passes (a
+rough one at rtol 1e-4, the final one from its first evaluation, to the target the rough sum sets), the same
+error terms, with the lens areas and the driver compiled (:mod:`.lens_mixture_compiled`) and the model's p(R)
+evaluated in numpy on each round's nodes.  Everything else (a batch of angles, a model whose ``albedo_estimate`` is its
 own, no numba, ``BRDFS_COMPILED=0``) is the model's ``albedo_estimate``.
 """
 from __future__ import annotations

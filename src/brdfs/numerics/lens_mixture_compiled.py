@@ -139,7 +139,8 @@ def basic_albedo_of_one(d, R, mu):
         alpha, beta = math.atan2(four_delta, x_alpha), math.atan2(four_delta, x_beta)
         seg_alpha, seg_beta = _segment(alpha), _segment(beta)
         area = seg_alpha + R * R * seg_beta
-        square_alpha, square_beta = x_alpha * x_alpha + four_delta * four_delta, x_beta * x_beta + four_delta * four_delta
+        y2 = four_delta * four_delta
+        square_alpha, square_beta = x_alpha * x_alpha + y2, x_beta * x_beta + y2
         sin_alpha = _sin_of_atan2(four_delta, square_alpha, alpha)
         sin_beta = _sin_of_atan2(four_delta, square_beta, beta)
         d_alpha = _spread(y_rel, x_alpha, alpha_abs, four_delta) + _EPS * abs(alpha)
