@@ -45,7 +45,7 @@ import time
 import numpy as np
 import pandas as pd
 
-from brdfs.core import gauss_kronrod
+from brdfs.core import compiled, gauss_kronrod
 from brdfs.numerics.integrate import azimuthal, hemisphere
 from brdfs.numerics.albedo import albedo
 from brdfs.pipeline.io import REPO_ROOT
@@ -322,9 +322,10 @@ def _model_rows(name, brdf, rounds, other):
 
 def _closed_form(brdf, rtol):
     """Whether single calls of ``brdf`` are answered without the adaptive driver (no call of
-    ``gauss_kronrod._evaluate``, and no evaluations counted: a compiled route's driver is not the numpy
-    one): a closed form, whose target is :data:`OWN_MS_TARGET`; a model's own route that integrates (the
-    patch mixtures) has an integral route's target, :data:`RATIO_TARGET`."""
+    ``gauss_kronrod._evaluate``, and no evaluations counted): a closed form, whose target is
+    :data:`OWN_MS_TARGET`; a model's own route that integrates (the patch mixtures) has an integral
+    route's target, :data:`RATIO_TARGET`.  Asked of the numpy routes (a compiled route integrates without
+    ``_evaluate``)."""
     rounds, evaluate = [0], gauss_kronrod._evaluate
 
     def counted(*args, **kwargs):
@@ -333,7 +334,8 @@ def _closed_form(brdf, rtol):
 
     gauss_kronrod._evaluate = counted
     try:
-        evaluations = sum(albedo(brdf, float(t), rtol=rtol).evaluations for t in SINGLE_THETA)
+        with compiled.numpy_only():
+            evaluations = sum(albedo(brdf, float(t), rtol=rtol).evaluations for t in SINGLE_THETA)
     finally:
         gauss_kronrod._evaluate = evaluate
     return rounds[0] == 0 and evaluations == 0

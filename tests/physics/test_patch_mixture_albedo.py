@@ -5,6 +5,7 @@ import pytest
 
 from brdfs import albedo, model
 from brdfs.core import gauss_kronrod
+from brdfs.core.compiled import numpy_only
 from brdfs.physics.models import MODELS
 
 #: The sweep's truths (``tests/data/sweep_truths.csv``, family patch_mixture, p(R) = 1/2, p_Diffuse = 0):
@@ -71,7 +72,8 @@ def test_a_single_angle_of_a_mixture_meets_1e_10_on_its_first_evaluation_and_agr
             rounds[0] = 0
             gauss_kronrod._evaluate = counted
             try:
-                one = albedo(brdf, float(t), rtol=rtol)
+                with numpy_only():     # the numpy driver's rounds (the compiled route's nodes are the same: its tests)
+                    one = albedo(brdf, float(t), rtol=rtol)
             finally:
                 gauss_kronrod._evaluate = evaluate
             assert str(one.status) == "converged" and str(one.route) == "engine/own"

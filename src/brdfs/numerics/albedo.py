@@ -87,6 +87,7 @@ from brdfs.numerics.integrate.disk import disk_albedo_many
 from brdfs.numerics.integrate.grouping import indices_by_model
 from brdfs.numerics.integrate.hemisphere import albedo_many
 from brdfs.numerics.integrate.scattering import albedo_scattering
+from brdfs.numerics.lens_mixture import own_albedo_estimate
 from brdfs.numerics.reference_methods import (MonteCarloEstimate, midpoint_grid, monte_carlo, monte_carlo_albedo,
                                               product_grid, scipy_dblquad, status_against)
 from brdfs.physics.lobes import SCATTERING
@@ -363,7 +364,7 @@ def _elements(groups):
 def _own_route(group, answer, theta, tol, method, chunks) -> Group:
     """``group`` answered by its model's own route (``albedo_estimate``); where that declines (None,
     as a user's subclass may), the group the engine's route takes instead, to be run."""
-    own = group.model.albedo_estimate(theta[group.rows], tol.rtol, tol.atol)
+    own = own_albedo_estimate(group.model, theta[group.rows], tol.rtol, tol.atol)
     if own is None:
         return _routed(group.model, group.owner, group.rows, method, group.limit, own=False)
     # a route that reports no status is judged by its error, not taken as converged
@@ -596,7 +597,7 @@ def _by_its_own_route(model, theta, tol) -> Estimate | None:
     if _declares_its_end(model) and (theta == 90.0).any():
         return None
     with counting_evaluations() as count:
-        own = model.albedo_estimate(theta.ravel(), tol.rtol, tol.atol)
+        own = own_albedo_estimate(model, theta.ravel(), tol.rtol, tol.atol)
         if own is None:
             return _DECLINED
         value, error = np.asarray(own.value, float), np.asarray(own.error, float)

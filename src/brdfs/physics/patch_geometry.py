@@ -581,6 +581,45 @@ def _single_element_partition(points, d, steep_layer=None):
     return np.array(sorted(cuts))
 
 
+class LensMixture(NamedTuple):
+    """What the albedo of a mixture of basic BRDFs, a^p(L) = ∫₀² p(R) a_R(L) dR + p_Diffuse (eqs. 4.22, 4.24),
+    takes from its model: the arguments of :func:`weighted_mixture_albedo` that are the model's facts (a route,
+    numpy's or a compiled one, integrates the lens areas a_R and calls ``weight`` on its nodes).
+
+    Attributes
+    ----------
+    weight : callable
+        p(R), vectorised, on [0, 2].
+    p_diffuse : float
+        The Dirac weight at R = 2.
+    points : tuple of float
+        Where p is not smooth (a profile's breakpoints, a mixture's ``weight_points``).
+    covered : float or None
+        p_Diffuse + ∫₁² p in closed form (:func:`covered_weight`), or None.
+    steep_layer : tuple of float or None
+        (end, pole) of a weight that grows toward a pole (:func:`weight_layer_cuts`), or None.
+    """
+
+    weight: object
+    p_diffuse: float
+    points: tuple = ()
+    covered: float | None = None
+    steep_layer: tuple | None = None
+
+
+def profile_mixture(profile, C) -> LensMixture:
+    """The :class:`LensMixture` of a profile's weight p(R) (eq. 4.41) at constant ``C``, with its Dirac part
+    (eq. 4.24), breakpoints, covered weight and steep layer."""
+    return LensMixture(lambda R: weight(profile, R, C), diffuse_weight(profile, C), profile.breakpoints,
+                       covered_weight(profile, C), profile.steep_layer)
+
+
+def lens_mixture_albedo(mixture, theta_deg, rtol=1e-10, atol=1e-14, single_graded=False):
+    """:func:`weighted_mixture_albedo` of a :class:`LensMixture`."""
+    return weighted_mixture_albedo(mixture.weight, mixture.p_diffuse, theta_deg, rtol, atol, mixture.points,
+                                   single_graded, mixture.covered, mixture.steep_layer)
+
+
 def _mixture_integral(profile, C, per_element, d, rtol, atol):
     """:func:`_weighted_mixture_integral` of a profile's weight p(R) (eq. 4.41) and Dirac part (eq. 4.24)."""
     return _weighted_mixture_integral(lambda R: weight(profile, R, C), diffuse_weight(profile, C), per_element,
@@ -664,9 +703,7 @@ def mixture_albedo(profile, theta_deg, C=None, rtol=1e-10, atol=1e-14, single_gr
         Albedo and error, shape of ``theta_deg``.
     """
     C = profile.c_max if C is None else float(C)
-    return weighted_mixture_albedo(lambda R: weight(profile, R, C), diffuse_weight(profile, C), theta_deg,
-                                   rtol, atol, profile.breakpoints, single_graded, covered_weight(profile, C),
-                                   profile.steep_layer)
+    return lens_mixture_albedo(profile_mixture(profile, C), theta_deg, rtol, atol, single_graded)
 
 
 def weighted_mixture_albedo(p, p_diffuse, theta_deg, rtol=1e-10, atol=1e-14, points=(), single_graded=False,

@@ -61,6 +61,22 @@ class _OnTheBasePlane:
     fresnel_cosine = staticmethod(fresnel.cos_theta_prime)
 
 
+class LensMixtureAlbedo:
+    """The albedo of a mixture of basic BRDFs as its own route (eqs. 4.22, 4.24): one quadrature in R of the
+    lens areas a_R, weighted by the model's p(R), which :meth:`lens_mixture` declares.  A single angle starts
+    from a graded partition (:func:`patch_geometry._single_element_partition`).  A compiled route may answer
+    a single angle of a model whose ``albedo_estimate`` is this one from the same :meth:`lens_mixture`."""
+
+    def lens_mixture(self) -> patch.LensMixture:
+        """p(R), p_Diffuse, the weight's points, covered weight and steep layer (:class:`~patch.LensMixture`)."""
+        raise NotImplementedError
+
+    def albedo_estimate(self, theta_deg, rtol, atol):
+        """∫₀² p(R) a_R(L) dR + p_Diffuse over the basic patches' lens areas (eqs. 4.8, 4.22, 4.24): one
+        quadrature in R of closed forms, split at the kinks of a_R and at the weight's points."""
+        return patch.lens_mixture_albedo(self.lens_mixture(), theta_deg, rtol, atol, single_graded=True)
+
+
 class _MixtureSampling(_OnTheBasePlane):
     """Sampling of a mixture of basic BRDFs, f = ∫ p(R) f*_R dR + p_Diffuse f*_2 (eq. 4.20).
 
@@ -158,7 +174,7 @@ class PatchBasic(_OnTheBasePlane, BRDF):
 
 
 @dataclass(frozen=True)
-class PatchExponential(_MixtureSampling, BRDF):
+class PatchExponential(LensMixtureAlbedo, _MixtureSampling, BRDF):
     """f = C e^{−s m(L, V)}  (eqs. 4.44/4.46), C = C_max of eq. 4.45 by default."""
 
     s: float
@@ -178,9 +194,9 @@ class PatchExponential(_MixtureSampling, BRDF):
     #: No lobe: the albedo is the mixture of lens areas (eqs. 4.22, 4.24); e^{−s m} has no kink.
     lobe = None
 
-    def albedo_estimate(self, theta_deg, rtol, atol):
-        """∫ p(R) a_R(L) dR over the lens areas (eqs. 4.22, 4.24)."""
-        return patch.mixture_albedo(patch.ExponentialProfile(self.s), theta_deg, self.C, rtol, atol, single_graded=True)
+    def lens_mixture(self):
+        """The exponential profile's weight p(R) (eq. 4.47) at C, with its Dirac part (eq. 4.24)."""
+        return patch.profile_mixture(patch.ExponentialProfile(self.s), self.C)
 
     def _eval(self, L, V, nl, nv):
         return self.C * np.exp(-self.s * projected_distance(L, V))
@@ -287,7 +303,7 @@ def _exact_pdf_nodes():
 
 
 @dataclass(frozen=True)
-class GeneralizedLambertian(_OnTheBasePlane, BRDF):
+class GeneralizedLambertian(LensMixtureAlbedo, _OnTheBasePlane, BRDF):
     """f = C min((1 − (m/2)²)^{−d/2}, ξ(m_clip))  (eqs. 4.58/4.59); C = 1/max albedo by default."""
 
     d: float
@@ -325,10 +341,10 @@ class GeneralizedLambertian(_OnTheBasePlane, BRDF):
     def _eval(self, L, V, nl, nv):
         return self.C * patch.GeneralizedLambertProfile(self.d, self.m_clip).xi(projected_distance(L, V))
 
-    def albedo_estimate(self, theta_deg, rtol, atol):
-        """∫ p(R) a_R(L) dR + p_Diffuse over the lens areas (eqs. 4.22, 4.24)."""
-        return patch.mixture_albedo(patch.GeneralizedLambertProfile(self.d, self.m_clip), theta_deg, self.C, rtol, atol,
-                                    single_graded=True)
+    def lens_mixture(self):
+        """The clipped profile's weight p(R) (eq. 4.41 with :meth:`~patch.GeneralizedLambertProfile.dxi`) at C,
+        with its Dirac part (eq. 4.24)."""
+        return patch.profile_mixture(patch.GeneralizedLambertProfile(self.d, self.m_clip), self.C)
 
     #: Its p(R) is negative (ξ increases), so it is no mixture to sample: the thesis samples it
     #: "with a cosine distribution ... and an appropriate multiplier correction factor for each
@@ -392,7 +408,7 @@ def _falling_weight(R):
 
 
 @dataclass(frozen=True)
-class PatchMixture(_MixtureSampling, BRDF):
+class PatchMixture(LensMixtureAlbedo, _MixtureSampling, BRDF):
     """Mixture of basic BRDFs f = ∫_m² p(R) c(R) dR + p_Diffuse c(2)  (eqs. 4.20, 4.21, 4.40). A weight
     that is not smooth between its declared ``weight_points`` and the built-in kinks (R = 1, 1 ∓ |L'_P|)
     gives an unreliable error estimate: declare its points.
@@ -506,13 +522,11 @@ class PatchMixture(_MixtureSampling, BRDF):
             object.__setattr__(self, "_rounding_cache", cached)
         return cached
 
-    def albedo_estimate(self, theta_deg, rtol, atol):
-        """∫₀² p(R) a_R(L) dR + p_Diffuse over the basic patches' lens areas (eqs. 4.8, 4.22, 4.24):
-        one quadrature in R of closed forms, where the disk integrates f, itself an integral in R,
-        at every point (14 sweep cells took 1,400 s); split at the kinks of a_R and at ``weight_points``
-        (p not smooth between them: an unreliable error estimate)."""
-        return patch.weighted_mixture_albedo(self.weight, self.p_diffuse, theta_deg, rtol, atol, self.weight_points,
-                                             single_graded=True)
+    def lens_mixture(self):
+        """The user's p(R) and p_Diffuse, split at ``weight_points`` (p not smooth between them: an unreliable
+        error estimate).  Its albedo is one quadrature in R of closed forms (:class:`LensMixtureAlbedo`), where
+        the disk integrates f, itself an integral in R, at every point (14 sweep cells took 1,400 s)."""
+        return patch.LensMixture(self.weight, self.p_diffuse, self.weight_points)
 
     def _eval(self, L, V, nl, nv):
         m = np.minimum(projected_distance(L, V), 2.0)

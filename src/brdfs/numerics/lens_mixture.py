@@ -1,0 +1,90 @@
+"""A model's own albedo route, a single angle of a lens mixture compiled where numba is available.
+
+The patch mixtures (:class:`brdfs.physics.models.patch.LensMixtureAlbedo`) integrate the lens areas a_R,
+weighted by p(R), in R.  A single angle's call is one or two evaluations of a few hundred nodes, which numpy
+spends mostly on the overhead of its ~80 calls of the lens's formulas; :func:`own_albedo_estimate` answers
+it instead by :func:`compiled_lens_albedo`: the same first partition (compiled too), the same two passes (a
+rough one at rtol 1e-4, the final one from its first evaluation, to the target the rough sum sets), the same
+error terms, with the lens areas and the driver compiled (:mod:`.lens_mixture_compiled`) and the model's p(R)
+evaluated in numpy on each round's nodes.  Everything else (a batch of angles, a model whose ``albedo_estimate`` is its
+own, no numba, ``BRDFS_COMPILED=0``) is the model's ``albedo_estimate``.
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from brdfs.core import compiled
+from brdfs.core.gauss_kronrod import Estimate
+from brdfs.physics.geometry import sin_incidence
+from brdfs.physics.models.patch import LensMixtureAlbedo
+from brdfs.physics.patch_geometry import CLOSED_FORM_RTOL, _cos_incidence_near_grazing
+
+#: The rough pass's tolerance (``_weighted_mixture_integral``'s: it sizes the sum the target is relative to).
+ROUGH_RTOL = 1e-4
+
+
+def own_albedo_estimate(model, theta, rtol, atol):
+    """``model.albedo_estimate(theta, rtol, atol)``; a single angle of a model whose own route is the lens
+    mixture's (:class:`LensMixtureAlbedo`, not overridden) by :func:`compiled_lens_albedo` where the compiled
+    routes are available."""
+    if np.size(theta) == 1 and type(model).albedo_estimate is LensMixtureAlbedo.albedo_estimate \
+            and compiled.available():
+        return compiled_lens_albedo(model.lens_mixture(), theta, rtol, atol)
+    return model.albedo_estimate(theta, rtol, atol)
+
+
+def compiled_lens_albedo(mixture, theta_deg, rtol, atol):
+    """:func:`brdfs.physics.patch_geometry.lens_mixture_albedo` of one angle with ``single_graded``, by the
+    compiled lens areas and driver: an :class:`Estimate` of ``theta_deg``'s shape (value and error, as the
+    numpy route's, without status: the front door judges it)."""
+    gkc, lmc = _compiled()
+    theta = np.asarray(theta_deg, float)
+    d, mu = sin_incidence(theta).item(), _cos_incidence_near_grazing(theta).item()
+    covered, p_diffuse = mixture.covered, mixture.p_diffuse
+    steep = mixture.steep_layer is not None
+    partition = lmc.single_element_partition(np.array(mixture.points, float), d, steep,
+                                             *(mixture.steep_layer if steep else (0.0, 0.0)))
+    first = []                                            # the rough pass's first evaluation
+    value, error, _, _, rounds = _passes(gkc.start(partition, ROUGH_RTOL, atol, 0), mixture, d, mu, first)
+    constant = p_diffuse if covered is None else covered
+    target = max(0.5 * rtol * abs(value + constant), atol)
+    if not (rounds == 0 and error <= 0.25 * target):      # else the rough answer is the final one, to the bit
+        st = gkc.absorb(gkc.start(partition, 0.0, target, 0), first[0], first[0], first[1])
+        value, error = _passes(st, mixture, d, mu)[:2]
+    rounding = abs(p_diffuse) if covered is None else abs(covered) + abs(p_diffuse)
+    pair = np.array((value + constant, error + CLOSED_FORM_RTOL * rounding))     # one array, two views
+    return Estimate(pair[:1].reshape(theta.shape), pair[1:].reshape(theta.shape))
+
+
+def _passes(st, mixture, d, mu, first=None):
+    """The compiled driver's rounds from state ``st`` to its result, p(R) in numpy on each round's nodes and
+    the lens areas compiled; ``first`` (a list) receives the first round's (values, known errors)."""
+    gkc, lmc = _compiled()
+    covered = mixture.covered is not None
+    while not gkc.finished(st):
+        x = gkc.pending(st)
+        high, extra = lmc.lens_values(x, _weight_at(mixture.weight, x), d, mu, covered)
+        if first is not None and not first:
+            first += high, extra
+        st = gkc.absorb(st, high, high, extra)
+    return gkc.result(st)
+
+
+@functools.cache
+def _compiled():
+    """The compiled driver and lens areas, imported at the first compiled call (they import numba)."""
+    from brdfs.core import gauss_kronrod_compiled
+    from brdfs.numerics import lens_mixture_compiled
+
+    return gauss_kronrod_compiled, lens_mixture_compiled
+
+
+def _weight_at(weight, x):
+    """p(x) as the compiled round takes it: float64, C-ordered, of ``x``'s shape (a weight may return a
+    broadcastable array or a number)."""
+    w = weight(x)
+    if type(w) is np.ndarray and w.shape == x.shape and w.dtype == np.float64 and w.flags.c_contiguous:
+        return w
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(w, float), x.shape))
