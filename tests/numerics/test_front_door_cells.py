@@ -9,9 +9,17 @@ import functools
 import numpy as np
 import pytest
 
-from front_door_cells import DATA, WITHIN_ERRORS, answer, calls
+from brdfs.core import compiled
+from brdfs.numerics.integrate import azimuthal
+from brdfs.physics.models import MODELS
+from front_door_cells import DATA, WITHIN_ERRORS, SINGLE_ANGLES, answer, calls
+from test_azimuthal_compiled import ERRORS_APART, GRAZING, ULPS
 
 CALLS = calls()
+#: The single-angle cells the compiled azimuthal route answers (:func:`.azimuthal.compiled_spec`):
+#: held to the stored (numpy) cells within ``test_azimuthal_compiled``'s stated ulps and errors apart.
+COMPILED = [k for k, (label, name, call) in enumerate(CALLS)    # the single cells are of typical examples
+            if label.startswith("single ") and azimuthal.compiled_spec(MODELS[name].example("typical")) is not None]
 
 
 @functools.cache
@@ -32,7 +40,8 @@ def test_the_front_door_gives_the_stored_answer(k):
     label, name, call = CALLS[k]
     stored = _stored()
     rows = stored["call"] == k
-    value, error, status, route, evaluations, warned, shape = answer(call)
+    with compiled.numpy_only():          # the numpy path: the reference, to the bit
+        value, error, status, route, evaluations, warned, shape = answer(call)
     ndim = stored["per_call"][k, 2]
     assert shape == tuple(stored["per_call"][k, 3:3 + ndim]) and warned == bool(stored["per_call"][k, 1])
     assert list(route) == list(stored["route"][rows]) and list(status) == list(stored["status"][rows])
@@ -42,3 +51,18 @@ def test_the_front_door_gives_the_stored_answer(k):
     np.testing.assert_array_equal(value, stored["value"][rows])
     np.testing.assert_array_equal(error, stored["error"][rows])
     assert evaluations == stored["per_call"][k, 0]
+
+
+@pytest.mark.skipif(not compiled.available(), reason="numba (the optional extra 'fast') is not installed")
+def test_the_compiled_route_gives_the_stored_single_angle_cells_within_ulps():
+    assert len(COMPILED) >= 10
+    stored = _stored()
+    for k in COMPILED:
+        label, name, call = CALLS[k]
+        rows = stored["call"] == k
+        value, error, status, route, evaluations, warned, shape = answer(call)
+        assert list(route) == list(stored["route"][rows]) and list(status) == list(stored["status"][rows]), label
+        assert warned == bool(stored["per_call"][k, 1]) and evaluations == stored["per_call"][k, 0], label
+        ulps = ULPS + GRAZING / np.cos(np.radians(max(SINGLE_ANGLES)))
+        np.testing.assert_allclose(value, stored["value"][rows], rtol=ulps * np.finfo(float).eps, atol=0, err_msg=label)
+        np.testing.assert_allclose(error, stored["error"][rows], rtol=ERRORS_APART, atol=0, err_msg=label)
