@@ -38,8 +38,8 @@ added to the error, and the albedo front door integrates elements that miss thei
 two dimensions instead.
 
 A single angle of a model whose kernel, lobe and weight the compiled route replicates
-(:func:`compiled_spec`: ``"nv"`` and ``"nv/max"``, a cosine-power or Beckmann lobe, a weight declared
-as a form) takes :mod:`.azimuthal_compiled` after its breakpoints (numba, where
+(:func:`compiled_spec`: ``"nv"``, ``"nv/max"`` and ``"sqrt(nv/nl)"``, a cosine-power or Beckmann lobe,
+a weight declared as a form) takes :mod:`.azimuthal_compiled` after its breakpoints (numba, where
 :func:`brdfs.core.compiled.available`): the same onset map, kernel, rounding bounds and driver decisions
 in one compiled call, within ulps of this module's numpy path, which stays the reference and the fallback.
 
@@ -183,7 +183,7 @@ def compiled_spec(model):
     """What the compiled single-angle route (:mod:`.azimuthal_compiled`) needs of ``model``, read from
     its declarations, or None where that route does not replicate its numpy one (then numpy answers):
     numba not available or switched off (:func:`brdfs.core.compiled.available`); a kernel other than
-    ``"nv"`` and ``"nv/max"``; a lobe other than exactly :class:`~brdfs.physics.lobes.PowerCosine` or a
+    ``"nv"``, ``"nv/max"`` and ``"sqrt(nv/nl)"``; a lobe other than exactly :class:`~brdfs.physics.lobes.PowerCosine` or a
     :class:`~brdfs.physics.lobes.MicrofacetLobe` of exactly :class:`~brdfs.physics.distributions.Beckmann`;
     a weight not declared as a form (:attr:`~brdfs.physics.models.base.BRDF.azimuth_weight_form`) or an
     ``azimuth_weight`` overridden (a user's subclass: the compiled route could not know it).
@@ -209,7 +209,8 @@ def compiled_spec(model):
 
 #: The kernels and lobes of :mod:`.azimuthal_compiled` (its codes, repeated here so that choosing the
 #: route does not import numba): ``closed_form_azimuth`` → kernel code.
-_COMPILED_KERNELS = {(MIRROR, "nv"): 0, (MIRROR, "nv/max"): 1, (HALF, "nv"): 2, (HALF, "nv/max"): 3}
+_COMPILED_KERNELS = {(MIRROR, "nv"): 0, (MIRROR, "nv/max"): 1, (HALF, "nv"): 2, (HALF, "nv/max"): 3,
+                     (HALF, "sqrt(nv/nl)"): 4}
 _COMPILED_POWER_COSINE, _COMPILED_BECKMANN = 0, 1
 
 

@@ -1,7 +1,9 @@
 """The 1-D azimuthal route of a single angle, compiled (numba): kernel, onset map and driver in one call.
 
 A replica of :func:`.azimuthal.albedo_many`'s single-element path for the kernels ``"nv"`` and
-``"nv/max"`` in both frames (:data:`~brdfs.physics.lobes.MIRROR`, :data:`~brdfs.physics.lobes.HALF`)
+``"nv/max"`` in both frames (:data:`~brdfs.physics.lobes.MIRROR`, :data:`~brdfs.physics.lobes.HALF`) and
+Ward's ``"sqrt(nv/nl)"`` (:mod:`.ward_azimuth`'s elliptic moments, with Carlson's R_D by duplication
+where numpy calls scipy's ``elliprd``)
 with a cosine-power lobe (:class:`~brdfs.physics.lobes.PowerCosine`) or a Beckmann microfacet lobe
 (:class:`~brdfs.physics.lobes.MicrofacetLobe`), and a radial weight c cos^k β / d declared by the model
 (:attr:`~brdfs.physics.models.base.BRDF.azimuth_weight_form`).  Python keeps what is cheap and shared
@@ -27,13 +29,14 @@ import numba
 import numpy as np
 
 from brdfs.core import gauss_kronrod_compiled as gkc
+from brdfs.numerics.integrate import ward_azimuth
 
 _EPS = 2.220446049250313e-16
 _TWO_PI = 2.0 * math.pi
 #: The lobes (:attr:`LOBES` of :mod:`.azimuthal`'s compiled spec): t = 1 − cos^(n+1) β, or Beckmann's CDF.
 POWER_COSINE, BECKMANN = 0, 1
 #: The kernels: (frame, kernel) of ``closed_form_azimuth``.
-MIRROR_NV, MIRROR_NV_OVER_MAX, HALF_NV, HALF_NV_OVER_MAX = 0, 1, 2, 3
+MIRROR_NV, MIRROR_NV_OVER_MAX, HALF_NV, HALF_NV_OVER_MAX, HALF_SQRT = 0, 1, 2, 3, 4
 
 _jit = numba.njit(cache=True, error_model="numpy", nogil=True)
 
@@ -99,6 +102,10 @@ def _kernel(kernel, cb, sb, mu, st):
         grazing = 2 * _level_azimuth(a, b, 0.0)
         return grazing, 4 * _EPS * grazing
     p, q, a, b = cb * mu, sb * st, (cb - sb) * (cb + sb) * mu, 2 * sb * cb * st
+    if kernel == HALF_SQRT:
+        w, rounding = _sqrt_moment(p, q, a, b)
+        root = math.sqrt(mu)
+        return 8 * w / root, 8 * (rounding + _EPS * abs(w)) / root
     if kernel == HALF_NV:
         phi = _level_azimuth(a, b, 0.0)
         return 8 * _i2(p, q, a, b, phi, math.sin(phi)), 64 * _EPS * _i2_rounding(p, q, a, b)
@@ -111,6 +118,88 @@ def _kernel(kernel, cb, sb, mu, st):
         return 8 * (i1_mu + band), 8 * (rounding + 4 * _EPS * abs(i1_mu))
     value = p * phi_h + q * sin_h
     return 8 * value, 8 * (4 * _EPS * abs(value))
+
+
+# --- Ward's kernel, "sqrt(nv/nl)": :mod:`.ward_azimuth`'s complete elliptic moments ---------------
+
+#: Carlson's stopping constant of the duplication for R_D: (ε/4)^(−1/6) (Carlson 1995, eq. 2.19).
+_RD_Q = (_EPS / 4.0) ** (-1.0 / 6.0)
+#: eq. (6)'s coefficients g_n (a constant array of the compiled code).
+_G_COEFFS = ward_azimuth._G_COEFFS.copy()
+
+
+@_jit
+def _rd(x, y, z):
+    """Carlson's symmetric R_D(x, y, z) (DLMF 19.16.5) by the duplication algorithm (Carlson 1995,
+    Algorithm 4 with its fifth-order series), x, y ≥ 0, z > 0: the integral scipy's ``elliprd`` computes
+    for :mod:`.ward_azimuth`, to a few ulps (``test_azimuthal_compiled`` measures it against mpmath)."""
+    a0 = (x + y + 3.0 * z) / 5.0
+    q = _RD_Q * max(abs(a0 - x), abs(a0 - y), abs(a0 - z))
+    dx, dy = a0 - x, a0 - y
+    a, fac, total = a0, 1.0, 0.0
+    while fac * q >= abs(a):
+        sx, sy, sz = math.sqrt(x), math.sqrt(y), math.sqrt(z)
+        lam = sx * sy + sx * sz + sy * sz
+        total += fac / (sz * (z + lam))
+        fac *= 0.25
+        x, y, z, a = 0.25 * (x + lam), 0.25 * (y + lam), 0.25 * (z + lam), 0.25 * (a + lam)
+    xx, yy = dx * fac / a, dy * fac / a
+    zz = -(xx + yy) / 3.0
+    xy, z2 = xx * yy, zz * zz
+    e2 = xy - 6.0 * z2
+    e3 = (3.0 * xy - 8.0 * z2) * zz
+    e4 = 3.0 * (xy - z2) * z2
+    e5 = xy * z2 * zz
+    series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0
+    return fac * series / (a * math.sqrt(a)) + 3.0 * total
+
+
+@_jit
+def _scaled_rd_pair(s, c):
+    """T(s, c) = s R_D(0, c, s) and t(s, c) = s R_D(0, s, c) (:func:`.ward_azimuth._scaled_rd_pair`)."""
+    if s <= ward_azimuth._LIMIT_RATIO * c:
+        return 3.0 / math.sqrt(c), 0.0
+    return s * _rd(0.0, c, s), s * _rd(0.0, s, c)
+
+
+@_jit
+def _far_moment(a, b):
+    """W₁ of eq. (6) for a ≥ 2b and its bound (:func:`.ward_azimuth._far_moment`)."""
+    coeffs = _G_COEFFS
+    r = b / a
+    z = r * r
+    g = coeffs[coeffs.size - 1]
+    for i in range(coeffs.size - 2, -1, -1):
+        g *= z
+        g += coeffs[i]
+    w1 = (b / math.sqrt(a)) * g * (math.pi / 4.0)
+    return w1, ward_azimuth._SERIES_REL * w1
+
+
+@_jit
+def _sqrt_moment(p, q, a, b):
+    """W(p, q, a, b) and its rounding bound (:func:`.ward_azimuth.sqrt_positive_part_moment`, with its
+    constants: R_D's relative error, the switch to the series and the series' coefficients and bound)."""
+    rd_rel, u = ward_azimuth._RD_REL, ward_azimuth._U
+    if not a > -b:
+        w0 = w1 = e0 = e1 = 0.0
+        if a != a or b != b:
+            w0 = w1 = e0 = e1 = math.nan
+    else:
+        alpha = a + b
+        full = a >= b
+        big, small = _scaled_rd_pair(a - b if full else b - a, alpha if full else 2.0 * b)
+        w0 = 2.0 * alpha * (big + small if full else big) / 3.0
+        w1 = 2.0 * alpha * (big - small if full else big + 2.0 * small) / 9.0
+        e0 = (rd_rel + 8.0 * u) * w0
+        if full:
+            e1 = (rd_rel + 4.0 * u) * 2.0 * alpha * (big + small) / 9.0 + 4.0 * u * abs(w1)
+        else:
+            e1 = (rd_rel + 8.0 * u) * w1
+        if a >= ward_azimuth._SERIES_SWITCH * b:
+            w1, e1 = _far_moment(a, b)
+    pw0, qw1 = p * w0, q * w1
+    return pw0 + qw1, abs(p) * e0 + abs(q) * e1 + _EPS * (abs(pw0) + abs(qw1))
 
 
 @_jit
