@@ -191,7 +191,8 @@ def compiled_spec(model):
     Returns (lobe code, n or α, the lobe's rounding, kernel code, c, k, d) of the weight c cos^k β / d."""
     if not compiled.available():
         return None
-    kernel = _COMPILED_KERNELS.get(model.closed_form_azimuth)
+    declared = model.closed_form_azimuth            # (frame, kernel): a user's may be a list
+    kernel = None if declared is None else _COMPILED_KERNELS.get(tuple(declared))
     if kernel is None or type(model).azimuth_weight is not BRDF.azimuth_weight:
         return None
     lobe, form = model.lobe, model.azimuth_weight_form
