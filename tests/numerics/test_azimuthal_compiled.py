@@ -67,6 +67,21 @@ def test_the_compiled_route_covers_both_lobes_and_every_kernel_it_replicates():
     assert kernels == set(azimuthal._COMPILED_KERNELS.values()) and {spec[0] for spec in specs} == {0, 1}
 
 
+def test_a_single_angle_of_a_covered_model_is_answered_without_the_numpy_driver(monkeypatch):
+    """The front door's single angle of every covered model takes the compiled route (the numpy driver
+    of the 1-D route is never called), with the 1-D route's name, and a batch still takes numpy."""
+    import brdfs
+
+    def refused(*args, **kwargs):
+        raise AssertionError("the numpy driver was called")
+    monkeypatch.setattr(azimuthal, "integrate", refused)
+    for brdf in _covered():
+        est = brdfs.albedo(brdf, 30.0, rtol=1e-8)
+        assert str(est.route) == "engine/azimuthal" and str(est.status) == "converged", brdf
+    with pytest.raises(AssertionError, match="numpy driver"):
+        azimuthal.albedo_many([brdf] * 2, np.array([30.0, 60.0]))
+
+
 @pytest.mark.filterwarnings("ignore:invalid value encountered:RuntimeWarning")    # Ward at exactly 90°: NaN both ways
 def test_the_compiled_route_gives_the_numpy_answer_over_the_grid():
     cells, flips, worst = 0, [], 0.0
