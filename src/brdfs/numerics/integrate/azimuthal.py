@@ -192,27 +192,28 @@ def compiled_spec(model):
     if not compiled.available():
         return None
     declared = model.closed_form_azimuth            # (frame, kernel): a user's may be a list
-    kernel = None if declared is None else _COMPILED_KERNELS.get(tuple(declared))
+    kernel = None if declared is None else COMPILED_KERNELS.get(tuple(declared))
     if kernel is None or type(model).azimuth_weight is not BRDF.azimuth_weight:
         return None
     lobe, form = model.lobe, model.azimuth_weight_form
     if form is None:
         return None
     if type(lobe) is PowerCosine:
-        code, shape = _COMPILED_POWER_COSINE, lobe.n
+        code, shape = COMPILED_POWER_COSINE, lobe.n
     elif type(lobe) is MicrofacetLobe and type(lobe.distribution) is Beckmann:
-        code, shape = _COMPILED_BECKMANN, lobe.distribution.alpha
+        code, shape = COMPILED_BECKMANN, lobe.distribution.alpha
     else:
         return None
     c, k, d = form
     return code, float(shape), float(lobe.rounding), kernel, float(c), float(k), float(d)
 
 
-#: The kernels and lobes of :mod:`.azimuthal_compiled` (its codes, repeated here so that choosing the
-#: route does not import numba): ``closed_form_azimuth`` → kernel code.
-_COMPILED_KERNELS = {(MIRROR, "nv"): 0, (MIRROR, "nv/max"): 1, (HALF, "nv"): 2, (HALF, "nv/max"): 3,
-                     (HALF, "sqrt(nv/nl)"): 4}
-_COMPILED_POWER_COSINE, _COMPILED_BECKMANN = 0, 1
+#: The codes of the kernels and lobes :mod:`.azimuthal_compiled` replicates (it reads them from here, so
+#: that choosing the route does not import numba): ``closed_form_azimuth`` → kernel code.
+COMPILED_KERNELS = {(MIRROR, "nv"): 0, (MIRROR, "nv/max"): 1, (HALF, "nv"): 2, (HALF, "nv/max"): 3,
+                    (HALF, "sqrt(nv/nl)"): 4}
+#: ... and the lobes': t = 1 − cos^(n+1) β (:class:`~brdfs.physics.lobes.PowerCosine`), or Beckmann's CDF.
+COMPILED_POWER_COSINE, COMPILED_BECKMANN = 0, 1
 
 
 def _compiled_single(spec, bp, onset_lo, onset_hi, mu, st, rtol, atol):

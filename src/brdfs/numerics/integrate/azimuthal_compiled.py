@@ -29,14 +29,15 @@ import numba
 import numpy as np
 
 from brdfs.core import gauss_kronrod_compiled as gkc
-from brdfs.numerics.integrate import ward_azimuth
+from brdfs.numerics.integrate import azimuthal, ward_azimuth
+from brdfs.physics.lobes import HALF, MIRROR
 
-_EPS = 2.220446049250313e-16
+_EPS = float(np.finfo(float).eps)
 _TWO_PI = 2.0 * math.pi
-#: The lobes (:attr:`LOBES` of :mod:`.azimuthal`'s compiled spec): t = 1 − cos^(n+1) β, or Beckmann's CDF.
-POWER_COSINE, BECKMANN = 0, 1
-#: The kernels: (frame, kernel) of ``closed_form_azimuth``.
-MIRROR_NV, MIRROR_NV_OVER_MAX, HALF_NV, HALF_NV_OVER_MAX, HALF_SQRT = 0, 1, 2, 3, 4
+#: The lobes' and kernels' codes, :mod:`.azimuthal`'s (constants of the compiled code).
+POWER_COSINE = azimuthal.COMPILED_POWER_COSINE
+MIRROR_NV, MIRROR_NV_OVER_MAX, HALF_NV, HALF_SQRT = (azimuthal.COMPILED_KERNELS[k] for k in (
+    (MIRROR, "nv"), (MIRROR, "nv/max"), (HALF, "nv"), (HALF, "sqrt(nv/nl)")))
 
 _jit = numba.njit(cache=True, error_model="numpy", nogil=True)
 
@@ -109,6 +110,7 @@ def _kernel(kernel, cb, sb, mu, st):
     if kernel == HALF_NV:
         phi = _level_azimuth(a, b, 0.0)
         return 8 * _i2(p, q, a, b, phi, math.sin(phi)), 64 * _EPS * _i2_rounding(p, q, a, b)
+    # the half frame's "nv/max" (the last code)
     phi_h, phi_mu = _level_azimuth(a, b, 0.0 * mu), _level_azimuth(a, b, mu)
     sin_h, sin_mu = math.sin(phi_h), math.sin(phi_mu)
     if mu > 0:
