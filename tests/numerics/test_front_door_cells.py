@@ -11,6 +11,7 @@ import pytest
 
 from brdfs.core import compiled
 from front_door_cells import DATA, WITHIN_ERRORS, answer, calls
+from test_azimuthal_compiled import ERRORS_APART, GRAZING
 
 CALLS = calls()
 
@@ -46,8 +47,9 @@ def test_the_front_door_gives_the_stored_answer(k):
     assert evaluations == stored["per_call"][k, 0]
 
 
-#: The compiled single-angle routes' values against the stored numpy ones: in ulps of the value and in
-#: parts of the stored error (tests/numerics/test_polar_compiled.py measures both over a finer grid).
+#: The compiled single-angle routes' values against the stored numpy ones: in ulps of the value (plus
+#: GRAZING ε/cos θ, the rounding of the kernels that divide by cos θ), in parts of the stored error, and the
+#: errors within ERRORS_APART (the routes' own tests measure each over finer grids).
 COMPILED_ULPS, COMPILED_WITHIN_ERROR = 8, 0.05
 SINGLES = [k for k, (label, *_) in enumerate(CALLS) if label.startswith("single ")]
 
@@ -63,6 +65,9 @@ def test_a_single_angle_on_a_compiled_route_gives_the_stored_answer_within_ulps(
     assert shape == tuple(stored["per_call"][k, 3:3 + ndim]) and warned == bool(stored["per_call"][k, 1])
     assert list(route) == list(stored["route"][rows]) and list(status) == list(stored["status"][rows])
     assert evaluations == stored["per_call"][k, 0]
-    eps = np.finfo(float).eps
-    assert np.all(np.abs(value - stored["value"][rows]) <= COMPILED_ULPS * eps * np.abs(stored["value"][rows]))
-    assert np.all(np.abs(value - stored["value"][rows]) <= COMPILED_WITHIN_ERROR * stored["error"][rows])
+    theta = float(label.split()[-1])                 # "single <model>/typical <angle>"
+    ulps = COMPILED_ULPS + GRAZING / np.cos(np.radians(theta))
+    apart = np.abs(value - stored["value"][rows])
+    assert np.all(apart <= ulps * np.finfo(float).eps * np.abs(stored["value"][rows]))
+    assert np.all(apart <= COMPILED_WITHIN_ERROR * stored["error"][rows])
+    np.testing.assert_allclose(error, stored["error"][rows], rtol=ERRORS_APART, atol=0)

@@ -220,8 +220,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         error_1 = SAFETY * total_1 + extra_1 + 50 * _EPS * absval_1
         met = error_1 <= max(rtol_1 * abs(low_1), atol_1)
         status = CONVERGED if met else BUDGET_EXHAUSTED if exhausted else STALLED
-        value_error = np.array((low_1, error_1))          # one array, two views: a numpy call less per array
-        est = Estimate(value_error[:1], value_error[1:], evaluations, _STATUS_OF_ONE[status].copy())
+        est = estimate_of_one(low_1, error_1, evaluations, status)
     else:
         high, low, extra, absval = (np.bincount(elem, v, n_el) for v in vals)
         total = np.bincount(elem, err, n_el)
@@ -230,6 +229,13 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
         est = Estimate(low, error, evaluations, status)
     return (est, rounds) if return_rounds else est
+
+
+def estimate_of_one(value, error, evaluations, status) -> Estimate:
+    """A single element's :class:`Estimate` from Python numbers: arrays of shape (1,), built in few
+    numpy calls (``value`` and ``error`` two views of one array; the status a copy of a template)."""
+    value_error = np.array((value, error))
+    return Estimate(value_error[:1], value_error[1:], evaluations, _STATUS_OF_ONE[status].copy())
 
 
 def _single_sums(elem, vals, err):

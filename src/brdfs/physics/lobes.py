@@ -62,9 +62,10 @@ class PowerCosine:
         s = np.sqrt(np.maximum(-np.expm1(y) * (1.0 + c), 0.0))
         return c, s
 
-    def weight_per_t(self, cos_b, C=1.0):
-        """C cos^n β sin β dβ per unit t: C/(n+1) (the radial weight of the closed-form azimuth)."""
-        return C / (self.n + 1.0)
+    def weight_per_t_form(self, C=1.0):
+        """C cos^n β sin β dβ per unit t = C/(n+1), as the form (c, k, d) of c cos^k β / d: (C, 0, n+1)
+        (the radial weight of the closed-form azimuth, :attr:`brdfs.physics.models.base.BRDF.azimuth_weight_form`)."""
+        return (C, 0, self.n + 1.0)
 
     def solid_angle_per_t(self, t, cos_b, sin_b):
         """sin β dβ/dt = 1 / ((n+1) cos^n β)."""

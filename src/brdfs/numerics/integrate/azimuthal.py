@@ -37,6 +37,12 @@ divides a difference by cos θ it loses ε / cos θ relative digits near grazing
 added to the error, and the albedo front door integrates elements that miss their tolerance in
 two dimensions instead.
 
+A single angle of a model whose kernel, lobe and weight the compiled route replicates
+(:func:`compiled_spec`: ``"nv"``, ``"nv/max"`` and ``"sqrt(nv/nl)"``, a cosine-power or Beckmann lobe,
+a weight declared as a form) takes :mod:`.azimuthal_compiled` after its breakpoints (numba, where
+:func:`brdfs.core.compiled.available`): the same onset map, kernel, rounding bounds and driver decisions
+in one compiled call, within ulps of this module's numpy path, which stays the reference and the fallback.
+
 Independent of the engine's two-dimensional quadrature (:mod:`.hemisphere`) except for the
 breakpoints; the tests compare the two, and the accuracy map compares both with :mod:`.disk`.
 """
@@ -48,15 +54,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from brdfs.core import compiled
 from brdfs.core.estimate import CONVERGED, STALLED
-from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, integrate
+from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, estimate_of_one, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 from brdfs.numerics.integrate.hemisphere import (ROOT_RTOL, TAIL, horizon_onset, level_azimuth, level_cos,
                                                  radial_breakpoints_many, square_root_onset)
 from brdfs.numerics.integrate.mean import positive_part_azimuth
 from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
+from brdfs.physics.distributions import Beckmann
 from brdfs.physics.geometry import cos_incidence, sin_incidence
-from brdfs.physics.lobes import HALF, MIRROR
+from brdfs.physics.lobes import HALF, MIRROR, MicrofacetLobe, PowerCosine
+from brdfs.physics.models.base import BRDF
 
 _EPS = np.finfo(float).eps
 
@@ -127,6 +136,11 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     else:
         tight = False
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
+    bp, *onset = horizon_onset(bp, t0, min_span=TIGHT_ONSET_MIN_SPAN if tight else None)
+    if single and not kinks.element.size and (spec := compiled_spec(models[0])) is not None:
+        est = _compiled_single(spec, bp, *onset, float(mu[0]), float(st[0]), rtol, atol)
+        if est is not None:
+            return est
     kernels = ({0: _RadialKernel.of(models[0])} if single else
                {members[0]: _RadialKernel.of(models[members[0]]) for members in indices_by_model(models)})
     if single:                             # one element: its cos θ and sin θ as a (1, 1) column, not gathered per node row
@@ -152,7 +166,6 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
                 value[rows], rounding[rows] = kernels[k](t[rows], mu[e, None], st[e, None])
             return NodeValues(value, value, rounding)
 
-    bp, *onset = horizon_onset(bp, t0, min_span=TIGHT_ONSET_MIN_SPAN if tight else None)
     if kinks is None or not kinks.element.size:
         # at ROOT_RTOL a misplaced kink costs ~1e-18 of the integral, below the 50 ε Σ|f| floor already in
         return integrate(square_root_onset(integrand, *onset), bp, rtol=rtol, atol=atol, fill=FILL_CHEAP)
@@ -164,6 +177,62 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
     status = np.where((np.asarray(est.status) == CONVERGED) & (error > np.maximum(rtol * np.abs(est.value), atol)),
                       STALLED, est.status)
     return Estimate(est.value, error, est.evaluations + probes.evaluations, status)
+
+
+def compiled_spec(model):
+    """What the compiled single-angle route (:mod:`.azimuthal_compiled`) needs of ``model``, read from
+    its declarations, or None where that route does not replicate its numpy one (then numpy answers):
+    numba not available or switched off (:func:`brdfs.core.compiled.available`); a kernel other than
+    ``"nv"``, ``"nv/max"`` and ``"sqrt(nv/nl)"``; a lobe other than exactly :class:`~brdfs.physics.lobes.PowerCosine` or a
+    :class:`~brdfs.physics.lobes.MicrofacetLobe` of exactly :class:`~brdfs.physics.distributions.Beckmann`;
+    a weight not declared as a form (:attr:`~brdfs.physics.models.base.BRDF.azimuth_weight_form`) or an
+    ``azimuth_weight`` overridden (a user's subclass: the compiled route could not know it).
+
+    Returns (lobe code, n or α, the lobe's rounding, kernel code, c, k, d) of the weight c cos^k β / d."""
+    if not compiled.available():
+        return None
+    declared = model.closed_form_azimuth            # (frame, kernel): a user's may be a list
+    kernel = None if declared is None else COMPILED_KERNELS.get(tuple(declared))
+    if kernel is None or type(model).azimuth_weight is not BRDF.azimuth_weight:
+        return None
+    lobe, form = model.lobe, model.azimuth_weight_form
+    if form is None:
+        return None
+    if type(lobe) is PowerCosine:
+        code, shape = COMPILED_POWER_COSINE, lobe.n
+    elif type(lobe) is MicrofacetLobe and type(lobe.distribution) is Beckmann:
+        code, shape = COMPILED_BECKMANN, lobe.distribution.alpha
+    else:
+        return None
+    c, k, d = form
+    return code, float(shape), float(lobe.rounding), kernel, float(c), float(k), float(d)
+
+
+#: The codes of the kernels and lobes :mod:`.azimuthal_compiled` replicates (it reads them from here, so
+#: that choosing the route does not import numba): ``closed_form_azimuth`` → kernel code.
+COMPILED_KERNELS = {(MIRROR, "nv"): 0, (MIRROR, "nv/max"): 1, (HALF, "nv"): 2, (HALF, "nv/max"): 3,
+                    (HALF, "sqrt(nv/nl)"): 4}
+#: ... and the lobes': t = 1 − cos^(n+1) β (:class:`~brdfs.physics.lobes.PowerCosine`), or Beckmann's CDF.
+COMPILED_POWER_COSINE, COMPILED_BECKMANN = 0, 1
+
+
+def _compiled_single(spec, bp, onset_lo, onset_hi, mu, st, rtol, atol):
+    """One angle on the compiled route: :func:`.hemisphere.square_root_onset`'s W of the onset interval
+    as numpy computes it, then one compiled call (:func:`.azimuthal_compiled.albedo_one`); None where
+    the onset interval is not one :func:`.hemisphere.horizon_onset` gives (numpy answers)."""
+    from brdfs.numerics.integrate import azimuthal_compiled
+    lo, hi = float(onset_lo[0]), float(onset_hi[0])
+    if 0.0 < lo < hi:
+        scale = float(np.arcsinh(math.sqrt((hi - lo) / lo))) / (hi - lo)
+    elif math.isnan(lo):
+        scale = 0.0
+    else:
+        return None
+    rtol_1 = rtol if isinstance(rtol, float) else float(np.ravel(rtol)[0])
+    atol_1 = atol if isinstance(atol, float) else float(np.ravel(atol)[0])
+    value, error, evaluations, status = azimuthal_compiled.albedo_one(
+        bp[0], mu, st, *spec, lo, hi, scale, rtol_1, atol_1, FILL_CHEAP)
+    return estimate_of_one(value, error, int(evaluations), compiled.status_name(status))
 
 
 def single_angle_root_rtol(rtol):

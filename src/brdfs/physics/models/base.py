@@ -387,14 +387,26 @@ class BRDF:
         albedo is a 1-D integral over θ_V (:mod:`brdfs.numerics.integrate.polar`).  None by default."""
         return None
 
-    def azimuth_weight(self, cos_beta):
+    @property
+    def azimuth_weight_form(self) -> tuple[float, float, float] | None:
         """The radial weight w(β) per unit of the lobe variable t that multiplies the closed-form
-        azimuthal kernel named by :attr:`closed_form_azimuth` (:mod:`brdfs.numerics.integrate.azimuthal`):
-        by default C times the lobe's own weight per unit t (a cosine power: C/(n+1))."""
-        weight_per_t = getattr(self.lobe, "weight_per_t", None)
-        if self.closed_form_azimuth is None or weight_per_t is None:
+        azimuthal kernel named by :attr:`closed_form_azimuth` (:mod:`brdfs.numerics.integrate.azimuthal`),
+        as the form (c, k, d) of w = c cos^k β / d, or None: by default C times the lobe's own weight
+        per unit t (a cosine power: (C, 0, n+1), C/(n+1)).  :meth:`azimuth_weight` evaluates it, and
+        the compiled single-angle route reads it (a model that overrides :meth:`azimuth_weight` takes
+        the numpy route)."""
+        form = getattr(self.lobe, "weight_per_t_form", None)
+        if self.closed_form_azimuth is None or form is None:
+            return None
+        return form(self.C)
+
+    def azimuth_weight(self, cos_beta):
+        """w(β) of :attr:`azimuth_weight_form` at cos β: c/d where k = 0 (a number), else c cos^k β / d."""
+        form = self.azimuth_weight_form
+        if form is None:
             raise NotImplementedError(f"{self.name} declares no closed-form azimuth weight")
-        return weight_per_t(cos_beta, self.C)
+        c, k, d = form
+        return c / d if k == 0 else c * cos_beta ** k / d
 
     def delta_albedo(self, theta_deg) -> Estimate:
         """Albedo of the Dirac part of the BRDF: none by default."""

@@ -44,10 +44,11 @@ class _BeckmannFamily(BRDF):
     def lobe(self):
         return MicrofacetLobe(self.distribution)
 
-    def azimuth_weight(self, cos_beta):
+    @property
+    def azimuth_weight_form(self):
         """Ward and corrected Ward: C e^(−tan²δ/m²)/(4π m²) · 4 · sin δ dδ/dt
-        (:meth:`Beckmann.solid_angle_per_t`) = C cos³δ/(8π)."""
-        return self.C * cos_beta ** 3 / (8 * np.pi)
+        (:meth:`Beckmann.solid_angle_per_t`) = C cos³δ/(8π): (C, 3, 8π), where the azimuth has a closed form."""
+        return None if self.closed_form_azimuth is None else (self.C, 3, 8 * np.pi)
 
     # --- sampling: Beckmann normals with the half-vector Jacobian ------------------------------
     #: ``"beckmann"``: H from :meth:`Beckmann.sample_normal` (density D(H) N·H), V = 2 (L·H) H − L,
@@ -232,9 +233,11 @@ class CookTorrance(_BeckmannFamily):
         """G of eq. 2.10 and G = 1 are piecewise linear in L·H and N·V: closed forms; Smith's is not."""
         return {"torrance_sparrow": (HALF, "G/nl"), "none": (HALF, "1/nl")}.get(self.G)
 
-    def azimuth_weight(self, cos_beta):
-        """C e^(−tan²δ/m²)/(4π m² cos⁴δ) · 4 · sin δ dδ/dt · cos δ = C/(8π) (the kernel keeps L·H/cos δ)."""
-        return self.C / (8 * np.pi) + 0 * cos_beta
+    @property
+    def azimuth_weight_form(self):
+        """C e^(−tan²δ/m²)/(4π m² cos⁴δ) · 4 · sin δ dδ/dt · cos δ = C/(8π) (the kernel keeps L·H/cos δ):
+        (C, 0, 8π), where the azimuth has a closed form."""
+        return None if self.closed_form_azimuth is None else (self.C, 0, 8 * np.pi)
 
     def half_vector_factors(self):
         """Smith's G: f = D(H) · C G*(N·L) G*(N·V)/(4 N·L N·V) with D the Beckmann density
