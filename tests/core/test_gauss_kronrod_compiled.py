@@ -159,3 +159,42 @@ def test_the_refinement_helpers_match_the_numpy_drivers_on_random_intervals():
         c_err = err[np.concatenate([np.tile(g, s) for s, g in expected])] * rng.uniform(0, 0.6, c_lo.size) ** 2
         assert (gkc._child_stalls(groups, g_idx, c_err, err, stalls)
                 == gk._child_stalls(expected, c_err, err, stalls)).all()
+
+
+def test_a_compiled_routes_fingerprint_covers_the_driver_and_the_constants_it_reads():
+    """numba keys a cache on one file; the routes' caches are dropped when any brdfs module they
+    import, directly or not, changes: the driver, and the modules whose constants they read."""
+    closure = compiled.brdfs_imports("brdfs.numerics.integrate.polar_compiled")
+    assert {"brdfs.core.gauss_kronrod_compiled", "brdfs.core.gauss_kronrod",
+            "brdfs.numerics.integrate.polar"} <= closure
+    assert "brdfs.numerics.albedo" not in closure and "brdfs.pipeline" not in {m[:14] for m in closure}
+
+
+def test_a_changed_dependency_drops_the_compiled_modules_cache_once(tmp_path, monkeypatch):
+    import shutil
+    import types
+    package = tmp_path / "brdfs"
+    shutil.copytree(compiled._PACKAGE / "core", package / "core")
+    (package / "__init__.py").write_text("")
+    monkeypatch.setattr(compiled, "_PACKAGE", package)
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    module = types.ModuleType("brdfs.core.gauss_kronrod_compiled")
+    module.__file__ = str(package / "core" / "gauss_kronrod_compiled.py")
+    module.start = types.SimpleNamespace(_cache=types.SimpleNamespace(_cache_path=str(cache)))
+    entries = [cache / "gauss_kronrod_compiled.start-70.py311.nbi", cache / "gauss_kronrod_compiled.start-70.py311.1.nbc"]
+    other = cache / "polar_compiled.albedo_one-9.py311.nbi"
+
+    def cached():
+        for entry in [*entries, other]:
+            entry.write_text("machine code")
+    cached()
+    assert compiled.drop_stale_cache(module)                    # no fingerprint yet: dropped
+    assert not any(e.exists() for e in entries) and other.exists()
+    cached()
+    assert not compiled.drop_stale_cache(module)                # nothing changed: kept
+    assert all(e.exists() for e in entries)
+    source = package / "core" / "gauss_kronrod.py"               # a constant the driver reads changes
+    source.write_text(source.read_text().replace("SAFETY = 2.0", "SAFETY = 3.0"))
+    assert compiled.drop_stale_cache(module)
+    assert not any(e.exists() for e in entries) and other.exists()

@@ -28,9 +28,12 @@ from __future__ import annotations
 
 import math
 
+import sys
+
 import numba
 import numpy as np
 
+from brdfs.core import compiled
 from brdfs.core.gauss_kronrod import (GAUSS_WEIGHTS, KRONROD_WEIGHTS, LOCALISED, MAX_PIECES, NODES, SAFETY,
                                       STALL_LIMIT)
 
@@ -441,3 +444,7 @@ def result(st):
     """(value, error, evaluations, status code, refinement rounds) of a finished state."""
     ints, floats = st[11], st[12]
     return floats[_VALUE], floats[_ERROR], ints[_EVALUATIONS], ints[_STATUS], ints[_ROUNDS]
+
+
+# numba keys its cache on this file alone: drop it when a module this one depends on has changed
+compiled.drop_stale_cache(sys.modules[__name__])

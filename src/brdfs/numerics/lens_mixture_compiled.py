@@ -21,9 +21,12 @@ from __future__ import annotations
 
 import math
 
+import sys
+
 import numba
 import numpy as np
 
+from brdfs.core import compiled
 from brdfs.physics.patch_geometry import (_LAYERS, _SEGMENT_TERMS, _UNDERFLOWING, LENS_KINK_GRADING,
                                           WEIGHT_LAYER_GRADING, WEIGHT_LAYER_TRIGGER, WEIGHT_POINT_GRADING)
 
@@ -266,3 +269,7 @@ def single_element_partition(points, d, steep, end, pole):
                 values[n] = point - (point - before) * g
                 n += 1
     return _distinct(values, n)
+
+
+# numba keys its cache on this file alone: drop it when a module this one depends on has changed
+compiled.drop_stale_cache(sys.modules[__name__])

@@ -25,10 +25,12 @@ from __future__ import annotations
 
 import math
 
+import sys
+
 import numba
 import numpy as np
 
-from brdfs.core import gauss_kronrod_compiled as gkc
+from brdfs.core import compiled, gauss_kronrod_compiled as gkc
 from brdfs.numerics.integrate import azimuthal, ward_azimuth
 from brdfs.physics.lobes import HALF, MIRROR
 
@@ -250,3 +252,7 @@ def albedo_one(breakpoints, mu, st, lobe, p, lobe_rounding, kernel, wc, wk, wd, 
         state = gkc.absorb(state, value, value, rounding)
     value, error, evaluations, status, _ = gkc.result(state)
     return value, error, evaluations, status
+
+
+# numba keys its cache on this file alone: drop it when a module this one depends on has changed
+compiled.drop_stale_cache(sys.modules[__name__])

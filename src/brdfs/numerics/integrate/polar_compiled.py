@@ -24,10 +24,12 @@ from __future__ import annotations
 
 import math
 
+import sys
+
 import numba
 import numpy as np
 
-from brdfs.core import gauss_kronrod_compiled as gkc
+from brdfs.core import compiled, gauss_kronrod_compiled as gkc
 from brdfs.numerics.integrate.polar import GRAZING_GRADING, S_ROUNDING
 from brdfs.physics import distributions as _dist
 from brdfs.physics.distributions import GGX, Beckmann
@@ -368,3 +370,7 @@ def albedo_one(dist, form, alpha, scale, theta_l, mu_l, s_l, lobe_offsets, level
         st = gkc.absorb(st, value, value, rounding)
     value, error, evaluations, status, _ = gkc.result(st)
     return value, error, evaluations, status
+
+
+# numba keys its cache on this file alone: drop it when a module this one depends on has changed
+compiled.drop_stale_cache(sys.modules[__name__])
