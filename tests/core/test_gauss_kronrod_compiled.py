@@ -198,3 +198,23 @@ def test_a_changed_dependency_drops_the_compiled_modules_cache_once(tmp_path, mo
     source.write_text(source.read_text().replace("SAFETY = 2.0", "SAFETY = 3.0"))
     assert compiled.drop_stale_cache(module)
     assert not any(e.exists() for e in entries) and other.exists()
+
+
+def test_numpy_only_holds_in_its_own_thread_only():
+    import threading
+    inside, outside = threading.Event(), threading.Event()
+    seen = {}
+
+    def numpy_thread():
+        with compiled.numpy_only():
+            seen["inside"] = compiled.available()
+            inside.set()
+            outside.wait(5)
+
+    worker = threading.Thread(target=numpy_thread)
+    worker.start()
+    inside.wait(5)
+    seen["other thread"] = compiled.available()
+    outside.set()
+    worker.join()
+    assert seen == {"inside": False, "other thread": compiled._state["available"]}

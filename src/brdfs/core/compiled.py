@@ -17,6 +17,7 @@ import importlib.util
 import os
 import re
 import sys
+import threading
 from pathlib import Path
 
 from brdfs.core.estimate import BUDGET_EXHAUSTED, CONVERGED, STALLED
@@ -26,13 +27,15 @@ STATUS_NAMES = (CONVERGED, STALLED, BUDGET_EXHAUSTED)
 #: The variable that switches the compiled routes off (``0``, ``false``, ``no`` or ``off``).
 ENVIRONMENT_SWITCH = "BRDFS_COMPILED"
 
-_state = {"available": None, "suspended": 0}
+_state = {"available": None}
+#: The :func:`numpy_only` blocks open in each thread.
+_suspended = threading.local()
 
 
 def available() -> bool:
     """Whether the compiled routes run now: numba importable, the environment does not switch them
-    off, and no :func:`numpy_only` block is open."""
-    if _state["suspended"]:
+    off, and no :func:`numpy_only` block is open in this thread."""
+    if getattr(_suspended, "depth", 0):
         return False
     known = _state["available"]
     if known is None:
@@ -57,13 +60,13 @@ def _switched_off(setting) -> bool:
 
 @contextlib.contextmanager
 def numpy_only():
-    """Inside the block every route takes its numpy path (the reference the compiled routes are
-    held to)."""
-    _state["suspended"] += 1
+    """Inside the block every route of this thread takes its numpy path (the reference the compiled
+    routes are held to); other threads are not affected."""
+    _suspended.depth = getattr(_suspended, "depth", 0) + 1
     try:
         yield
     finally:
-        _state["suspended"] -= 1
+        _suspended.depth -= 1
 
 
 def status_name(code: int) -> str:
