@@ -76,8 +76,9 @@ $(STAMP): requirements.lock pyproject.toml
 venv: $(STAMP)
 
 # numba's cache of the compiled single-angle routes (brdfs.numerics.compiled_cache): compiled once
-# here, loaded in a fraction of a second by every later process; a few seconds when the sources
-# changed, well under one when nothing did.
+# here (about half a minute on a fresh clone), loaded in a fraction of a second by every later
+# process; a route whose own source or any brdfs module it imports changed is compiled again
+# (brdfs.core.compiled.drop_stale_cache), about a second when nothing did.
 compiled: $(STAMP)
 	@$(BIN)/python -m brdfs.numerics.compiled_cache
 
