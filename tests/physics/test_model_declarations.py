@@ -271,3 +271,33 @@ def _class_body_names_assigned_twice(cls) -> list[str]:
 def test_a_model_class_declares_each_fact_once(name):
     """A second ``param_ranges`` (or any attribute) in one class body silently overrides the first."""
     assert _class_body_names_assigned_twice(MODELS[name]) == []
+
+
+def test_a_declared_number_given_as_a_numpy_scalar_is_kept_as_the_python_number_it_equals():
+    """A float32 n stayed float32 in n + 1.0 (NEP 50): Phong n = float32(0.1) was 2.6e6 of its reported
+    errors off at 30°, and a long double reached the compiled routes as a type they cannot take.  Every
+    registered model's typical example, each declared parameter given as float32, long double and a
+    0-d array: kept as the float it equals, and the albedo that of the model built with that float."""
+    import brdfs
+    from brdfs.physics.models import MODELS
+    checked = 0
+    for cls in MODELS.values():
+        typical = cls.examples["typical"]
+        for key in cls.param_ranges:
+            value = typical.get(key)
+            if type(value) is not float:
+                continue
+            for given in (np.float32(value), np.longdouble(value), np.array(value)):
+                try:
+                    brdf = cls(**{**typical, key: given})
+                except ValueError:              # float32's rounding can leave an open range's end
+                    continue
+                kept = getattr(brdf, key)
+                assert type(kept) is float and kept == float(given), (cls.name, key, type(given))
+                checked += 1
+        brdf = cls(**{**typical, **{k: np.float32(v) for k, v in typical.items()
+                                    if k in cls.param_ranges and type(v) is float}})
+        plain = cls(**{**typical, **{k: float(np.float32(v)) for k, v in typical.items()
+                                     if k in cls.param_ranges and type(v) is float}})
+        assert brdfs.albedo(brdf, 30.0).value == brdfs.albedo(plain, 30.0).value, cls.name
+    assert checked >= 60

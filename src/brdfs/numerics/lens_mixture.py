@@ -19,10 +19,8 @@ from brdfs.core import compiled
 from brdfs.core.gauss_kronrod import Estimate
 from brdfs.physics.geometry import sin_incidence
 from brdfs.physics.models.patch import LensMixtureAlbedo
-from brdfs.physics.patch_geometry import CLOSED_FORM_RTOL, _cos_incidence_near_grazing
+from brdfs.physics.patch_geometry import CLOSED_FORM_RTOL, ROUGH_RTOL, _cos_incidence_near_grazing
 
-#: The rough pass's tolerance (``_weighted_mixture_integral``'s: it sizes the sum the target is relative to).
-ROUGH_RTOL = 1e-4
 
 
 def own_albedo_estimate(model, theta, rtol, atol):
@@ -42,7 +40,9 @@ def compiled_lens_albedo(mixture, theta_deg, rtol, atol):
     gkc, lmc = _compiled()
     theta = np.asarray(theta_deg, float)
     d, mu = sin_incidence(theta).item(), _cos_incidence_near_grazing(theta).item()
-    covered, p_diffuse = mixture.covered, mixture.p_diffuse
+    # as Python floats: a float32 p_diffuse would round the sum, value and error alike, to float32
+    covered = None if mixture.covered is None else float(mixture.covered)
+    p_diffuse = float(mixture.p_diffuse)
     steep = mixture.steep_layer is not None
     partition = lmc.single_element_partition(np.array(mixture.points, float), d, steep,
                                              *(mixture.steep_layer if steep else (0.0, 0.0)))
@@ -85,6 +85,8 @@ def _weight_at(weight, x):
     """p(x) as the compiled round takes it: float64, C-ordered, of ``x``'s shape (a weight may return a
     broadcastable array or a number)."""
     w = weight(x)
+    if np.iscomplexobj(w):                 # as the numpy route's float products refuse it
+        raise TypeError(f"the weight p(R) must be real, got values of type {np.asarray(w).dtype}")
     if type(w) is np.ndarray and w.shape == x.shape and w.dtype == np.float64 and w.flags.c_contiguous:
         return w
     return np.ascontiguousarray(np.broadcast_to(np.asarray(w, float), x.shape))

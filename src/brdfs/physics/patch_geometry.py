@@ -405,7 +405,7 @@ class GeneralizedLambertProfile:
 
     @property
     def breakpoints(self) -> tuple[float, ...]:
-        return (self.m_clip,)
+        return (float(self.m_clip),)                 # a number (a 0-d array m_clip is not hashable)
 
     @property
     def steep_layer(self) -> tuple[float, float] | None:
@@ -636,6 +636,10 @@ def covered_weight(profile, C):
     return float(C * np.pi * profile.xi(1.0))
 
 
+#: The rough pass's tolerance in :func:`_weighted_mixture_integral`: it sizes the sum the target is relative to.
+ROUGH_RTOL = 1e-4
+
+
 def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=(), single_graded=False,
                                covered=None, steep_layer=None):
     """∫₀² p(R) g(R, element) dR + p_Diffuse for g = ``per_element`` (an :class:`Estimate`),
@@ -669,7 +673,7 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
-    rough, rough_rounds = integrate(rough_integrand, bp, rtol=1e-4, atol=atol, return_rounds=True)
+    rough, rough_rounds = integrate(rough_integrand, bp, rtol=ROUGH_RTOL, atol=atol, return_rounds=True)
     constant = p_diffuse if covered is None else covered
     target = np.maximum(0.5 * rtol * np.abs(rough.value + constant), atol)
     # The second pass starts from the rough pass's first evaluation; where the rough pass stopped there

@@ -92,6 +92,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 import threading
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
@@ -231,6 +232,16 @@ def count_evaluations(n: int) -> None:
         box[0] += n
 
 
+def _python_number(value):
+    """``value`` as a Python float (an int stays an int): a float32 n kept float32 in ``n + 1.0`` (NEP 50)
+    and the routes mixed the precisions differently, each answer 1e6 of its reported errors off (Phong,
+    n = float32(0.1)); a long double reached the compiled routes as a type they cannot take."""
+    if type(value) in (float, int):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    return float(value)
+
 @dataclass(frozen=True)
 class BRDF:
     """Base class: subclasses implement ``_eval(L, V, nl, nv)`` and ``lobe``.
@@ -260,7 +271,8 @@ class BRDF:
 
     def check_declared_parameters(self):
         """Refuse a parameter outside its :attr:`param_ranges` (None: the field's own default, a
-        feature switched off or a constant computed) or its :attr:`param_choices`."""
+        feature switched off or a constant computed) or its :attr:`param_choices`; keep a declared number
+        given as a numpy scalar or 0-d array as a Python number (:func:`_python_number`)."""
         cls = type(self)
         for key, interval in cls.param_ranges.items():
             value = getattr(self, key, None)
@@ -272,6 +284,9 @@ class BRDF:
                 raise ValueError(f"{cls.name}: {key} must be a real number, got {value!r}") from None
             if not inside:
                 raise ValueError(f"{cls.name}: {key} must lie in {interval.text()}, got {value!r}")
+            number = _python_number(value)
+            if number is not value:
+                object.__setattr__(self, key, number)
         for key, choices in cls.param_choices.items():
             value = getattr(self, key, None)
             if value not in choices:

@@ -474,11 +474,14 @@ class PatchMixture(LensMixtureAlbedo, _MixtureSampling, BRDF):
         self._check_weight_is_finite()
 
     def _check_weight_is_finite(self):
-        """p must be a bounded function: refused in one line where it is not finite at the ends or the
-        midpoints of the table of F's pieces (a NaN weight otherwise gave NaN ± NaN after 63,756 evaluations)."""
+        """p must be a real, bounded function: refused in one line where it is complex, or not finite at the
+        ends or the midpoints of the table of F's pieces (a NaN weight otherwise gave NaN ± NaN after 63,756 evaluations)."""
         edges = self._table_edges()
         probe = np.concatenate([edges, 0.5 * (edges[:-1] + edges[1:])])
-        values = np.broadcast_to(np.asarray(self.weight(probe), float), probe.shape)
+        given = np.asarray(self.weight(probe))
+        if np.iscomplexobj(given):
+            raise ValueError(f"patch_mixture: weight p(R) must be real, got values of type {given.dtype}")
+        values = np.broadcast_to(given.astype(float), probe.shape)
         if not np.all(np.isfinite(values)):
             i = int(np.flatnonzero(~np.isfinite(values))[0])
             raise ValueError(f"patch_mixture: weight p(R) must be finite on [0, 2], got {float(values[i])!r} at R = {probe[i]:.6g}")
