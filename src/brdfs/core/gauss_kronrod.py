@@ -243,6 +243,8 @@ def _single_sums(elem, vals, err):
     Python floats, summed in order as ``np.bincount`` sums a batch's elements (the same sums to the
     bit): the four rows of ``vals`` by one running sum (``np.cumsum``, sequential where ``np.sum`` is
     pairwise), ``err`` by ``np.bincount``."""
+    if not vals.shape[1]:      # no interval (an empty or all-NaN row): an integral of zero, as in a batch
+        return [0.0, 0.0, 0.0, 0.0, 0.0]
     return [*vals.cumsum(axis=1)[:, -1].tolist(), float(np.bincount(elem, err, 1)[0])]
 
 
