@@ -214,3 +214,27 @@ def test_without_numba_every_route_is_numpy_to_the_bit():
     with compiled.numpy_only():
         ref = _single(model("blinn_cosmin", n=2.0), 48.5, 1e-10)
     assert out == [repr(float(ref.value[0])), repr(float(ref.error[0])), str(ref.evaluations)]
+
+
+def test_only_the_exact_lobes_and_distributions_it_replicates_take_the_compiled_route():
+    """A subclass of the lobe or of its distribution may change what t means: numpy answers.  A
+    (frame, kernel) declared as a list is the same declaration."""
+    import dataclasses
+    from functools import cached_property
+
+    covered = [cls.example("typical") for cls in MODELS.values()
+               if azimuthal.compiled_spec(cls.example("typical")) is not None]
+    assert len(covered) >= 5
+    for brdf in covered:
+        lobe = brdf.lobe
+        if dataclasses.is_dataclass(lobe) and hasattr(lobe, "distribution"):
+            distribution = type("Own", (type(lobe.distribution),), {})(**dataclasses.asdict(lobe.distribution))
+            other = dataclasses.replace(lobe, distribution=distribution)
+        else:
+            other = type("Own", (type(lobe),), {})(**{f.name: getattr(lobe, f.name) for f in dataclasses.fields(lobe)})
+        relobed = type("Relobed", (type(brdf),), {"lobe": cached_property(lambda self, other=other: other)})
+        relobed.lobe.__set_name__(relobed, "lobe")
+        params = {f.name: getattr(brdf, f.name) for f in dataclasses.fields(brdf) if f.init}
+        assert azimuthal.compiled_spec(relobed(**params)) is None, brdf.name
+        listed = type("Listed", (type(brdf),), {"closed_form_azimuth": list(brdf.closed_form_azimuth)})
+        assert azimuthal.compiled_spec(listed(**params)) == azimuthal.compiled_spec(brdf), brdf.name
