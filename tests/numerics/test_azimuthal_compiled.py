@@ -27,8 +27,9 @@ RTOLS = (1e-3, 1e-6, 1e-8, 1e-10, 1e-12)
 #: transcendental functions are libm's against numpy's SIMD ones and the sums loops against BLAS
 #: (measured: at most 1.9 ulps at 0°–89°, 89.999999999° and 90°), and near grazing the max(N·L, N·V)
 #: kernels divide a difference by cos θ, whose rounding they bound by ε / cos θ (measured: 3,817 ulps
-#: at 89.9999°, 0.0067 ε / cos θ).
-ULPS, GRAZING = 4, 0.05
+#: at 89.9999°, 0.0067 ε / cos θ, on this grid; a reviewer's 26,000 random cells: at most 0.10 ε / cos θ,
+#: corrected Blinn n = 0.32 at 89.9992°, 7,336 ulps for an error of 4.8e-9).
+ULPS, GRAZING = 4, 0.25
 #: ... and within this share of the reported error (measured: 0.017).
 WITHIN_ERROR = 0.05
 #: The two reported errors within this share of each other (measured 0.042: where a call converges,
