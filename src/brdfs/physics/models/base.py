@@ -384,7 +384,9 @@ class BRDF:
         """``(distribution, S)`` where f(L, V) = D(H) S(N·L, N·V): D the distribution's density of
         the half vector (it integrates D over the azimuth about N in closed form,
         ``azimuthal_integral``) and S any function of the polar angles (Smith's masking), so that the
-        albedo is a 1-D integral over θ_V (:mod:`brdfs.numerics.integrate.polar`).  None by default."""
+        albedo is a 1-D integral over θ_V (:mod:`brdfs.numerics.integrate.polar`).  None by default.
+        An S that is one of the declared forms of :mod:`brdfs.physics.masking` (its family, roughness and
+        scale as fields) runs compiled where numba is; any other callable on numpy."""
         return None
 
     @property

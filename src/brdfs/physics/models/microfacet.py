@@ -11,6 +11,7 @@ from brdfs.core.gauss_kronrod import Estimate, NodeValues, integrate
 from brdfs.physics.lobes import HALF, MicrofacetLobe
 from brdfs.physics.distributions import Beckmann, half_vector_parts, half_vector_tan2
 from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
+from brdfs.physics.masking import ThesisSmith, g_smith_beckmann
 from brdfs.physics.models.base import BRDF, M_MIN, GrazingLaw, Interval, check_positive, exact, log_range, positive, register
 from brdfs.physics import sampling
 
@@ -147,12 +148,6 @@ def g_torrance_sparrow(nh, nl, nv, lh):
     return np.minimum(1.0, np.minimum(2 * nh * nv / lh, 2 * nh * nl / lh))
 
 
-def g_smith_beckmann(nl, nv, m):
-    """G = G*(N·L) G*(N·V) with Smith's G* as eq. 1.38 prints it (:meth:`Beckmann.smith_g1_thesis`)."""
-    d = Beckmann(m)
-    return d.smith_g1_thesis(nl) * d.smith_g1_thesis(nv)
-
-
 GEOMETRY_FACTORS = ("torrance_sparrow", "smith", "none")
 
 
@@ -246,8 +241,16 @@ class CookTorrance(_BeckmannFamily):
             return None
         return self.distribution, self._smith_over_4_nl_nv
 
-    def _smith_over_4_nl_nv(self, nl, nv):
-        return self.C * g_smith_beckmann(nl, nv, self.m) / (4 * nl * nv)
+    @property
+    def _smith_over_4_nl_nv(self) -> ThesisSmith:
+        """C G*(N·L) G*(N·V)/(4 N·L N·V), the thesis's G* of roughness m: the declared form
+        (:class:`~brdfs.physics.masking.ThesisSmith`), called as ``_smith_over_4_nl_nv(nl, nv)``.  A
+        subclass that overrides it with a method declares no form: the polar route evaluates its method."""
+        return self._thesis_masking
+
+    @cached_property                 # a frozen model's masking: built once (the polar route asks per call)
+    def _thesis_masking(self):
+        return ThesisSmith(self.m, self.C)
 
     @property
     def kink_at_normal(self):
