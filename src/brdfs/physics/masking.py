@@ -30,6 +30,10 @@ class SmithG2:
     distribution: object
     form: str = "height_correlated"
 
+    def __post_init__(self):
+        if self.form not in G2_FORMS:
+            raise ValueError(f"SmithG2: form must be one of {G2_FORMS}, got {self.form!r}")
+
     def __call__(self, nl, nv):
         lam = self.distribution.smith_lambda_cos
         if self.form == "height_correlated":
