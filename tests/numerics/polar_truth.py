@@ -102,3 +102,25 @@ def nested_quad_albedo(brdf, alpha, theta_deg, epsrel=1e-12):
                   if 0.0 < p < 0.5 * math.pi})
     val, err = quad(inner, 0.0, 0.5 * math.pi, points=pts or None, epsabs=0.0, epsrel=epsrel, limit=400)
     return val, err + 0.5 * math.pi * max(inner_errors)
+
+
+def cook_torrance_smith_normal_incidence(m, epsrel=1e-13):
+    """(a, error) of Cook–Torrance with Smith's G at θ_L = 0 (eq. 2.9, F = 1, C = 1, eq. 1.38): with L = N,
+    δ = θ_V/2 and G*(N·L) = 1, a(0) = (1/(2m²)) ∫₀^{π/2} e^(−tan²δ/m²)/cos⁴δ G*(cos θ_V) sin θ_V dθ_V, by quad
+    cut where G* turns (cot θ_V = a m, a = 4^k) and G* written with h = cot²θ_V/(2m²), exact next to the
+    pole where 1 − cos²θ_V would cancel."""
+    def integrand(t):
+        if t <= 0.0:
+            return 0.0
+        delta = 0.5 * t
+        h = (math.cos(t) / math.sin(t)) ** 2 / (2.0 * m * m)
+        g = math.sqrt(math.pi * h) * (2.0 - math.erfc(math.sqrt(h)))
+        return math.exp(-math.tan(delta) ** 2 / m ** 2) / math.cos(delta) ** 4 * g / (g + 1.0) * math.sin(t)
+
+    cuts = sorted({math.atan(1.0 / (4.0 ** k * m)) for k in range(-12, 5)} | {0.0, 0.5 * math.pi})
+    total, error = 0.0, 0.0
+    for lo, hi in zip(cuts[:-1], cuts[1:]):
+        value, err = quad(integrand, lo, hi, epsabs=0.0, epsrel=epsrel, limit=200)
+        total, error = total + value, error + err
+    scale = 1.0 / (2.0 * m * m)
+    return scale * total, scale * error + 4 * 2.0 ** -52 * scale * total

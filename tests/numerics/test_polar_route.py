@@ -14,10 +14,11 @@ from brdfs.core import compiled
 from brdfs.numerics.integrate import polar
 from brdfs.physics.distributions import GGX, Beckmann, kummer_half_integers
 from brdfs.physics.models import model
+from brdfs.physics.models.base import CT_M_MAX
 from brdfs.physics.models.microfacet import CookTorranceFresnel
 
 sys.path.insert(0, str(Path(__file__).parent))
-from polar_truth import FAMILIES, nested_quad_albedo, thesis_smith_g  # noqa: E402
+from polar_truth import FAMILIES, cook_torrance_smith_normal_incidence, nested_quad_albedo, thesis_smith_g  # noqa: E402
 
 #: One cell per family and roughness class (the full ≥ 20 cells per family: benchmarks/bench_polar_honesty.py).
 CELLS = [("ggx", 0.3, 37.0), ("ggx_separable", 0.3, 71.0), ("beckmann", 0.3, 55.0),
@@ -171,3 +172,18 @@ def test_alpha_as_a_0d_array_or_a_numpy_float_is_alpha_by_its_value_whatever_cam
     assert albedo(model(name, alpha=np.array(plain)), 30.0).value == first[0]
     albedo(model(name, alpha=np.float32(0.3)), [30.0, 60.0])
     assert np.array_equal(albedo(model(name, alpha=plain), [30.0, 60.0]).value, first)
+
+
+@pytest.mark.parametrize("m", [10.0, 1e3, 1e4, CT_M_MAX])
+def test_cook_torrance_smith_is_honest_to_the_end_of_its_declared_m_at_normal_incidence(m):
+    """G*'s turn at θ_V ~ 1/(√2 m) carries ~1/m of the albedo next to the pole: cut there (the model's
+    ``nv_levels``), the polar route (compiled and numpy) and the disk hold an independent quadrature within
+    their errors (before: m = 1e4, 8.35370e-13 ± 1.1e-16 against 8.35229e-13, by both polar paths)."""
+    truth, truth_err = cook_torrance_smith_normal_incidence(m)
+    brdf = model("cook_torrance", m=m, G="smith")
+    for rtol in (1e-6, 1e-10):
+        with compiled.numpy_only():
+            answers = [albedo(brdf, 0.0, rtol=rtol), albedo(brdf, 0.0, method="disk", rtol=rtol)]
+        for est in [albedo(brdf, 0.0, rtol=rtol), *answers]:
+            assert est.status == "converged"
+            assert abs(float(est.value) - truth) <= float(est.error) + truth_err, (rtol, est.route, float(est.value), truth)

@@ -150,9 +150,9 @@ def _polar_compiled():
 def _albedo_one_compiled(brdf, kernel, theta_l, mu_l, s_l, rtol, atol) -> Estimate:
     """:func:`_albedo_one` in one compiled call (:func:`.polar_compiled.albedo_one`): the same breakpoints'
     candidates (the lobe's offsets and the levels' angles from the same caches), integrand and driver."""
-    dist, form, alpha, scale = kernel
+    alpha = kernel[1]
     value, error, evaluations, status = _polar_compiled().albedo_one(
-        dist, form, alpha, scale, theta_l, mu_l, s_l, _lobe_offsets_of(alpha), _level_angles_of_one(brdf, mu_l),
+        *kernel, theta_l, mu_l, s_l, _lobe_offsets_of(alpha), _compiled_level_angles(brdf, alpha, mu_l),
         _number(rtol), _number(atol), FILL_CHEAP)
     value_error = np.array((value, error))
     return Estimate(value_error[:1], value_error[1:], int(evaluations),
@@ -179,6 +179,18 @@ def _level_angles_of_one(brdf, mu_l):
     angles = np.ascontiguousarray(_level_angles(levels, 1)[0], float)
     angles.flags.writeable = False
     return angles
+
+
+def _compiled_level_angles(brdf, alpha, mu_l):
+    """The angles of the levels of :func:`_breakpoints_of_one` at one μ_L, as numpy computes them (the
+    compiled call sorts them in with the lobe's): the model's ``nv_levels`` (:func:`_level_angles_of_one`)
+    and, near grazing incidence, the graded ones (:func:`_grazing_levels`: numpy's arccos, which the C
+    library's rounds differently by an ulp now and then)."""
+    levels = _level_angles_of_one(brdf, mu_l)
+    if not (mu_l > 0 and GRAZING_GRADING * mu_l < alpha):
+        return levels
+    graded = _grazing_levels(np.array([mu_l]), alpha)
+    return np.concatenate([levels, *graded]) if graded else levels
 
 
 def radial_integrand(distribution, S, theta_l, theta_v, mu_l=None, s_l=None):

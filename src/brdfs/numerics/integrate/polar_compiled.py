@@ -8,11 +8,12 @@ the factors a model declares (:meth:`BRDF.half_vector_factors`), never from a mo
 * the distribution, by its exact type (a subclass may change any formula): :class:`GGX` (the rational
   ∫D dφ) and :class:`Beckmann` (Kummer's functions, :func:`kummer_half_integers`: its series, its
   asymptotic series, Cephes' i0e and the bounds, with the tables of :mod:`brdfs.physics.distributions`);
-* the masking S, by the function the model declares (:data:`_MASKINGS`): Smith's G2/(4 N·L N·V) of the
-  Smith microfacet models (:meth:`_SmithMicrofacet.g2_over_4_nl_nv`), separable or height-correlated as
-  the model's G2 form says, with λ of the same distribution; Cook–Torrance's C G*(N·L) G*(N·V)/(4 N·L N·V)
-  with the thesis's G* (:meth:`CookTorrance._smith_over_4_nl_nv`) of the same Beckmann roughness.
-  A subclass that overrides the function declares another one, and takes the numpy path.
+* the masking S, by the exact type of the form the model declares (:mod:`brdfs.physics.masking`,
+  :data:`_MASKINGS`), whose fields it reads: Smith's G2/(4 N·L N·V) (:class:`SmithG2`: separable or
+  height-correlated, λ of its own distribution, GGX or Beckmann, and roughness) and C G*(N·L) G*(N·V)/(4 N·L N·V)
+  with the thesis's G* (:class:`ThesisSmith`: its roughness m and scale C).  The masking's roughness is its
+  own, which need not be the distribution's.  A model whose S is not such a form (a user's function, a
+  subclass that overrides the model's masking by a method) takes the numpy path.
 
 Anything else (a user's distribution or S, a float32 or 0-d array α) goes to the numpy path, which stays
 the reference: every formula here is a replica of its numpy twin, operation by operation, and
@@ -30,11 +31,10 @@ import numba
 import numpy as np
 
 from brdfs.core import compiled, gauss_kronrod_compiled as gkc
-from brdfs.numerics.integrate.polar import GRAZING_GRADING, S_ROUNDING
+from brdfs.numerics.integrate.polar import S_ROUNDING
 from brdfs.physics import distributions as _dist
 from brdfs.physics.distributions import GGX, Beckmann
-from brdfs.physics.models.microfacet import CookTorrance
-from brdfs.physics.models.smith_microfacet import G2_FORMS, _SmithMicrofacet
+from brdfs.physics.masking import G2_FORMS, SmithG2, ThesisSmith
 
 _EPS = float(np.finfo(float).eps)
 _TINY = float(np.finfo(float).smallest_subnormal)
@@ -90,30 +90,35 @@ CHUNK = 4096
 
 
 def kernel_of(distribution, S):
-    """``(distribution code, masking code, α, scale)`` of the factors ``(distribution, S)`` a model
-    declares, or None where the compiled kernel does not know them (the numpy path takes those)."""
+    """``(distribution code, α, masking code, the masking's distribution code, its roughness, its scale)``
+    of the factors ``(distribution, S)`` a model declares, or None where the compiled kernel does not
+    know them (the numpy path takes those): a distribution or a masking form not exactly of a known
+    type, or a number of theirs not a float (np.float64 is one; a float32, an int, a 0-d array are not)."""
     code = _DISTRIBUTIONS.get(type(distribution))
-    reader = _MASKINGS.get(getattr(S, "__func__", None))
-    if code is None or reader is None or not isinstance(distribution.alpha, float):   # (np.float64 is one)
+    reader = _MASKINGS.get(type(S))
+    if code is None or reader is None or not isinstance(distribution.alpha, float):
         return None
-    masking = reader(S.__self__, distribution)
-    return None if masking is None else (code, *masking)
+    masking = reader(S)
+    return None if masking is None else (code, float(distribution.alpha), *masking)
 
 
-def _smith_g2(owner, distribution):
-    """:meth:`_SmithMicrofacet.g2_over_4_nl_nv`: its G2 form, λ of the same distribution."""
-    form = _G2_CODES.get(owner.G2)
-    return None if form is None or owner.distribution != distribution else (form, float(distribution.alpha), 1.0)
+def _smith_g2(S):
+    """:class:`SmithG2`: its G2 form, and λ of its own distribution (GGX or Beckmann, exactly)."""
+    form, code = _G2_CODES.get(S.form), _DISTRIBUTIONS.get(type(S.distribution))
+    if form is None or code is None or not isinstance(S.distribution.alpha, float):
+        return None
+    return form, code, float(S.distribution.alpha), 1.0
 
 
-def _thesis_smith(owner, distribution):
-    """:meth:`CookTorrance._smith_over_4_nl_nv`: C and the thesis's G* of the same Beckmann roughness."""
-    same = isinstance(owner.C, float) and owner.distribution == distribution
-    return (THESIS_SMITH_CODE, float(distribution.alpha), float(owner.C)) if same else None
+def _thesis_smith(S):
+    """:class:`ThesisSmith`: the thesis's G* of its roughness m, and its scale C."""
+    if not (isinstance(S.m, float) and isinstance(S.C, float)):
+        return None
+    return THESIS_SMITH_CODE, BECKMANN_CODE, float(S.m), float(S.C)
 
 
-#: The maskings S the kernel knows, by the function a model declares, and what it reads of them.
-_MASKINGS = {_SmithMicrofacet.g2_over_4_nl_nv: _smith_g2, CookTorrance._smith_over_4_nl_nv: _thesis_smith}
+#: The masking forms the kernel knows, by exact type, and what it reads of them.
+_MASKINGS = {SmithG2: _smith_g2, ThesisSmith: _thesis_smith}
 
 
 # --- the kernel --------------------------------------------------------------------------------
@@ -227,18 +232,18 @@ def thesis_g1(alpha, x):
 
 
 @numba.njit(cache=True)
-def light_factor(dist, form, alpha, nl):
-    """The masking's factor of N·L alone, computed once per call: λ(N·L), or G*(N·L)."""
+def light_factor(form, dist, alpha, nl):
+    """The masking's factor of N·L alone, computed once per call: λ(N·L), or G*(N·L) (``dist`` and
+    ``alpha``: the masking's)."""
     if form == THESIS_SMITH_CODE:
         return thesis_g1(alpha, nl)
     return smith_lambda_cos(dist, alpha, nl)
 
 
 @numba.njit(cache=True)
-def masking(dist, form, alpha, scale, nl, light, nv):
+def masking(form, dist, alpha, scale, nl, light, nv):
     """S(N·L, N·V), ``light`` its factor of N·L (:func:`light_factor`): Smith's G2/(4 N·L N·V)
-    (:meth:`_SmithMicrofacet.g2_over_4_nl_nv`) or C G*(N·L) G*(N·V)/(4 N·L N·V)
-    (:meth:`CookTorrance._smith_over_4_nl_nv`)."""
+    (:class:`SmithG2`) or C G*(N·L) G*(N·V)/(4 N·L N·V) (:class:`ThesisSmith`)."""
     if form == THESIS_SMITH_CODE:
         return scale * (light * thesis_g1(alpha, nv)) / (4 * nl * nv)
     lam_v = smith_lambda_cos(dist, alpha, nv)
@@ -248,8 +253,10 @@ def masking(dist, form, alpha, scale, nl, light, nv):
 
 
 @numba.njit(cache=True)
-def radial_integrand(dist, form, alpha, scale, theta_l, mu_l, s_l, theta_v, value, rounding, start, stop):
-    """:func:`.polar.radial_integrand` at the nodes ``theta_v[start:stop]`` (rows of 21) into ``value`` and
+def radial_integrand(dist, alpha, form, s_dist, s_alpha, scale, theta_l, mu_l, s_l, theta_v, value, rounding,
+                     start, stop):
+    """:func:`.polar.radial_integrand` (D of ``dist`` and ``alpha``, S of the masking ``form`` with its
+    ``s_dist``, ``s_alpha`` and ``scale``) at the nodes ``theta_v[start:stop]`` (rows of 21) into ``value`` and
     ``rounding`` (same rows): 2 sin θ_V cos θ_V S Φ and its rounding bound.  The rows are one call of
     the numpy integrand (the Kummer series' terms follow the call's largest x)."""
     width = theta_v.shape[1]
@@ -270,7 +277,7 @@ def radial_integrand(dist, form, alpha, scale, theta_l, mu_l, s_l, theta_v, valu
         terms = series_terms(x, n)
     powers = np.empty(max(terms, _ASYMPTOTIC_TERMS + 2))
     f = np.empty(6)
-    light = light_factor(dist, form, alpha, mu_l)
+    light = light_factor(form, s_dist, s_alpha, mu_l)
     for i in range(n):
         mu_v, s_v = mu[i], s[i]
         if dist == GGX_CODE:
@@ -278,7 +285,7 @@ def radial_integrand(dist, form, alpha, scale, theta_l, mu_l, s_l, theta_v, valu
         else:
             kummer(2.0 * b[i] / a2, terms, powers, f)
             phi, phi_err = _beckmann_azimuthal(a2, q[i], b[i], f)
-        weight = 2.0 * s_v * mu_v * masking(dist, form, alpha, scale, mu_l, light, mu_v)
+        weight = 2.0 * s_v * mu_v * masking(form, s_dist, s_alpha, scale, mu_l, light, mu_v)
         v = weight * phi
         if phi == 0:
             v = 0.0                      # D vanishes (e^−q/α² underflows): zero, not 0·∞
@@ -317,23 +324,17 @@ def _beckmann_azimuthal(a2, q, b, f):
 # --- the breakpoints ---------------------------------------------------------------------------
 
 @numba.njit(cache=True)
-def breakpoints_of_one(theta_l, mu_l, alpha, lobe_offsets, level_angles):
+def breakpoints_of_one(theta_l, lobe_offsets, level_angles):
     """:func:`.polar._breakpoints_of_one` as one ascending row: 0, π/2 and, inside, θ_L plus the lobe's
-    offsets, the levels' angles and the graded levels μ_V = μ_L · 8^k below α toward the horizon."""
-    graded = 0
-    if mu_l > 0 and GRAZING_GRADING * mu_l < alpha:
-        graded = max(int(math.ceil(math.log(alpha / mu_l) / math.log(GRAZING_GRADING))) - 1, 0)
-    cand = np.empty(2 + lobe_offsets.size + level_angles.size + graded)
+    offsets and the angles of the levels (the model's and the graded ones toward the horizon, as the
+    numpy path computes them: :func:`.polar._compiled_level_angles`)."""
+    cand = np.empty(2 + lobe_offsets.size + level_angles.size)
     cand[0], cand[1] = 0.0, _HALF_PI
     n = 2
     for offset in lobe_offsets:
         n = _keep(cand, n, theta_l + offset)
     for angle in level_angles:
         n = _keep(cand, n, angle)
-    for k in range(1, graded + 1):
-        level = mu_l * GRAZING_GRADING ** k
-        if level > 0 and level < alpha:
-            n = _keep(cand, n, math.acos(min(level, 1.0)))
     row = np.sort(cand[:n])
     out = np.empty(n)
     out[0] = row[0]
@@ -357,16 +358,17 @@ def _keep(cand, n, c):
 # --- one angle, one call -----------------------------------------------------------------------
 
 @numba.njit(cache=True)
-def albedo_one(dist, form, alpha, scale, theta_l, mu_l, s_l, lobe_offsets, level_angles, rtol, atol, fill):
+def albedo_one(dist, alpha, form, s_dist, s_alpha, scale, theta_l, mu_l, s_l, lobe_offsets, level_angles, rtol,
+               atol, fill):
     """The polar route's albedo at one angle (:func:`.polar._albedo_one`): its breakpoints, the radial
     integrand and the driver's single-element path, compiled.  (value, error, evaluations, status code)."""
-    st = gkc.start(breakpoints_of_one(theta_l, mu_l, alpha, lobe_offsets, level_angles), rtol, atol, fill)
+    st = gkc.start(breakpoints_of_one(theta_l, lobe_offsets, level_angles), rtol, atol, fill)
     while not gkc.finished(st):
         x = gkc.pending(st)
         value, rounding = np.empty_like(x), np.empty_like(x)
         for start in range(0, x.shape[0], CHUNK):
-            radial_integrand(dist, form, alpha, scale, theta_l, mu_l, s_l, x, value, rounding, start,
-                             min(start + CHUNK, x.shape[0]))
+            radial_integrand(dist, alpha, form, s_dist, s_alpha, scale, theta_l, mu_l, s_l, x, value, rounding,
+                             start, min(start + CHUNK, x.shape[0]))
         st = gkc.absorb(st, value, value, rounding)
     value, error, evaluations, status, _ = gkc.result(st)
     return value, error, evaluations, status

@@ -399,7 +399,9 @@ class BRDF:
         """``(distribution, S)`` where f(L, V) = D(H) S(N·L, N·V): D the distribution's density of
         the half vector (it integrates D over the azimuth about N in closed form,
         ``azimuthal_integral``) and S any function of the polar angles (Smith's masking), so that the
-        albedo is a 1-D integral over θ_V (:mod:`brdfs.numerics.integrate.polar`).  None by default."""
+        albedo is a 1-D integral over θ_V (:mod:`brdfs.numerics.integrate.polar`).  None by default.
+        An S that is one of the declared forms of :mod:`brdfs.physics.masking` (its family, roughness and
+        scale as fields) runs compiled where numba is; any other callable on numpy."""
         return None
 
     @property
@@ -761,6 +763,12 @@ N_MAX = 1.0e5
 #: (1e-9; beyond, pieces of degree 256 miss it: Blinn n = 3e4, Phong n = 3e4): ``pumping_ranges``.
 PUMP_N_MAX = 1.0e4
 M_MIN = 0.005
+#: Cook–Torrance's m up to 10⁵: with Smith's G (eq. 1.38) the albedo ~0.84/m³ takes ~1/m of it from
+#: G*'s turn at θ_V ~ 1/(√2 m), where G* is computed from N·V = cos θ_V: 1 − (N·V)² keeps ~ε m² of its
+#: relative precision there, and beyond m ~ 10⁶ the rounding outgrows the error reported (m = 10⁶ at 0°:
+#: 1.2 errors off; at m ≥ 1.34e154, m² overflows).  Polar route and disk agree with an independent
+#: nested quadrature within their errors from m = 1 to 10⁵, θ from 0 to 90° − 1e-9°.
+CT_M_MAX = 1.0e5
 ALPHA_MIN, ALPHA_MAX = 0.01, 1.0
 RADIUS_MIN, ELLIPSE_B_MIN = 1.0e-8, 1.0e-3
 

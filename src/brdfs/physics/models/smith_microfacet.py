@@ -42,10 +42,10 @@ from brdfs.physics.distributions import GGX, Beckmann, half_vector_tan2
 from brdfs.physics.sampling import REJECTED
 from brdfs.physics.fresnel import cos_theta_half, unpolarised_reflectance
 from brdfs.physics.geometry import cos_incidence
+from brdfs.physics.masking import G2_FORMS, SmithG2
 from brdfs.physics.models.base import ALPHA_MAX, ALPHA_MIN, BRDF, Interval, check_positive, exact, log_range, non_negative, positive, register, table_field
 from brdfs.physics.tables import AlbedoTable, MissingTable, TableRequest, cosine_weighted_average
 
-G2_FORMS = ("separable", "height_correlated")
 COMPENSATIONS = ("none", "kulla_conty")
 
 #: Accuracy of the E(μ) tables of the Kulla–Conty term: Chebyshev interpolation to 1e-6 relative
@@ -196,12 +196,17 @@ class _SmithMicrofacet(BRDF):
             return np.ones_like(np.asarray(cos_theta, float))
         return unpolarised_reflectance(cos_theta, self.ior_re, self.ior_im)
 
-    def g2_over_4_nl_nv(self, nl, nv):
-        """G2 / (4 N·L N·V), finite at the horizon (module docstring)."""
-        lam = self.distribution.smith_lambda_cos
-        if self.G2 == "height_correlated":
-            return 1.0 / (4.0 * (nl * nv + nv * lam(nl) + nl * lam(nv)))
-        return 1.0 / (4.0 * (nl + lam(nl)) * (nv + lam(nv)))
+    @property
+    def g2_over_4_nl_nv(self) -> SmithG2:
+        """G2 / (4 N·L N·V), finite at the horizon (module docstring): the declared form
+        (:class:`~brdfs.physics.masking.SmithG2`, λ of :attr:`distribution`, this G2), called as
+        ``g2_over_4_nl_nv(nl, nv)``.  A subclass that overrides it with a method of its own declares no
+        form: the polar route evaluates its method (on numpy)."""
+        return self._g2_masking
+
+    @cached_property                 # a frozen model's masking: built once (the polar route asks per call)
+    def _g2_masking(self):
+        return SmithG2(self.distribution, self.G2)
 
     def half_vector_factors(self):
         """F = 1 and no compensation: f = D(H) · G2/(4 N·L N·V), the masking a function of the polar
