@@ -130,7 +130,8 @@ def _die_with_the_build(parent: int) -> None:
 
 
 def preload() -> None:
-    """Import :data:`PRELOAD` (matplotlib with the Agg backend) and colour-science into this process."""
+    """Import :data:`PRELOAD` (matplotlib with the Agg backend) and colour-science into this process, and
+    load the compiled routes (:func:`brdfs.numerics.compiled_cache.fill`)."""
     import importlib
 
     import matplotlib
@@ -141,6 +142,11 @@ def preload() -> None:
     from brdfs.physics.spectral_colour import colour_module
 
     colour_module()
+    # the compiled single-angle routes, loaded from numba's cache (compiled there on a fresh clone) once
+    # for every forked job: eight artifacts ask for single angles, each paid numba's import and loads
+    from brdfs.numerics.compiled_cache import fill
+
+    fill()
 
 
 def serve(path: str) -> None:
