@@ -343,8 +343,13 @@ def _radial_breakpoints(model, mu, st, theta_deg, tail=None, root_rtol=None, lay
 def has_searched_kinks(model, mu):
     """Whether ``model`` has kink radii found numerically (:func:`_lh_radial_brackets`) or half-planes
     through N (:func:`_azimuth_radial_breakpoints`) at the angles of cosine ``mu``."""
-    lh = model.lobe.frame is HALF and len(model.lh_levels(mu, np.ones_like(mu))) > 0
+    lh = model.lobe.frame is HALF and len(model.lh_levels(mu, _ONE if mu.size == 1 else np.ones_like(mu))) > 0
     return lh or len(model.azimuth_levels(mu)) > 0
+
+
+#: cos δ = 1 of a single angle's :func:`has_searched_kinks` (read only: np.ones_like cost it ~1 µs).
+_ONE = np.ones(1)
+_ONE.flags.writeable = False
 
 
 def _level_grading(cand, beta_max, n_levels, graded):
