@@ -368,7 +368,8 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
     (:func:`has_searched_kinks`), on Python floats: its handful of values cost the array version
     some sixty numpy calls.  The same arithmetic in the same order, and the same transcendental
     functions (numpy's, each once on all of its few arguments, so that no libm ulp differs), give
-    the same row to the bit (``test_single_angle``)."""
+    the same row to the bit (``test_single_angle``).  Its compiled twin, with :func:`horizon_onset`, is
+    :func:`.azimuthal_compiled.breakpoints_of_one` (``test_azimuthal_compiled`` holds the two together)."""
     lobe = model.lobe
     theta = math.radians(float(theta_deg[0]))           # x (π/180), as np.radians: the same bits
     scale = 0.5 if lobe.frame is HALF else 1.0
