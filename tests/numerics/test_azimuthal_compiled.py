@@ -239,3 +239,29 @@ def test_only_the_exact_lobes_and_distributions_it_replicates_take_the_compiled_
         assert azimuthal.compiled_spec(relobed(**params)) is None, brdf.name
         listed = type("Listed", (type(brdf),), {"closed_form_azimuth": list(brdf.closed_form_azimuth)})
         assert azimuthal.compiled_spec(listed(**params)) == azimuthal.compiled_spec(brdf), brdf.name
+
+
+def test_the_compiled_breakpoints_are_the_numpy_ones_to_the_bit():
+    """A single angle's breakpoint row and onset interval (:func:`.azimuthal_compiled.breakpoints_of_one`)
+    are :func:`.hemisphere.radial_breakpoints_many` and :func:`.hemisphere.horizon_onset`'s, bit for bit
+    (the sign of a zero included), for every covered model at its examples and range ends, at every
+    angle of the grid and rtol 1e-3 … 1e-12 (the loose and the tight first partitions)."""
+    from brdfs.numerics.integrate import azimuthal_compiled as compiled_route
+    cells = 0
+    for brdf in _covered():
+        for theta in ANGLES:
+            th = np.array([theta])
+            mu, st = np.sin(np.radians(90.0 - th)), np.sin(np.radians(th))
+            for rtol in RTOLS:
+                tight, tail, root_rtol = azimuthal._single_angle_settings(rtol)
+                min_span = azimuthal.TIGHT_ONSET_MIN_SPAN if tight else hemisphere.ONSET_MIN_SPAN
+                bp, kinks, t0 = hemisphere.radial_breakpoints_many([brdf], mu, st, th, tail=tail, root_rtol=root_rtol,
+                                                                   kinks=True, touch=True, graded=tight)
+                bp, lo, hi = hemisphere.horizon_onset(bp, t0, min_span=min_span)
+                row, got_lo, got_hi = compiled_route.breakpoints_of_one(brdf, mu, st, th, tail, tight, min_span)
+                label = (brdf, theta, rtol)
+                assert not kinks.element.size, label
+                assert row.tobytes() == bp[0].tobytes(), (label, row, bp[0])
+                assert np.array([got_lo, got_hi]).tobytes() == np.array([lo[0], hi[0]]).tobytes(), label
+                cells += 1
+    assert cells >= 500, cells

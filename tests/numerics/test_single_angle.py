@@ -163,13 +163,13 @@ def test_one_angles_breakpoints_on_python_floats_are_the_array_versions_row_to_t
         for theta in angles:
             th = np.array([theta])
             mu, st = cos_incidence(th), sin_incidence(th)
-            if hemisphere._has_searched_kinks(brdf, mu):
+            if hemisphere.has_searched_kinks(brdf, mu):
                 continue
             for tail, layer_max, graded in zip(tails, (hemisphere.TANGENCY_LAYER_MAX_2D, None, None, None),
                                                (False, False, True, False)):
                 one = hemisphere._radial_breakpoints(brdf, mu, st, th, tail, layer_max=layer_max, graded=graded)
                 with monkeypatch.context() as forced:
-                    forced.setattr(hemisphere, "_has_searched_kinks", lambda *args: True)
+                    forced.setattr(hemisphere, "has_searched_kinks", lambda *args: True)
                     array = hemisphere._radial_breakpoints(brdf, mu, st, th, tail, layer_max=layer_max,
                                                            graded=graded)
                 assert np.array_equal(one[0][0], array[0][0]), (brdf, theta)

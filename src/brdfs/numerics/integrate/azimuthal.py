@@ -39,9 +39,11 @@ two dimensions instead.
 
 A single angle of a model whose kernel, lobe and weight the compiled route replicates
 (:func:`compiled_spec`: ``"nv"``, ``"nv/max"`` and ``"sqrt(nv/nl)"``, a cosine-power or Beckmann lobe,
-a weight declared as a form) takes :mod:`.azimuthal_compiled` after its breakpoints (numba, where
-:func:`brdfs.core.compiled.available`): the same onset map, kernel, rounding bounds and driver decisions
-in one compiled call, within ulps of this module's numpy path, which stays the reference and the fallback.
+a weight declared as a form) takes :mod:`.azimuthal_compiled` (numba, where
+:func:`brdfs.core.compiled.available`): the same breakpoints and onset interval to the bit (their
+arithmetic compiled, their transcendental functions numpy's), then the same onset map, kernel, rounding
+bounds and driver decisions in one compiled call, within ulps of this module's numpy path, which stays
+the reference and the fallback.
 
 Independent of the engine's two-dimensional quadrature (:mod:`.hemisphere`) except for the
 breakpoints; the tests compare the two, and the accuracy map compares both with :mod:`.disk`.
@@ -58,8 +60,8 @@ from brdfs.core import compiled
 from brdfs.core.estimate import CONVERGED, STALLED
 from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, estimate_of_one, integrate
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
-from brdfs.numerics.integrate.hemisphere import (ROOT_RTOL, TAIL, horizon_onset, level_azimuth, level_cos,
-                                                 radial_breakpoints_many, square_root_onset)
+from brdfs.numerics.integrate.hemisphere import (ONSET_MIN_SPAN, ROOT_RTOL, TAIL, has_searched_kinks, horizon_onset,
+                                                 level_azimuth, level_cos, radial_breakpoints_many, square_root_onset)
 from brdfs.numerics.integrate.mean import positive_part_azimuth
 from brdfs.numerics.integrate.ward_azimuth import sqrt_positive_part_moment
 from brdfs.physics.distributions import Beckmann
@@ -129,6 +131,10 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
         mu, st = both[:1], both[1:]
     else:
         mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
+    if single and (spec := compiled_spec(models[0])) is not None and not has_searched_kinks(models[0], mu):
+        est = _compiled_single(spec, models[0], theta_deg, mu, st, rtol, atol)
+        if est is not None:
+            return est
     if single:       # one angle: its kink radii only as precise as its tolerance needs, their brackets kept
         tight, tail, root_rtol = _single_angle_settings(rtol)
         bp, kinks, t0 = radial_breakpoints_many(models, mu, st, theta_deg, tail=tail, root_rtol=root_rtol, kinks=True,
@@ -138,7 +144,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
     bp, *onset = horizon_onset(bp, t0, min_span=TIGHT_ONSET_MIN_SPAN if tight else None)
     if single and not kinks.element.size and (spec := compiled_spec(models[0])) is not None:
-        est = _compiled_single(spec, bp, *onset, float(mu[0]), float(st[0]), rtol, atol)
+        est = _compiled_single_on(spec, bp[0], *(float(x[0]) for x in onset), float(mu[0]), float(st[0]), rtol, atol)
         if est is not None:
             return est
     kernels = ({0: _RadialKernel.of(models[0])} if single else
@@ -216,12 +222,21 @@ COMPILED_KERNELS = {(MIRROR, "nv"): 0, (MIRROR, "nv/max"): 1, (HALF, "nv"): 2, (
 COMPILED_POWER_COSINE, COMPILED_BECKMANN = 0, 1
 
 
-def _compiled_single(spec, bp, onset_lo, onset_hi, mu, st, rtol, atol):
-    """One angle on the compiled route: :func:`.hemisphere.square_root_onset`'s W of the onset interval
-    as numpy computes it, then one compiled call (:func:`.azimuthal_compiled.albedo_one`); None where
-    the onset interval is not one :func:`.hemisphere.horizon_onset` gives (numpy answers)."""
-    from brdfs.numerics.integrate import azimuthal_compiled
-    lo, hi = float(onset_lo[0]), float(onset_hi[0])
+def _compiled_single(spec, model, theta_deg, mu, st, rtol, atol):
+    """One angle of a model without kinks found numerically on the compiled route, its breakpoints
+    included (:func:`.azimuthal_compiled.breakpoints_of_one`: :func:`.hemisphere.radial_breakpoints_many`
+    and :func:`.hemisphere.horizon_onset` of the numpy path, to the bit)."""
+    tight, tail, _ = _single_angle_settings(rtol)
+    row, lo, hi = _azimuthal_compiled().breakpoints_of_one(model, mu, st, theta_deg, tail, tight,
+                                                          TIGHT_ONSET_MIN_SPAN if tight else ONSET_MIN_SPAN)
+    return _compiled_single_on(spec, row, lo, hi, float(mu[0]), float(st[0]), rtol, atol)
+
+
+def _compiled_single_on(spec, row, lo, hi, mu, st, rtol, atol):
+    """One angle on the compiled route from its breakpoint ``row`` and onset interval [``lo``, ``hi``]:
+    :func:`.hemisphere.square_root_onset`'s W of the onset interval as numpy computes it, then one
+    compiled call (:func:`.azimuthal_compiled.albedo_one`); None where the onset interval is not one
+    :func:`.hemisphere.horizon_onset` gives (numpy answers)."""
     if 0.0 < lo < hi:
         scale = float(np.arcsinh(math.sqrt((hi - lo) / lo))) / (hi - lo)
     elif math.isnan(lo):
@@ -230,9 +245,20 @@ def _compiled_single(spec, bp, onset_lo, onset_hi, mu, st, rtol, atol):
         return None
     rtol_1 = rtol if isinstance(rtol, float) else float(np.ravel(rtol)[0])
     atol_1 = atol if isinstance(atol, float) else float(np.ravel(atol)[0])
-    value, error, evaluations, status = azimuthal_compiled.albedo_one(
-        bp[0], mu, st, *spec, lo, hi, scale, rtol_1, atol_1, FILL_CHEAP)
+    value, error, evaluations, status = _azimuthal_compiled().albedo_one(
+        row, mu, st, *spec, lo, hi, scale, rtol_1, atol_1, FILL_CHEAP)
     return estimate_of_one(value, error, int(evaluations), compiled.status_name(status))
+
+
+_COMPILED_MODULE = []
+
+
+def _azimuthal_compiled():
+    """:mod:`.azimuthal_compiled`, imported on the first use (it imports numba), then kept."""
+    if not _COMPILED_MODULE:
+        from brdfs.numerics.integrate import azimuthal_compiled
+        _COMPILED_MODULE.append(azimuthal_compiled)
+    return _COMPILED_MODULE[0]
 
 
 def single_angle_root_rtol(rtol):

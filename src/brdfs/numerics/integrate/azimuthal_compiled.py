@@ -6,9 +6,11 @@ Ward's ``"sqrt(nv/nl)"`` (:mod:`.ward_azimuth`'s elliptic moments, with Carlson'
 where numpy calls scipy's ``elliprd``)
 with a cosine-power lobe (:class:`~brdfs.physics.lobes.PowerCosine`) or a Beckmann microfacet lobe
 (:class:`~brdfs.physics.lobes.MicrofacetLobe`), and a radial weight c cos^k β / d declared by the model
-(:attr:`~brdfs.physics.models.base.BRDF.azimuth_weight_form`).  Python keeps what is cheap and shared
-(the front door, the breakpoints :func:`.hemisphere.radial_breakpoints_many`, :func:`.hemisphere.horizon_onset`,
-the settings); one compiled call does the rest: :func:`.hemisphere.square_root_onset`'s substitution,
+(:attr:`~brdfs.physics.models.base.BRDF.azimuth_weight_form`).  Python keeps the front door, the settings
+and the transcendental functions of the breakpoints (numpy's); compiled helpers do their arithmetic, sort
+and onset split (:func:`breakpoints_of_one`: :func:`.hemisphere.radial_breakpoints_many` and
+:func:`.hemisphere.horizon_onset` of one angle, to the bit), and one compiled call does the rest:
+:func:`.hemisphere.square_root_onset`'s substitution,
 the kernel with its rounding bounds (``_RadialKernel``: the lobe's ``angle`` and ``rounding``, the
 weight, the frame kernels) and the adaptive driver (:mod:`brdfs.core.gauss_kronrod_compiled`, a replica
 of :func:`brdfs.core.gauss_kronrod.integrate`'s single-element path).
@@ -31,7 +33,7 @@ import numba
 import numpy as np
 
 from brdfs.core import compiled, gauss_kronrod_compiled as gkc
-from brdfs.numerics.integrate import azimuthal, ward_azimuth
+from brdfs.numerics.integrate import azimuthal, hemisphere, ward_azimuth
 from brdfs.physics.lobes import HALF, MIRROR
 
 _EPS = float(np.finfo(float).eps)
@@ -252,6 +254,158 @@ def albedo_one(breakpoints, mu, st, lobe, p, lobe_rounding, kernel, wc, wk, wd, 
         state = gkc.absorb(state, value, value, rounding)
     value, error, evaluations, status, _ = gkc.result(state)
     return value, error, evaluations, status
+
+
+# --- one angle's breakpoints: :func:`.hemisphere._radial_breakpoints_of_one`, :func:`.hemisphere.horizon_onset` ---
+
+#: :mod:`.hemisphere`'s gradings and thresholds (constants of the compiled code).
+_LEVEL_GRADING = tuple(float(g) for g in hemisphere.LEVEL_GRADING)
+_TANGENCY_LAYER = tuple(float(g) for g in hemisphere.TANGENCY_LAYER)
+_BEFORE_END = np.array(hemisphere._BEFORE_END)
+_HEAD = np.array(hemisphere._HEAD)
+_FIRST_TAIL_END = 1.0 - float(hemisphere.TAIL[0])
+_ONSET_MIN_T, _ONSET_SPLIT = float(hemisphere.ONSET_MIN_T), float(hemisphere.ONSET_SPLIT)
+_NO_SINES = np.empty(0)
+_NO_SINES.flags.writeable = False
+
+
+def breakpoints_of_one(model, mu, st, theta_deg, tail, graded, min_span):
+    """The breakpoint row of one angle with its onset split and the onset interval (lo, hi), as
+    :func:`.hemisphere.radial_breakpoints_many` (``touch``, one element of a model without kinks found
+    numerically) and :func:`.hemisphere.horizon_onset` give them, to the bit (``test_azimuthal_compiled``).
+
+    numpy computes every transcendental function (the levels' arccos, the tangency layers' sines and
+    the lobe's ``t_of``, SIMD where libm would differ by an ulp), the compiled stages the arithmetic,
+    the sort and the onset in between, on the same numbers in the same order."""
+    theta = math.radians(float(theta_deg[0]))
+    scale = 0.5 if model.lobe.frame is HALF else 1.0
+    declared, through_centre = hemisphere.declared_levels_of_one(model, mu)
+    angles = hemisphere.level_angles_of_one([0.0] + declared)
+    sines = np.sin(_layer_arguments(angles, theta)) if declared else _NO_SINES
+    radii = _radii(angles, sines, theta, float(st[0]), scale, graded, model.kink_at_normal,
+                   hemisphere.TANGENCY_LAYER_MAX)
+    frame = model.lobe.frame
+    return _row_and_onset(radii, model.lobe.t_of(radii), angles.size, tail, through_centre, graded,
+                          frame is HALF or frame is MIRROR, min_span)
+
+
+@_jit
+def _layer_arguments(angles, theta):
+    """x = a + θ, θ − a, a − θ of the declared levels' angles a, then a: the arguments of the sines of
+    :func:`.hemisphere._tangency_layer_radii`."""
+    a = angles[1:]
+    n = a.size
+    out = np.empty(4 * n)
+    for i in range(n):
+        out[i], out[n + i], out[2 * n + i], out[3 * n + i] = a[i] + theta, theta - a[i], a[i] - theta, a[i]
+    return out
+
+
+@_jit
+def _radii(angles, sines, theta, st, scale, graded, kink_at_normal, layer_max):
+    """β of :func:`.hemisphere._radial_breakpoints_of_one`'s ``t_of`` call, in its order: β_max, the
+    candidates, the points before the end, the graded points, the cone and the tangency layers."""
+    n = angles.size
+    beta_max = scale * (math.pi / 2 + theta)
+    n_graded = 3 * (n - 1) * len(_LEVEL_GRADING) if graded else 0
+    out = np.empty(1 + 3 * n + 1 + _BEFORE_END.size + n_graded + 1 + 3 * (n - 1) * 2 * len(_TANGENCY_LAYER))
+    out[0] = beta_max
+    k = 1
+    for group in range(3):
+        for i in range(n):
+            x = angles[i]
+            c = scale * (x - theta) if group == 0 else (scale * (theta - x) if group == 1 else scale * (x + theta))
+            out[k] = c if 0.0 < c <= beta_max else beta_max
+            k += 1
+    out[k] = beta_max                               # the last candidate, β_max, is kept as it is
+    k += 1
+    for f in _BEFORE_END:
+        out[k] = beta_max * f
+        k += 1
+    if graded:
+        for g in _LEVEL_GRADING:
+            for group in range(3):
+                for i in range(1, n):
+                    c = out[1 + group * n + i]
+                    out[k] = c * (1.0 - g) if c < beta_max else beta_max
+                    k += 1
+    if kink_at_normal:
+        out[k] = scale * theta
+        k += 1
+    m = 3 * (n - 1)
+    for j in range(m):
+        sa = sines[m + j % (n - 1)]
+        if sa == 0.0:                               # w = ±inf or NaN: never thin
+            continue
+        xi = angles[1 + j % (n - 1)] + theta if j < n - 1 else (
+            theta - angles[1 + j % (n - 1)] if j < 2 * (n - 1) else angles[1 + j % (n - 1)] - theta)
+        beta_c = scale * xi
+        w = scale * abs(sines[j]) * st / sa
+        if not (0.0 < beta_c < beta_max and layer_max * beta_c > w > 64 * _EPS * beta_c):
+            continue
+        for s in (-1.0, 1.0):
+            for g in _TANGENCY_LAYER:
+                p = beta_c + s * g * w
+                if 0.0 < p < beta_max:
+                    out[k] = p
+                    k += 1
+    return out[:k]
+
+
+@_jit
+def _insert(row, size, p, distinct):
+    """Insert ``p`` into the ascending ``row[:size]`` after the points equal to it (``bisect.insort``), or
+    with ``distinct`` not at all where one is there (the first kept, as a set keeps it); the new size."""
+    i = size
+    while i > 0 and row[i - 1] > p:
+        i -= 1
+    if distinct and i > 0 and row[i - 1] == p:
+        return size
+    for j in range(size, i, -1):
+        row[j] = row[j - 1]
+    row[i] = p
+    return size + 1
+
+
+@_jit
+def _row_and_onset(radii, t, n_levels, tail, through_centre, graded, onset_frame, min_span):
+    """The distinct points in [0, t_max] ascending (``t``: the lobe's t of ``radii``), taken in the numpy
+    path's order, and the onset split of :func:`.hemisphere.horizon_onset`: (row, lo, hi), lo = hi = NaN
+    where there is no onset interval."""
+    n_cand, n_ends = 3 * n_levels + 1, _BEFORE_END.size
+    t_max = t[0]
+    row = np.empty(t.size + tail.size + _HEAD.size + 1)
+    size = _within(row, 0, 0.0, t_max)
+    for i in range(n_cand):
+        size = _within(row, size, t[1 + i], t_max)
+    for x in tail:
+        size = _within(row, size, 1.0 - x, t_max)
+    for i in range(1 + n_cand + n_ends, t.size):
+        size = _within(row, size, t[i], t_max)
+    if through_centre:
+        for h in _HEAD:
+            size = _within(row, size, t_max * h, t_max)
+    if (graded or _FIRST_TAIL_END < t_max) and t_max < 1.0:
+        for i in range(n_ends):
+            size = _within(row, size, t[1 + n_cand + i], t_max)
+    lo = hi = math.nan
+    t0 = t[1] if onset_frame and radii[1] < radii[0] else math.nan
+    for i in range(size):
+        if row[i] == t0:
+            end = row[i + 1] if i + 1 < size else math.nan
+            if t0 > _ONSET_MIN_T and math.isfinite(end) and end > min_span * t0:
+                lo, hi = t0, end
+            break
+    if math.isfinite(lo) and hi > _ONSET_SPLIT * lo:
+        hi = 0.5 * (lo + hi)
+        size = _insert(row, size, hi, False)
+    return row[:size].copy(), lo, hi
+
+
+@_jit
+def _within(row, size, p, t_max):
+    """:func:`_insert` of ``p`` as a distinct point where it lies in [0, ``t_max``] (NaN does not)."""
+    return _insert(row, size, p, True) if 0.0 <= p <= t_max else size
 
 
 # numba keys its cache on this file alone: drop it when a module this one depends on has changed

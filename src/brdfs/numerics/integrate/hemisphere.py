@@ -302,7 +302,7 @@ def _radial_breakpoints(model, mu, st, theta_deg, tail=None, root_rtol=None, lay
     tail = TAIL if tail is None else tail
     layer_max = TANGENCY_LAYER_MAX if layer_max is None else layer_max
     lobe = model.lobe
-    if mu.size == 1 and not _has_searched_kinks(model, mu):
+    if mu.size == 1 and not has_searched_kinks(model, mu):
         return _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded)
     theta = np.radians(theta_deg)[:, None]
     scale = 0.5 if lobe.frame is HALF else 1.0
@@ -340,11 +340,16 @@ def _radial_breakpoints(model, mu, st, theta_deg, tail=None, root_rtol=None, lay
     return out, brackets, t0
 
 
-def _has_searched_kinks(model, mu):
+def has_searched_kinks(model, mu):
     """Whether ``model`` has kink radii found numerically (:func:`_lh_radial_brackets`) or half-planes
     through N (:func:`_azimuth_radial_breakpoints`) at the angles of cosine ``mu``."""
-    lh = model.lobe.frame is HALF and len(model.lh_levels(mu, np.ones_like(mu))) > 0
+    lh = model.lobe.frame is HALF and len(model.lh_levels(mu, _ONE if mu.size == 1 else np.ones_like(mu))) > 0
     return lh or len(model.azimuth_levels(mu)) > 0
+
+
+#: cos δ = 1 of a single angle's :func:`has_searched_kinks` (read only: np.ones_like cost it ~1 µs).
+_ONE = np.ones(1)
+_ONE.flags.writeable = False
 
 
 def _level_grading(cand, beta_max, n_levels, graded):
@@ -360,20 +365,18 @@ def _level_grading(cand, beta_max, n_levels, graded):
 
 def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded=False):
     """:func:`_radial_breakpoints` of a single angle of a model without kinks found numerically
-    (:func:`_has_searched_kinks`), on Python floats: its handful of values cost the array version
+    (:func:`has_searched_kinks`), on Python floats: its handful of values cost the array version
     some sixty numpy calls.  The same arithmetic in the same order, and the same transcendental
     functions (numpy's, each once on all of its few arguments, so that no libm ulp differs), give
-    the same row to the bit (``test_single_angle``)."""
+    the same row to the bit (``test_single_angle``).  Its compiled twin, with :func:`horizon_onset`, is
+    :func:`.azimuthal_compiled.breakpoints_of_one` (``test_azimuthal_compiled`` holds the two together)."""
     lobe = model.lobe
     theta = math.radians(float(theta_deg[0]))           # x (π/180), as np.radians: the same bits
     scale = 0.5 if lobe.frame is HALF else 1.0
     beta_max = scale * (np.pi / 2 + theta)
-    m = float(mu[0])
-    declared = [float(c) if isinstance(c, float) else float(np.ravel(c)[0])
-                for c in model.nv_levels(np.asarray(mu, float))]
-    through_centre = any(c == m for c in declared)
+    declared, through_centre = declared_levels_of_one(model, mu)
     levels = [0.0] + declared
-    a = np.arccos(np.array([min(max(c, -1.0), 1.0) for c in levels])).tolist()
+    a = level_angles_of_one(levels).tolist()
     cand = ([scale * (x - theta) for x in a] + [scale * (theta - x) for x in a] + [scale * (x + theta) for x in a]
             + [beta_max])
     cand = [c if 0.0 < c <= beta_max else beta_max for c in cand]
@@ -395,6 +398,27 @@ def _radial_breakpoints_of_one(model, mu, st, theta_deg, tail, layer_max, graded
     onset_frame = lobe.frame is HALF or lobe.frame is MIRROR
     t0 = t_cand[0] if onset_frame and cand[0] < beta_max else math.nan
     return [row], [(np.empty(0), np.empty(0))], np.array([t0])
+
+
+def declared_levels_of_one(model, mu):
+    """The N·V levels ``model`` declares at a single angle (cos θ ``mu``, an array of one), as Python
+    floats, and whether one of them is N·V = N·L (it passes through R, the lobe's centre)."""
+    m = float(mu[0])
+    declared = [float(c) if isinstance(c, float) else float(np.ravel(c)[0])
+                for c in model.nv_levels(np.asarray(mu, float))]
+    return declared, any(c == m for c in declared)
+
+
+def level_angles_of_one(levels):
+    """arccos c of a single angle's levels (the horizon's 0 first, then the declared ones), numpy's
+    arccos on all of them at once; the horizon's alone kept (it is every angle's)."""
+    if len(levels) == 1:
+        return _HORIZON_ANGLE
+    return np.arccos(np.array([min(max(c, -1.0), 1.0) for c in levels]))
+
+
+_HORIZON_ANGLE = np.arccos(np.array([0.0]))
+_HORIZON_ANGLE.flags.writeable = False
 
 
 def _sorted_distinct_within(points, t_max) -> list:
