@@ -169,7 +169,7 @@ def test_alpha_as_a_0d_array_or_a_numpy_float_is_alpha_by_its_value_whatever_cam
     plain = float(np.float32(0.3))
     first = albedo(model(name, alpha=plain), [30.0, 60.0]).value
     assert np.array_equal(albedo(model(name, alpha=np.array(plain)), [30.0, 60.0]).value, first)
-    assert albedo(model(name, alpha=np.array(plain)), 30.0).value == first[0]
+    assert albedo(model(name, alpha=np.array(plain)), 30.0).value == albedo(model(name, alpha=plain), 30.0).value
     albedo(model(name, alpha=np.float32(0.3)), [30.0, 60.0])
     assert np.array_equal(albedo(model(name, alpha=plain), [30.0, 60.0]).value, first)
 
