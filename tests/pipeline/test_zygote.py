@@ -32,14 +32,16 @@ def parent(tmp_path_factory):
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
     env.pop(zygote.ENV, None)
     proc = subprocess.Popen([sys.executable, "-m", "brdfs.pipeline.zygote", str(sock)], cwd=ROOT, env=env)
-    deadline = time.monotonic() + 60
-    while not sock.exists():
-        assert proc.poll() is None, "the parent exited"
-        assert time.monotonic() < deadline, "the parent did not listen within 60 s"
-        time.sleep(0.05)
-    yield sock, proc
-    proc.kill()
-    proc.wait()
+    try:
+        deadline = time.monotonic() + 60
+        while not sock.exists():
+            assert proc.poll() is None, "the parent exited"
+            assert time.monotonic() < deadline, "the parent did not listen within 60 s"
+            time.sleep(0.05)
+        yield sock, proc
+    finally:                   # a parent that failed to listen is not left behind
+        proc.kill()
+        proc.wait()
 
 
 def _job(where: Path, name: str = NAME) -> dict:

@@ -130,8 +130,7 @@ def _die_with_the_build(parent: int) -> None:
 
 
 def preload() -> None:
-    """Import :data:`PRELOAD` (matplotlib with the Agg backend) and colour-science into this process, and
-    load the compiled routes (:func:`brdfs.numerics.compiled_cache.fill`)."""
+    """Import :data:`PRELOAD` (matplotlib with the Agg backend) and colour-science into this process."""
     import importlib
 
     import matplotlib
@@ -142,15 +141,20 @@ def preload() -> None:
     from brdfs.physics.spectral_colour import colour_module
 
     colour_module()
-    # the compiled single-angle routes, loaded from numba's cache (compiled there on a fresh clone) once
-    # for every forked job: eight artifacts ask for single angles, each paid numba's import and loads
+
+
+def load_compiled_routes() -> None:
+    """The compiled single-angle routes, loaded from numba's cache once for every forked job (eight
+    artifacts ask for single angles; each paid numba's import and loads).  After the socket listens: on a
+    fresh clone this compiles them (about half a minute), while the first jobs wait in the backlog."""
     from brdfs.numerics.compiled_cache import fill
 
     fill()
 
 
 def serve(path: str) -> None:
-    """Import :data:`PRELOAD`, listen on ``path`` and fork a child per job until killed."""
+    """Import :data:`PRELOAD`, listen on ``path``, load the compiled routes and fork a child per job until
+    killed."""
     import signal
 
     preload()
@@ -161,6 +165,7 @@ def serve(path: str) -> None:
     server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     server.bind(path)
     server.listen(64)
+    load_compiled_routes()
     while True:
         conn, _ = server.accept()
         if os.fork() == 0:
