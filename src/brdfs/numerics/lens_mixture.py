@@ -65,10 +65,9 @@ def _passes(st, mixture, d, mu, first=None):
     covered = mixture.covered is not None
     while not gkc.finished(st):
         x = gkc.pending(st)
-        high, extra = lmc.lens_values(x, _weight_at(mixture.weight, x), d, mu, covered)
+        st, high, extra = lmc.absorb_lens_round(st, x, _weight_at(mixture.weight, x), d, mu, covered)
         if first is not None and not first:
             first += high, extra
-        st = gkc.absorb(st, high, high, extra)
     return gkc.result(st)
 
 

@@ -26,7 +26,7 @@ import sys
 import numba
 import numpy as np
 
-from brdfs.core import compiled
+from brdfs.core import compiled, gauss_kronrod_compiled as gkc
 from brdfs.physics.patch_geometry import (_LAYERS, _SEGMENT_TERMS, _UNDERFLOWING, LENS_KINK_GRADING,
                                           WEIGHT_LAYER_GRADING, WEIGHT_LAYER_TRIGGER, WEIGHT_POINT_GRADING)
 
@@ -269,6 +269,15 @@ def single_element_partition(points, d, steep, end, pole):
                 values[n] = point - (point - before) * g
                 n += 1
     return _distinct(values, n)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def absorb_lens_round(st, x, w, d, mu, covered):
+    """One round of the driver from state ``st``: the integrand at its pending nodes ``x`` with the weight
+    ``w`` = p(x) (:func:`lens_values`), absorbed (:func:`.gauss_kronrod_compiled.absorb`) — one crossing
+    from Python where two cost a boxing of the driver's state more.  Returns (state, high, extra)."""
+    high, extra = lens_values(x, w, d, mu, covered)
+    return gkc.absorb(st, high, high, extra), high, extra
 
 
 # numba keys its cache on this file alone: drop it when a module this one depends on has changed
