@@ -22,7 +22,7 @@ from pathlib import Path
 
 from brdfs.core.estimate import BUDGET_EXHAUSTED, CONVERGED, STALLED
 
-#: The statuses of :mod:`.gauss_kronrod_compiled`'s codes (0, 1, 2), as :class:`.Estimate` names them.
+#: The statuses of :mod:`.gauss_kronrod_compiled`'s codes (0, 1, 2), as :class:`~brdfs.core.estimate.Estimate` names them.
 STATUS_NAMES = (CONVERGED, STALLED, BUDGET_EXHAUSTED)
 #: The variable that switches the compiled routes off (``0``, ``false``, ``no`` or ``off``).
 ENVIRONMENT_SWITCH = "BRDFS_COMPILED"
@@ -70,7 +70,7 @@ def numpy_only():
 
 
 def status_name(code: int) -> str:
-    """The :class:`.Estimate` status of a compiled driver's status ``code``."""
+    """The :class:`~brdfs.core.estimate.Estimate` status of a compiled driver's status ``code``."""
     return STATUS_NAMES[code]
 
 
