@@ -186,7 +186,11 @@ def test_a_changed_dependency_drops_the_compiled_modules_cache_once(tmp_path, mo
     cache.mkdir()
     module = types.ModuleType("brdfs.core.gauss_kronrod_compiled")
     module.__file__ = str(package / "core" / "gauss_kronrod_compiled.py")
-    module.start = types.SimpleNamespace(_cache=types.SimpleNamespace(_cache_path=str(cache)))
+    # first, a compiled function it imported from elsewhere: not where its own cache is
+    module._larger = types.SimpleNamespace(_cache=types.SimpleNamespace(_cache_path=str(tmp_path / "elsewhere")),
+                                           py_func=types.SimpleNamespace(__module__="brdfs.core.other"))
+    module.start = types.SimpleNamespace(_cache=types.SimpleNamespace(_cache_path=str(cache)),
+                                         py_func=types.SimpleNamespace(__module__=module.__name__))
     entries = [cache / "gauss_kronrod_compiled.start-70.py311.nbi", cache / "gauss_kronrod_compiled.start-70.py311.1.nbc"]
     other = cache / "polar_compiled.albedo_one-9.py311.nbi"
 

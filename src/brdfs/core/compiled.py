@@ -12,6 +12,7 @@ The environment variable ``BRDFS_COMPILED=0`` switches the compiled routes off f
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import importlib.util
 import os
@@ -69,6 +70,13 @@ def numpy_only():
         _suspended.depth -= 1
 
 
+@functools.cache
+def module(name: str):
+    """The compiled module ``name``, imported at its first use (it imports numba: choosing a route must
+    not), then kept (an import statement per call costs a single angle half a µs)."""
+    return importlib.import_module(name)
+
+
 def status_name(code: int) -> str:
     """The :class:`~brdfs.core.estimate.Estimate` status of a compiled driver's status ``code``."""
     return STATUS_NAMES[code]
@@ -83,7 +91,9 @@ def drop_stale_cache(module) -> bool:
     values of the constants it reads (``SAFETY``, a route's grading) as they were when it was compiled:
     after one of those changes, the cache would go on answering with the old ones.  The fingerprint is
     the sources of every brdfs module ``module`` imports, directly or not; it is kept beside the cache."""
-    dispatchers = [value for value in vars(module).values() if hasattr(getattr(value, "_cache", None), "_cache_path")]
+    dispatchers = [value for value in vars(module).values()       # its own (not one it imported)
+                   if hasattr(getattr(value, "_cache", None), "_cache_path")
+                   and getattr(getattr(value, "py_func", None), "__module__", None) == module.__name__]
     if not dispatchers:
         return False
     cache = Path(dispatchers[0]._cache._cache_path)

@@ -169,8 +169,7 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
     evaluations = elem.size * NODES.size
     exhausted = True
     if n_el == 1:
-        rtol_1 = rtol if isinstance(rtol, float) else float(np.ravel(rtol)[0])
-        atol_1 = atol if isinstance(atol, float) else float(np.ravel(atol)[0])
+        rtol_1, atol_1 = number_of_one(rtol), number_of_one(atol)
     sums_1 = None              # a single element's sums over its current intervals
     rounds = 0
     for _ in range(max_rounds):
@@ -229,6 +228,11 @@ def integrate(integrand, breakpoints, rtol=1e-10, atol=1e-14, max_intervals=100_
         status = np.where(met, CONVERGED, BUDGET_EXHAUSTED if exhausted else STALLED)
         est = Estimate(low, error, evaluations, status)
     return (est, rounds) if return_rounds else est
+
+
+def number_of_one(tol) -> float:
+    """A tolerance of one element (a number or a one-element array) as a Python float."""
+    return tol if isinstance(tol, float) else float(np.ravel(tol)[0])
 
 
 def estimate_of_one(value, error, evaluations, status) -> Estimate:

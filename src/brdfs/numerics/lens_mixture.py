@@ -11,8 +11,6 @@ own, no numba, ``BRDFS_COMPILED=0``) is the model's ``albedo_estimate``.
 """
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
 from brdfs.core import compiled
@@ -71,13 +69,10 @@ def _passes(st, mixture, d, mu, first=None):
     return gkc.result(st)
 
 
-@functools.cache
 def _compiled():
-    """The compiled driver and lens areas, imported at the first compiled call (they import numba)."""
-    from brdfs.core import gauss_kronrod_compiled
-    from brdfs.numerics import lens_mixture_compiled
-
-    return gauss_kronrod_compiled, lens_mixture_compiled
+    """The compiled driver and lens areas, imported at the first compiled call (:func:`brdfs.core.compiled.module`)."""
+    return (compiled.module("brdfs.core.gauss_kronrod_compiled"),
+            compiled.module("brdfs.numerics.lens_mixture_compiled"))
 
 
 def _weight_at(weight, x):

@@ -42,10 +42,7 @@ _WEIGHT_LAYER = np.array(WEIGHT_LAYER_GRADING)
 _TRIGGER = float(WEIGHT_LAYER_TRIGGER)
 
 
-@numba.njit(cache=True)
-def _larger(a, b):
-    """Python's ``max(a, b)``."""
-    return b if b > a else a
+_larger = gkc._larger            # Python's max(a, b), as the driver takes it
 
 
 @numba.njit(cache=True)

@@ -58,7 +58,7 @@ import numpy as np
 
 from brdfs.core import compiled
 from brdfs.core.estimate import CONVERGED, STALLED
-from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, estimate_of_one, integrate
+from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, estimate_of_one, integrate, number_of_one
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 from brdfs.numerics.integrate.hemisphere import (ONSET_MIN_SPAN, ROOT_RTOL, TAIL, has_searched_kinks, horizon_onset,
                                                  level_azimuth, level_cos, radial_breakpoints_many, square_root_onset)
@@ -131,7 +131,8 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
         mu, st = both[:1], both[1:]
     else:
         mu, st = cos_incidence(theta_deg), sin_incidence(theta_deg)
-    if single and (spec := compiled_spec(models[0])) is not None and not has_searched_kinks(models[0], mu):
+    spec = compiled_spec(models[0]) if single else None
+    if spec is not None and not has_searched_kinks(models[0], mu):
         est = _compiled_single(spec, models[0], theta_deg, mu, st, rtol, atol)
         if est is not None:
             return est
@@ -143,7 +144,7 @@ def albedo_many(models, theta_deg, rtol=1e-10, atol=1e-14) -> Estimate:
         tight = False
         (bp, t0), kinks = radial_breakpoints_many(models, mu, st, theta_deg, tail=BATCH_TAIL, touch=True), None
     bp, *onset = horizon_onset(bp, t0, min_span=TIGHT_ONSET_MIN_SPAN if tight else None)
-    if single and not kinks.element.size and (spec := compiled_spec(models[0])) is not None:
+    if spec is not None and not kinks.element.size:
         est = _compiled_single_on(spec, bp[0], *(float(x[0]) for x in onset), float(mu[0]), float(st[0]), rtol, atol)
         if est is not None:
             return est
@@ -243,22 +244,14 @@ def _compiled_single_on(spec, row, lo, hi, mu, st, rtol, atol):
         scale = 0.0
     else:
         return None
-    rtol_1 = rtol if isinstance(rtol, float) else float(np.ravel(rtol)[0])
-    atol_1 = atol if isinstance(atol, float) else float(np.ravel(atol)[0])
     value, error, evaluations, status = _azimuthal_compiled().albedo_one(
-        row, mu, st, *spec, lo, hi, scale, rtol_1, atol_1, FILL_CHEAP)
+        row, mu, st, *spec, lo, hi, scale, number_of_one(rtol), number_of_one(atol), FILL_CHEAP)
     return estimate_of_one(value, error, int(evaluations), compiled.status_name(status))
 
 
-_COMPILED_MODULE = []
-
-
 def _azimuthal_compiled():
-    """:mod:`.azimuthal_compiled`, imported on the first use (it imports numba), then kept."""
-    if not _COMPILED_MODULE:
-        from brdfs.numerics.integrate import azimuthal_compiled
-        _COMPILED_MODULE.append(azimuthal_compiled)
-    return _COMPILED_MODULE[0]
+    """:mod:`.azimuthal_compiled`, imported on the first use (:func:`brdfs.core.compiled.module`)."""
+    return compiled.module("brdfs.numerics.integrate.azimuthal_compiled")
 
 
 def single_angle_root_rtol(rtol):

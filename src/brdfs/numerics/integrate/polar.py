@@ -50,7 +50,7 @@ import functools
 import numpy as np
 
 from brdfs.core import compiled
-from brdfs.core.gauss_kronrod import _STATUS_OF_ONE, FILL_CHEAP, Estimate, NodeValues, integrate
+from brdfs.core.gauss_kronrod import FILL_CHEAP, Estimate, NodeValues, estimate_of_one, integrate, number_of_one
 from brdfs.numerics.integrate.grouping import first_of_model, indices_by_model
 
 _EPS = np.finfo(float).eps
@@ -135,16 +135,9 @@ def _compiled_kernel(distribution, S):
     return _polar_compiled().kernel_of(distribution, S)
 
 
-_COMPILED_MODULE = []
-
-
 def _polar_compiled():
-    """:mod:`.polar_compiled`, imported on the first use (it imports numba), then kept (an import
-    statement per call costs a single angle half a µs)."""
-    if not _COMPILED_MODULE:
-        from brdfs.numerics.integrate import polar_compiled
-        _COMPILED_MODULE.append(polar_compiled)
-    return _COMPILED_MODULE[0]
+    """:mod:`.polar_compiled`, imported on the first use (:func:`brdfs.core.compiled.module`)."""
+    return compiled.module("brdfs.numerics.integrate.polar_compiled")
 
 
 def _albedo_one_compiled(brdf, kernel, theta_l, mu_l, s_l, rtol, atol) -> Estimate:
@@ -153,15 +146,8 @@ def _albedo_one_compiled(brdf, kernel, theta_l, mu_l, s_l, rtol, atol) -> Estima
     alpha = kernel[1]
     value, error, evaluations, status = _polar_compiled().albedo_one(
         *kernel, theta_l, mu_l, s_l, _lobe_offsets_of(alpha), _compiled_level_angles(brdf, alpha, mu_l),
-        _number(rtol), _number(atol), FILL_CHEAP)
-    value_error = np.array((value, error))
-    return Estimate(value_error[:1], value_error[1:], int(evaluations),
-                    _STATUS_OF_ONE[compiled.status_name(status)].copy())
-
-
-def _number(tol) -> float:
-    """A tolerance of one element as a Python float (as :func:`integrate` reads it)."""
-    return tol if isinstance(tol, float) else float(np.ravel(tol)[0])
+        number_of_one(rtol), number_of_one(atol), FILL_CHEAP)
+    return estimate_of_one(value, error, int(evaluations), compiled.status_name(status))
 
 
 _NO_LEVELS = np.empty(0)
