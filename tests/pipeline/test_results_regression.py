@@ -67,6 +67,7 @@ def check(root: Path) -> regression.ResultsCheck:
 def test_an_unchanged_build_passes_and_numbers_may_move_within_4x_their_error_else_1e_9_relative(built):
     assert check(built).problems == [] and check(built).compared == 2
     edit(built, TABLE, "C", 0, 1.1576 + 3.9e-10)                   # < 4 C_err
+    edit(built, TABLE, "C_err", 1, 1.04e-10)                       # an error estimate: < 5 % of itself
     edit(built, RENDER, "luminance", 0, 0.25 + 0.039)              # < 4 luminance_err
     edit(built, RENDER, "p95_relative_se", 0, 0.04 * (1 + 5e-10))  # < 1e-9 relative
     assert check(built).problems == []
@@ -76,6 +77,8 @@ def test_an_unchanged_build_passes_and_numbers_may_move_within_4x_their_error_el
     (TABLE, "C", 1.1576 + 5e-10, "row 0: C 1.1576 -> 1.1576000005"),
     (RENDER, "luminance", 0.30, "row 0: luminance 0.25 -> 0.3"),
     (RENDER, "p95_relative_se", 0.04 * (1 + 2e-9), "row 0: p95_relative_se 0.04 -> 0.04000000008"),
+    (TABLE, "C_err", 1.06e-10, "row 0: C_err 1e-10 -> 1.06e-10"),
+    (RENDER, "luminance_err", 0.0094, "row 0: luminance_err 0.01 -> 0.0094"),
     (TABLE, "model", "blinn", "row 0: model 'ward' -> 'blinn'"),
 ])
 def test_a_moved_number_or_text_is_named_with_its_file_and_first_row(built, relative, column, value, line):

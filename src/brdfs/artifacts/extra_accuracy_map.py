@@ -4,7 +4,8 @@ angles up to 89.9999° and the thesis's parameter ranges.
 
 Per cell: engine value and reported error, reference value and error, the difference, and
 ``ratio`` = |engine − reference| / reported engine error (meaningful where the reference is the more
-accurate, ``judged``).  A cell is ``dishonest`` when the two disagree beyond their combined reported
+accurate, ``judged``).  As measures of the engine's true error, both are known within the reference's
+error: ``difference_err`` = the reference's error, ``ratio_err`` = that over the engine's error.  A cell is ``dishonest`` when the two disagree beyond their combined reported
 errors, ``failed`` when either method returns a non-finite value, and ``meets_tolerance`` when the
 engine's error meets the contract's target (rtol, or atol below 1e-4).
 
@@ -102,13 +103,18 @@ def accuracy_map(sec: dict, tol: dict) -> pd.DataFrame:
 
 
 def flag(df: pd.DataFrame, tol: dict) -> pd.DataFrame:
-    """Difference, ratio to the reported error, and the flags of the module docstring."""
+    """Difference, ratio to the reported error, their errors, and the flags of the module docstring."""
     diff = (df["albedo"] - df["reference_albedo"]).abs()
     finite = np.isfinite(df[["albedo", "albedo_err", "reference_albedo", "reference_albedo_err"]]).all(axis=1)
     target = np.maximum(tol["rtol"] * df["albedo"].abs(), np.where(df["albedo"].abs() < ABSOLUTE_BELOW, tol["atol"], 0.0))
+    reported = df["albedo_err"].where(df["albedo_err"] > 0, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio, ratio_err = diff / reported, df["reference_albedo_err"] / reported
     return df.assign(
         difference=diff,
-        ratio=np.where(df["albedo_err"] > 0, diff / df["albedo_err"], np.inf),
+        difference_err=df["reference_albedo_err"],
+        ratio=np.where(reported > 0, ratio, np.inf),
+        ratio_err=np.where(reported > 0, ratio_err, np.inf),
         judged=df["reference_albedo_err"] < df["albedo_err"],
         dishonest=finite & (diff > df["albedo_err"] + df["reference_albedo_err"]),
         failed=~finite,
@@ -119,7 +125,8 @@ def flag(df: pd.DataFrame, tol: dict) -> pd.DataFrame:
 @figure(NAME, config=(SECTION,), resources={"runtime": 5}, chapter=None)
 def compute(cfg: dict, deps: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """``family, model, parameter, parameter_value, theta_deg, albedo, albedo_err, reference_albedo,
-    reference_albedo_err, difference, ratio, judged, dishonest, failed, meets_tolerance``."""
+    reference_albedo_err, difference, difference_err, ratio, ratio_err, judged, dishonest, failed,
+    meets_tolerance``."""
     return accuracy_map(cfg[SECTION], cfg["tolerance"])
 
 
