@@ -30,7 +30,8 @@ curve point slower than at e0ba585, within :data:`SLOWER_BEYOND` for the machine
 ``single_over_curve_before`` and ``single_vs_before`` (that commit's ratio, and our single call over
 its: a change's before and after in one run, with ``--before=`` the commit it started from).
 
-Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``).  For the Smith-masked models (GGX, Beckmann–Smith at
+Each time is the best of ``ROUNDS`` rounds of CPU time (``time.process_time``); in ``--models`` each round's
+sample repeats its call for at least :data:`MIN_SAMPLE` s (:func:`_per_call`).  For the Smith-masked models (GGX, Beckmann–Smith at
 α = 0.3, Cook–Torrance with the thesis's Smith G at m = 0.3) it reports ``Estimate.evaluations``
 (BRDF or kernel values) of single calls at 1e-10 at 12 angles from 0° to 89.9° — median and maximum
 (target: median ≤ 5,000) — and the median time.  ``--polar`` (also part of the default run; printed,
@@ -211,16 +212,35 @@ BEFORE = "e0ba585"
 SLOWER_BEYOND = 1.10
 
 
+#: A sample of :func:`_per_call` repeats its call for at least this many CPU seconds: one call of a fast
+#: model's curve takes 0.1–2 ms, and the best of 7 such single calls still moved by ±13 % between runs
+#: (a curve of Phong at 1e-6 read 12 % "slower" than at e0ba585 in one run, the same within 2 % in a
+#: separate A/B of 50 ms samples).
+MIN_SAMPLE = 0.02
+
+
+def _per_call(fn, min_seconds=MIN_SAMPLE):
+    """CPU seconds per call of ``fn``, called as many times as one sample of ``min_seconds`` needs (at least once)."""
+    calls, start = 0, time.process_time()
+    while True:
+        fn()
+        calls += 1
+        spent = time.process_time() - start
+        if spent >= min_seconds:
+            return spent / calls
+
+
 def _curve_seconds(brdf, rtol, rounds):
-    """Best CPU seconds per point of the 100-angle curve over ``rounds`` (used here and in :class:`_CurveAt`'s child)."""
-    return min(_seconds(lambda: albedo(brdf, CURVE_THETA, rtol=rtol)) for _ in range(rounds)) / CURVE_THETA.size
+    """Best CPU seconds per point of the 100-angle curve over ``rounds`` samples (:func:`_per_call`; used
+    here and in :class:`_CurveAt`'s child)."""
+    return min(_per_call(lambda: albedo(brdf, CURVE_THETA, rtol=rtol)) for _ in range(rounds)) / CURVE_THETA.size
 
 
 def _single_seconds(brdf, rtol, rounds):
     """Best CPU seconds per single call (the mean over ``SINGLE_THETA``, one call per angle) over ``rounds``
-    (used here and in :class:`_CurveAt`'s child)."""
+    samples (:func:`_per_call`; used here and in :class:`_CurveAt`'s child)."""
     single = lambda: [albedo(brdf, float(t), rtol=rtol) for t in SINGLE_THETA]  # noqa: E731
-    return min(_seconds(single) for _ in range(rounds)) / SINGLE_THETA.size
+    return min(_per_call(single) for _ in range(rounds)) / SINGLE_THETA.size
 
 
 class _CurveAt:
