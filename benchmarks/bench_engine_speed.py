@@ -219,6 +219,15 @@ SLOWER_BEYOND = 1.10
 MIN_SAMPLE = 0.02
 
 
+def steady_allocator():
+    """Put this process's allocator in the state a long-running one reaches: glibc serves an array above its
+    mmap threshold (128 KB at start) by mmap, page faults on first touch included, until a freed mapped
+    chunk raises the threshold to its size.  A fresh process's patch_exponential curve at 1e-6 (2 MB
+    arrays) took 0.041–0.044 ms a point, and 0.025–0.028 ms after any model had freed a larger array (the
+    same code, in the same run): which models ran first decided a third of its ratio."""
+    np.empty(1 << 21)              # 16 MB, mapped, freed at once: the threshold becomes 16 MB
+
+
 def _per_call(fn, min_seconds=MIN_SAMPLE):
     """CPU seconds per call of ``fn``, called as many times as one sample of ``min_seconds`` needs (at least once)."""
     calls, start = 0, time.process_time()
@@ -254,6 +263,7 @@ class _CurveAt:
         "warnings.simplefilter('ignore')\n"
         "sys.path.insert(0, sys.argv[1])\n"
         "import bench_engine_speed as bench\n"
+        "bench.steady_allocator()\n"
         "from brdfs.physics.models import MODELS\n"
         "for line in sys.stdin:\n"
         "    name, rtol, rounds, kind = line.split()\n"
@@ -505,6 +515,7 @@ def accuracy_grid_seconds():
 
 
 def main():
+    steady_allocator()
     if "--accuracy-grid" in sys.argv:
         print(accuracy_grid_seconds().to_string(index=False, float_format=lambda x: f"{x:.1f}"), flush=True)
         return

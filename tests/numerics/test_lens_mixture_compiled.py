@@ -6,6 +6,7 @@ nodes of p(R) evaluated (bar threshold flips, counted), the value within a few �
 the reported error, the error within a small fraction of itself."""
 import contextlib
 import functools
+import itertools
 import warnings
 
 import numpy as np
@@ -241,20 +242,21 @@ def test_the_compiled_lens_area_is_the_numpy_one_node_by_node():
 
 def test_the_compiled_first_partition_is_the_numpy_one_to_the_bit():
     """``single_element_partition`` against ``patch_geometry._single_element_partition`` over the declared points
-    of every example (and points at and past the ends of [0, 2]), steep layers and angles to 90°: equal arrays."""
+    of every example (and points at and past the ends of [0, 2]), steep layers, angles to 90° and the
+    tolerances of every grading level: equal arrays."""
     from brdfs.numerics import lens_mixture_compiled as lmc
-    from brdfs.physics.patch_geometry import _single_element_partition
+    from brdfs.physics.patch_geometry import _single_element_partition, lens_kink_levels
 
     declared = {(brdf.lens_mixture().points, brdf.lens_mixture().steep_layer) for _, brdf in _models()}
     cases = declared | {((0.0, 2.0), None), ((1e-3, 1.0 + 1e-12), None), ((), (2.0 - 1e-6, 2.0)), ((0.3,), (0.05, 2.0))}
     rng = np.random.default_rng(7)
     d = np.concatenate([np.sin(np.radians(ANGLES)), rng.uniform(0.0, 1.0, 40)])
     for points, layer in cases:
-        for k in d:
-            expected = _single_element_partition(points, float(k), layer)
+        for k, rtol in zip(d, itertools.cycle((1e-10, 1e-9, 1e-8, 1e-6, 1e-4, 1e-2))):
+            expected = _single_element_partition(points, float(k), layer, rtol)
             got = lmc.single_element_partition(np.array(points, float), float(k), layer is not None,
-                                               *(layer or (0.0, 0.0)))
-            assert got.shape == expected.shape and np.array_equal(got, expected), (points, layer, k)
+                                               *(layer or (0.0, 0.0)), lens_kink_levels(rtol))
+            assert got.shape == expected.shape and np.array_equal(got, expected), (points, layer, k, rtol)
 
 
 def _both_paths(brdf, theta=30.0, rtol=1e-10):

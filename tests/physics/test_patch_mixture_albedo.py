@@ -51,23 +51,27 @@ def test_a_single_angle_is_honest_against_the_sweeps_truths_up_to_grazing_incide
 
 
 @pytest.mark.parametrize("name", ["patch_mixture", "patch_exponential", "generalized_lambertian"])
-def test_a_single_angle_of_a_mixture_meets_1e_10_on_its_first_evaluation_and_agrees_with_the_batch(name):
+def test_a_single_angle_of_a_mixture_meets_its_tolerance_on_its_first_evaluation_and_agrees_with_the_batch(name):
     """Graded by halves toward the lens's kinks R = 1 ∓ sin θ and, from below, toward the weight's own
-    points (a generalized Lambertian's clip m_clip), a single angle's first partition meets rtol 1e-10
+    points (a generalized Lambertian's clip m_clip), a single angle's first partition meets its rtol
     on one evaluation of the lens areas (the rough pass's, which the final pass reuses, or the final answer
     where it is within a quarter of the target): one or two rounds of the driver, where bisecting those
-    kinks level by level took 6–9.  Its value agrees with the
-    batch's (another partition, bisected) within the two reported errors, at 1e-10 and 1e-6."""
+    kinks level by level took 6–9 at 1e-10.  A looser rtol grades fewer levels
+    (:func:`~brdfs.physics.patch_geometry.lens_kink_levels`), on fewer nodes.  Its value agrees with the
+    batch's (another partition, bisected) within the two reported errors, at 1e-10, 1e-8, 1e-6 and 1e-4."""
     brdf = MODELS[name].example("typical")
     theta = np.linspace(0.0, 89.0, 12)
-    rounds, evaluate = [0], gauss_kronrod._evaluate
+    rounds, nodes, evaluate = [0], [0], gauss_kronrod._evaluate
 
-    def counted(*args, **kwargs):
+    def counted(integrand, elem, lo, hi, *args, **kwargs):
         rounds[0] += 1
-        return evaluate(*args, **kwargs)
+        nodes[0] += 21 * np.size(lo)
+        return evaluate(integrand, elem, lo, hi, *args, **kwargs)
 
-    for rtol in (1e-10, 1e-6):
+    first_nodes = {}
+    for rtol in (1e-10, 1e-8, 1e-6, 1e-4):
         batch = albedo(brdf, theta, rtol=rtol)
+        nodes[0] = 0
         for k, t in enumerate(theta):
             rounds[0] = 0
             gauss_kronrod._evaluate = counted
@@ -79,6 +83,18 @@ def test_a_single_angle_of_a_mixture_meets_1e_10_on_its_first_evaluation_and_agr
             assert str(one.status) == "converged" and str(one.route) == "engine/own"
             assert abs(float(one.value) - batch.value[k]) <= float(one.error) + batch.error[k]
             assert rounds[0] in (1, 2), (t, rtol, rounds[0])
+        first_nodes[rtol] = nodes[0]
+    assert first_nodes[1e-10] > first_nodes[1e-8] > first_nodes[1e-6] >= first_nodes[1e-4], first_nodes
+
+
+def test_a_looser_tolerance_grades_one_level_fewer_per_factor_2_to_the_5_halves_down_to_two():
+    """Each level halves the interval next to a kink where a_R starts as (R − R₀)^{3/2}: its error falls by
+    2^{5/2}.  All 8 levels at 1e-10 and tighter (and rtol 0); 7 just above; 2 at 1e-6 and, the floor, looser."""
+    from brdfs.physics.patch_geometry import LENS_KINK_GRADING, lens_kink_levels
+
+    assert len(LENS_KINK_GRADING) == 8
+    assert [lens_kink_levels(r) for r in (0.0, 1e-13, 1e-10, 1.01e-10, 1e-10 * 2 ** 2.5 * 1.01, 1e-8, 1e-6, 1e-4, 1.0)] \
+        == [8, 8, 8, 7, 6, 5, 2, 2, 2]
 
 
 @pytest.mark.parametrize("points", [(2.5,), (-0.5, 1.3), (0.0, 2.0)])

@@ -17,7 +17,8 @@ from brdfs.core import compiled
 from brdfs.core.gauss_kronrod import Estimate
 from brdfs.physics.geometry import sin_incidence
 from brdfs.physics.models.patch import LensMixtureAlbedo
-from brdfs.physics.patch_geometry import CLOSED_FORM_RTOL, ROUGH_RTOL, _cos_incidence_near_grazing
+from brdfs.physics.patch_geometry import (CLOSED_FORM_RTOL, ROUGH_RTOL, _cos_incidence_near_grazing,
+                                          lens_kink_levels)
 
 
 
@@ -42,30 +43,30 @@ def compiled_lens_albedo(mixture, theta_deg, rtol, atol):
     covered = None if mixture.covered is None else float(mixture.covered)
     p_diffuse = float(mixture.p_diffuse)
     steep = mixture.steep_layer is not None
-    partition = lmc.single_element_partition(np.array(mixture.points, float), d, steep,
-                                             *(mixture.steep_layer if steep else (0.0, 0.0)))
+    partition, *begun = lmc.start_rough_pass(np.array(mixture.points, float), d, steep,
+                                             *(mixture.steep_layer if steep else (0.0, 0.0)),
+                                             lens_kink_levels(rtol), ROUGH_RTOL, atol)
     first = []                                            # the rough pass's first evaluation
-    value, error, _, _, rounds = _passes(gkc.start(partition, ROUGH_RTOL, atol, 0), mixture, d, mu, first)
+    value, error, _, _, rounds = _passes(gkc, lmc, *begun, mixture, d, mu, first)
     constant = p_diffuse if covered is None else covered
     target = max(0.5 * rtol * abs(value + constant), atol)
     if not (rounds == 0 and error <= 0.25 * target):      # else the rough answer is the final one, to the bit
-        st = gkc.absorb(gkc.start(partition, 0.0, target, 0), first[0], first[0], first[1])
-        value, error = _passes(st, mixture, d, mu)[:2]
+        value, error = _passes(gkc, lmc, *lmc.start_final_pass(partition, target, *first), mixture, d, mu)[:2]
     rounding = abs(p_diffuse) if covered is None else abs(covered) + abs(p_diffuse)
     pair = np.array((value + constant, error + CLOSED_FORM_RTOL * rounding))     # one array, two views
     return Estimate(pair[:1].reshape(theta.shape), pair[1:].reshape(theta.shape))
 
 
-def _passes(st, mixture, d, mu, first=None):
-    """The compiled driver's rounds from state ``st`` to its result, p(R) in numpy on each round's nodes and
-    the lens areas compiled; ``first`` (a list) receives the first round's (values, known errors)."""
-    gkc, lmc = _compiled()
+def _passes(gkc, lmc, st, done, x, mixture, d, mu, first=None):
+    """The compiled driver's rounds from state ``st`` (``done``: finished; ``x``: its pending nodes) to its
+    result, p(R) in numpy on each round's nodes and the lens areas compiled; ``first`` (a list) receives the
+    first round's (values, known errors)."""
     covered = mixture.covered is not None
-    while not gkc.finished(st):
-        x = gkc.pending(st)
-        st, high, extra = lmc.absorb_lens_round(st, x, _weight_at(mixture.weight, x), d, mu, covered)
+    while not done:
+        st, high, extra, done, next_x = lmc.absorb_lens_round(st, x, _weight_at(mixture.weight, x), d, mu, covered)
         if first is not None and not first:
             first += high, extra
+        x = next_x
     return gkc.result(st)
 
 

@@ -216,9 +216,10 @@ def _copied(row, values):
 
 
 @numba.njit(cache=True)
-def single_element_partition(points, d, steep, end, pole):
-    """``_single_element_partition(points, d, (end, pole) if steep else None)``: the same points, the same
-    arithmetic (a single angle's first partition, graded toward the lens's kinks and the weight's points)."""
+def single_element_partition(points, d, steep, end, pole, levels):
+    """``_single_element_partition(points, d, (end, pole) if steep else None, rtol)`` with ``levels`` =
+    ``lens_kink_levels(rtol)``: the same points, the same arithmetic (a single angle's first partition, graded
+    toward the lens's kinks by ``levels`` levels and toward the weight's points)."""
     lo, hi = 1.0 - d, 1.0 + d
     values = np.empty(5 + points.size + _LAYER_FACTORS.size + _WEIGHT_LAYER.size + 2 * _KINK_GRADING.size
                       + points.size * _POINT_GRADING.size)
@@ -252,11 +253,11 @@ def single_element_partition(points, d, steep, end, pole):
                 above = row[k]
         below = _last_below(row, hi)
         if not math.isnan(above):
-            for g in _KINK_GRADING:
+            for g in _KINK_GRADING[:levels]:
                 values[n] = lo + (above - lo) * g
                 n += 1
         if not math.isnan(below):
-            for g in _KINK_GRADING:
+            for g in _KINK_GRADING[:levels]:
                 values[n] = hi - (hi - below) * g
                 n += 1
     for point in points:                   # the weight's own features inside (0, 2], graded toward from below
@@ -268,13 +269,44 @@ def single_element_partition(points, d, steep, end, pole):
     return _distinct(values, n)
 
 
+@numba.njit(cache=True)
+def _next_round(st):
+    """(finished, the pending nodes (m, 21)) of state ``st``: the driver's ``finished`` and ``pending`` in one."""
+    if gkc.finished(st):
+        return True, np.empty((0, 21))
+    return False, gkc.pending(st)
+
+
+@numba.njit(cache=True)
+def start_rough_pass(points, d, steep, end, pole, levels, rtol, atol):
+    """A single angle's first partition (:func:`single_element_partition`, ``levels`` levels toward the lens's
+    kinks) and the driver's state on it
+    (:func:`.gauss_kronrod_compiled.start`, ``fill`` 0), with its pending nodes: one crossing from Python
+    where four cost a boxing of the driver's state each.  Returns (partition, state, finished, nodes)."""
+    partition = single_element_partition(points, d, steep, end, pole, levels)
+    st = gkc.start(partition, rtol, atol, 0)
+    done, x = _next_round(st)
+    return partition, st, done, x
+
+
+@numba.njit(cache=True)
+def start_final_pass(partition, target, high, extra):
+    """The final pass's state: the driver started on ``partition`` at absolute tolerance ``target``, its first
+    evaluation the rough pass's (``high``, ``extra``), and its pending nodes.  Returns (state, finished, nodes)."""
+    st = gkc.absorb(gkc.start(partition, 0.0, target, 0), high, high, extra)
+    done, x = _next_round(st)
+    return st, done, x
+
+
 @numba.njit(cache=True, error_model="numpy")
 def absorb_lens_round(st, x, w, d, mu, covered):
     """One round of the driver from state ``st``: the integrand at its pending nodes ``x`` with the weight
-    ``w`` = p(x) (:func:`lens_values`), absorbed (:func:`.gauss_kronrod_compiled.absorb`) — one crossing
-    from Python where two cost a boxing of the driver's state more.  Returns (state, high, extra)."""
+    ``w`` = p(x) (:func:`lens_values`), absorbed (:func:`.gauss_kronrod_compiled.absorb`), and the next round's
+    nodes.  Returns (state, high, extra, finished, nodes)."""
     high, extra = lens_values(x, w, d, mu, covered)
-    return gkc.absorb(st, high, high, extra), high, extra
+    st = gkc.absorb(st, high, high, extra)
+    done, nodes = _next_round(st)
+    return st, high, extra, done, nodes
 
 
 # numba keys its cache on this file alone: drop it when a module this one depends on has changed

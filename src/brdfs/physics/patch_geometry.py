@@ -478,13 +478,37 @@ def weight_integral(profiles, lo, hi, rtol=1e-10, atol=1e-14) -> Estimate:
 LENS_LAYER_GRADING = 4.0 ** np.arange(0.0, 27.0)
 
 
-def _r_breakpoints(points, d, single_graded=False, steep_layer=None):
+#: Every level of :data:`LENS_KINK_GRADING` halves the interval next to a kink, whose error (a_R's
+#: (R − R₀)^{3/2}) falls by 2^{5/2} a level: a tolerance looser than this one takes one level fewer per
+#: factor 2^{5/2} (:func:`lens_kink_levels`).  At rtol 1e-6 the eight levels had made a single angle's first
+#: evaluation 607 nodes where 408 met the tolerance in one round as well (the three lens mixtures, 14
+#: angles to 89.99°).
+KINK_GRADED_RTOL = 1e-10
+#: ... but never fewer levels than this: the rough pass (:data:`ROUGH_RTOL`) starts on the same partition,
+#: and with one level or none a generalized Lambertian's first evaluation missed even its 1e-4 at some
+#: angles (3–4 rounds, 45 angles to 89.9°); with two, every first evaluation of the three lens mixtures met
+#: rtol 1e-6 and looser.
+MIN_KINK_LEVELS = 2
+
+
+def lens_kink_levels(rtol):
+    """How many levels of :data:`LENS_KINK_GRADING` a single element's first partition takes at ``rtol``: all
+    at :data:`KINK_GRADED_RTOL` and tighter (and at rtol 0), one fewer per factor 2^{5/2} looser, at least
+    :data:`MIN_KINK_LEVELS` (2 from 1e-6 on): the driver refines further where a model needs it."""
+    rtol = float(rtol)
+    if not rtol > KINK_GRADED_RTOL:
+        return len(LENS_KINK_GRADING)
+    fewer = math.ceil(math.log(rtol / KINK_GRADED_RTOL) / math.log(2.0 ** 2.5))
+    return max(MIN_KINK_LEVELS, len(LENS_KINK_GRADING) - fewer)
+
+
+def _r_breakpoints(points, d, single_graded=False, steep_layer=None, rtol=KINK_GRADED_RTOL):
     """Per element: 0, the kinks 1 − d, 1, 1 + d of a_R(d) in R, the cuts of :data:`LENS_LAYER_GRADING`,
     the weight's ``points``, 2, and with a ``steep_layer`` (end, pole) the cuts of :func:`weight_layer_cuts`;
-    with ``single_graded``, a single element's row graded further (:func:`_single_element_partition`)."""
+    with ``single_graded``, a single element's row graded further for ``rtol`` (:func:`_single_element_partition`)."""
     d = np.atleast_1d(np.asarray(d, float))
     if single_graded and d.size == 1:
-        return _single_element_partition(points, float(d[0]), steep_layer)[None]
+        return _single_element_partition(points, float(d[0]), steep_layer, rtol)[None]
     bp = _lens_breakpoints(points, d)
     return bp if steep_layer is None else _with_weight_layer(bp, d, *steep_layer)
 
@@ -552,9 +576,10 @@ WEIGHT_POINT_GRADING = (0.5, 0.25, 0.125, 0.0625)
 _LAYERS = tuple((1.0 + LENS_LAYER_GRADING).tolist())
 
 
-def _single_element_partition(points, d, steep_layer=None):
+def _single_element_partition(points, d, steep_layer=None, rtol=KINK_GRADED_RTOL):
     """The first partition of one element at |L'_P| = ``d``, on Python floats: the points of
-    :func:`_r_breakpoints`, graded toward the lens's kinks (:data:`LENS_KINK_GRADING`) and toward the
+    :func:`_r_breakpoints`, graded toward the lens's kinks (:data:`LENS_KINK_GRADING`, as many levels as
+    ``rtol`` takes: :func:`lens_kink_levels`) and toward the
     weight's ``points`` from below (:data:`WEIGHT_POINT_GRADING`), so that one evaluation meets the
     tolerance (a round of a single element costs more than its nodes; a batch's elements share their
     rounds and keep :func:`_r_breakpoints`'s partition, to the bit)."""
@@ -570,10 +595,11 @@ def _single_element_partition(points, d, steep_layer=None):
     if lo < hi:
         above = [p for p in row if p > lo]
         below = [p for p in row if p < hi]
+        grading = LENS_KINK_GRADING[:lens_kink_levels(rtol)]
         if above:
-            cuts.update(lo + (above[0] - lo) * g for g in LENS_KINK_GRADING)
+            cuts.update(lo + (above[0] - lo) * g for g in grading)
         if below:
-            cuts.update(hi - (hi - below[-1]) * g for g in LENS_KINK_GRADING)
+            cuts.update(hi - (hi - below[-1]) * g for g in grading)
     for point in inside:                 # the weight's own features, graded toward from below
         before = [p for p in row if p < point]
         if before:
@@ -669,7 +695,7 @@ def _weighted_mixture_integral(p, p_diffuse, per_element, d, rtol, atol, points=
                 return out
         return integrand(x, elem)
 
-    bp = _r_breakpoints(points, d, single_graded, steep_layer)
+    bp = _r_breakpoints(points, d, single_graded, steep_layer, rtol)
     # The tolerance is relative to the albedo, not to the integral: with a generalized Lambertian
     # profile the integral is negative and larger than the sum (d = 1: −1.5 + 2.26), so rtol on it
     # left the albedo up to 1.8 rtol off.  A rough pass sizes the sum.
