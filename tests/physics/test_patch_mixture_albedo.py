@@ -93,8 +93,10 @@ def test_a_looser_tolerance_grades_one_level_fewer_per_factor_2_to_the_5_halves_
     from brdfs.physics.patch_geometry import LENS_KINK_GRADING, lens_kink_levels
 
     assert len(LENS_KINK_GRADING) == 8
-    assert [lens_kink_levels(r) for r in (0.0, 1e-13, 1e-10, 1.01e-10, 1e-10 * 2 ** 2.5 * 1.01, 1e-8, 1e-6, 1e-4, 1.0)] \
-        == [8, 8, 8, 7, 6, 5, 2, 2, 2]
+    step = 2.0 ** 2.5
+    assert [lens_kink_levels(r) for r in (0.0, 1e-13, 1e-10, 1.01e-10, 1e-10 * step, 1e-10 * step * 1.01,
+                                          1e-10 * step ** 3, 1e-8, 1e-6, 1e-4, 1.0, 1e300)] \
+        == [8, 8, 8, 7, 7, 6, 5, 5, 2, 2, 2, 2]
 
 
 @pytest.mark.parametrize("points", [(2.5,), (-0.5, 1.3), (0.0, 2.0)])

@@ -15,6 +15,7 @@ import time
 import warnings
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -78,6 +79,8 @@ def test_an_unchanged_build_passes_and_numbers_may_move_within_4x_their_error_el
     (RENDER, "luminance", 0.30, "row 0: luminance 0.25 -> 0.3"),
     (RENDER, "p95_relative_se", 0.04 * (1 + 2e-9), "row 0: p95_relative_se 0.04 -> 0.04000000008"),
     (TABLE, "C_err", 1.06e-10, "row 0: C_err 1e-10 -> 1.06e-10"),
+    (TABLE, "C_err", np.inf, "row 0: C_err 1e-10 -> inf"),
+    (TABLE, "C", np.inf, "row 0: C 1.1576 -> inf"),
     (RENDER, "luminance_err", 0.0094, "row 0: luminance_err 0.01 -> 0.0094"),
     (TABLE, "model", "blinn", "row 0: model 'ward' -> 'blinn'"),
 ])

@@ -1,7 +1,9 @@
 """The compiled twin of a single angle's lens-mixture albedo (eqs. 4.8, 4.9, 4.22, 4.24): the lens
 areas a_R(d) with their rounding bounds, node by node (:func:`lens_values`), for the rounds of the compiled
-driver (:mod:`brdfs.core.gauss_kronrod_compiled`, called from Python: a function of this module that called
-the driver would compile its own copy of it, 4.5 s more on a cold cache).
+driver (:mod:`brdfs.core.gauss_kronrod_compiled`), which Python runs round by round, p(R) in between.  The
+functions here that start a pass or absorb a round call the driver's ``start``, ``absorb``, ``pending`` and
+``finished`` themselves, so that a round is one crossing from Python; numba compiles its own copy of those
+into this module's cache (about 10 s for the module on a cold cache, ``make compiled``).
 
 A replica, operation for operation (but for two, where they are: the series's higher powers, the error
 terms' sines), of :func:`brdfs.physics.patch_geometry._basic_albedo_of_one` (itself

@@ -486,8 +486,9 @@ LENS_LAYER_GRADING = 4.0 ** np.arange(0.0, 27.0)
 KINK_GRADED_RTOL = 1e-10
 #: ... but never fewer levels than this: the rough pass (:data:`ROUGH_RTOL`) starts on the same partition,
 #: and with one level or none a generalized Lambertian's first evaluation missed even its 1e-4 at some
-#: angles (3–4 rounds, 45 angles to 89.9°); with two, every first evaluation of the three lens mixtures met
-#: rtol 1e-6 and looser.
+#: angles (3–4 rounds, 45 angles to 89.9°); with two, the first evaluation of each typical lens mixture met
+#: rtol 1e-6 and looser at those angles (a narrower one may take another round: generalized Lambertian
+#: d = 1 at 62.3°).
 MIN_KINK_LEVELS = 2
 
 
@@ -495,11 +496,10 @@ def lens_kink_levels(rtol):
     """How many levels of :data:`LENS_KINK_GRADING` a single element's first partition takes at ``rtol``: all
     at :data:`KINK_GRADED_RTOL` and tighter (and at rtol 0), one fewer per factor 2^{5/2} looser, at least
     :data:`MIN_KINK_LEVELS` (2 from 1e-6 on): the driver refines further where a model needs it."""
-    rtol = float(rtol)
-    if not rtol > KINK_GRADED_RTOL:
-        return len(LENS_KINK_GRADING)
-    fewer = math.ceil(math.log(rtol / KINK_GRADED_RTOL) / math.log(2.0 ** 2.5))
-    return max(MIN_KINK_LEVELS, len(LENS_KINK_GRADING) - fewer)
+    rtol, levels, bound = float(rtol), len(LENS_KINK_GRADING), KINK_GRADED_RTOL
+    while rtol > bound and levels > MIN_KINK_LEVELS:     # (a ratio of logs put 1e-10 · 2^2.5 a level low)
+        levels, bound = levels - 1, bound * 2.0 ** 2.5
+    return levels
 
 
 def _r_breakpoints(points, d, single_graded=False, steep_layer=None, rtol=KINK_GRADED_RTOL):

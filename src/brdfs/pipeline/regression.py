@@ -213,8 +213,8 @@ def _moved_rows(now: pd.DataFrame, then: pd.DataFrame) -> list[str]:
                 tol = ERROR_RTOL * np.fmax(np.abs(x), np.abs(y))
             else:
                 tol = RESULT_RTOL * np.fmax(np.abs(x), np.abs(y))
-            with np.errstate(invalid="ignore"):
-                same = (x == y) | (np.isnan(x) & np.isnan(y)) | (np.abs(y - x) <= tol)
+            with np.errstate(invalid="ignore"):     # a number that became ±inf (or whose error did) moved
+                same = (x == y) | (np.isnan(x) & np.isnan(y)) | (np.isfinite(tol) & (np.abs(y - x) <= tol))
         else:
             same = ((a.isna() & b.isna()) | (a.astype(object) == b.astype(object))).to_numpy(bool)
         for k in np.flatnonzero(~same)[:FIRST_ROWS]:
