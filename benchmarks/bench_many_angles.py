@@ -1,5 +1,6 @@
 """Linear in the number of angles (issue 41): one albedo() call over many angles, CPU time and peak
-memory measured in one run, each case in a fresh process (peak RSS is per process).
+memory measured in one run, each case in fresh processes (peak RSS is per process; the best CPU time of
+:data:`REPEATS`).
 
     PYTHONPATH=src python benchmarks/bench_many_angles.py [--ggx-million]
 
@@ -30,7 +31,17 @@ print(json.dumps({"cpu_s": cpu, "evaluations": int(est.evaluations), "peak_mb": 
 """
 
 
-def run(name, params, n):
+#: Fresh processes per case: its CPU time is their best, its peak memory their largest.  One process each
+#: read the Phong ratio anywhere in 1.85–2.0 for evaluations exactly 2.000 times as many.
+REPEATS = 3
+
+
+def run(name, params, n, repeats=REPEATS):
+    runs = [_run_once(name, params, n) for _ in range(repeats)]
+    return {**runs[0], "cpu_s": min(r["cpu_s"] for r in runs), "peak_mb": max(r["peak_mb"] for r in runs)}
+
+
+def _run_once(name, params, n):
     out = subprocess.run([sys.executable, "-c", CASE, json.dumps([name, params, n])], capture_output=True,
                          text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -48,7 +59,9 @@ def main(argv=None):
         results[(name, n)] = r = run(name, params, n)
         print(f"{name} {params} {n:>9,d} angles: {r['cpu_s']:7.2f} CPU-s, {r['evaluations']:>12,d} evaluations, "
               f"peak {r['peak_mb']:6.0f} MB, routes {r['routes']}", flush=True)
-    print(f"phong 10,000 / 5,000 CPU: {results[('phong', 10_000)]['cpu_s'] / results[('phong', 5_000)]['cpu_s']:.2f} (target <= 2)")
+    phong = results[("phong", 10_000)], results[("phong", 5_000)]
+    print(f"phong 10,000 / 5,000 CPU: {phong[0]['cpu_s'] / phong[1]['cpu_s']:.2f} (target <= 2; evaluations "
+          f"{phong[0]['evaluations'] / phong[1]['evaluations']:.3f})")
     if args.ggx_million:
         ratio = results[("ggx", 1_000_000)]["cpu_s"] / results[("ggx", 10_000)]["cpu_s"]
         print(f"ggx 1e6 / 10,000 CPU: {ratio:.1f} (target <= 120)")
