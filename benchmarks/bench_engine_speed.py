@@ -213,7 +213,7 @@ SLOWER_BEYOND = 1.10
 
 
 #: A sample of :func:`_per_call` repeats its call for at least this many CPU seconds: one call of a fast
-#: model's curve takes 0.1–2 ms, and the best of 7 such single calls still moved by ±13 % between runs
+#: model's curve takes 0.1–5 ms, and the best of 7 such single calls still moved by ±13 % between runs
 #: (a curve of Phong at 1e-6 read 12 % "slower" than at e0ba585 in one run, the same within 2 % in a
 #: separate A/B of 50 ms samples).
 MIN_SAMPLE = 0.02
@@ -222,7 +222,8 @@ MIN_SAMPLE = 0.02
 def steady_allocator():
     """Put this process's allocator in the state a long-running one reaches: glibc serves an array above its
     mmap threshold (128 KB at start) by mmap, page faults on first touch included, until a freed mapped
-    chunk raises the threshold to its size.  A fresh process's patch_exponential curve at 1e-6 (2 MB
+    chunk raises the threshold to its size (and the trim threshold to twice that, so that freed heap memory
+    stays for the next array).  A fresh process's patch_exponential curve at 1e-6 (2 MB
     arrays) took 0.041–0.044 ms a point, and 0.025–0.028 ms after any model had freed a larger array (the
     same code, in the same run): which models ran first decided a third of its ratio."""
     np.empty(1 << 21)              # 16 MB, mapped, freed at once: the threshold becomes 16 MB
@@ -256,7 +257,8 @@ class _CurveAt:
     """The curve points and single calls of another commit's code, timed by a child process on that
     commit's ``src`` (``git archive``) one request at a time, between this run's own timings, so that
     both see the same load: ``seconds(name, rtol, rounds)`` per point of the model's ``typical`` example
-    (``kind="single"``: per single call), NaN where that commit has no such model or example."""
+    (``kind="single"``: per single call), NaN where that commit has no such model (one without that
+    example stops the run with the child's traceback)."""
 
     CHILD = (
         "import sys, warnings\n"

@@ -32,7 +32,10 @@ print(json.dumps({"cpu_s": cpu, "evaluations": int(est.evaluations), "peak_mb": 
 
 
 #: Fresh processes per case: its CPU time is their best, its peak memory their largest.  One process each
-#: read the Phong ratio anywhere in 1.85–2.0 for evaluations exactly 2.000 times as many.
+#: read the Phong ratio anywhere in 1.85–2.0 for evaluations exactly 2.000 times as many.  A case runs
+#: as a user's script would, and as issue 41 measured e0ba585: in a fresh process, whose allocator maps
+#: and faults in every large array (about 40 % of these calls' CPU; with
+#: ``bench_engine_speed.steady_allocator`` first, Phong read 1.98 and GGX 99.6, as linear as the evaluations).
 REPEATS = 3
 
 

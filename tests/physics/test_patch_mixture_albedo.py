@@ -89,14 +89,15 @@ def test_a_single_angle_of_a_mixture_meets_its_tolerance_on_its_first_evaluation
 
 def test_a_looser_tolerance_grades_one_level_fewer_per_factor_2_to_the_5_halves_down_to_two():
     """Each level halves the interval next to a kink where a_R starts as (R − R₀)^{3/2}: its error falls by
-    2^{5/2}.  All 8 levels at 1e-10 and tighter (and rtol 0); 7 just above; 2 at 1e-6 and, the floor, looser."""
+    2^{5/2}.  All 8 levels at 1e-10 and tighter (and rtol 0, and a float32 1e-10); 7 just above; 2 at 1e-6
+    and, the floor, looser."""
     from brdfs.physics.patch_geometry import LENS_KINK_GRADING, lens_kink_levels
 
     assert len(LENS_KINK_GRADING) == 8
     step = 2.0 ** 2.5
-    assert [lens_kink_levels(r) for r in (0.0, 1e-13, 1e-10, 1.01e-10, 1e-10 * step, 1e-10 * step * 1.01,
-                                          1e-10 * step ** 3, 1e-8, 1e-6, 1e-4, 1.0, 1e300)] \
-        == [8, 8, 8, 7, 7, 6, 5, 5, 2, 2, 2, 2]
+    assert [lens_kink_levels(r) for r in (0.0, 1e-13, 1e-10, np.float32(1e-10), 1.01e-10, 1e-10 * step,
+                                          1e-10 * step * 1.01, 1e-10 * step ** 3, 1e-8, 1e-6, 1e-4, 1.0, 1e300)] \
+        == [8, 8, 8, 8, 7, 7, 6, 5, 5, 2, 2, 2, 2]
 
 
 @pytest.mark.parametrize("points", [(2.5,), (-0.5, 1.3), (0.0, 2.0)])

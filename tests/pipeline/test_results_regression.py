@@ -168,3 +168,11 @@ def test_a_job_that_reads_a_damaged_result_stops_with_one_line_naming_it(built, 
     line = f"{path}: damaged, its content changed since it was written (truncated or edited); `make all` rebuilds it"
     assert stop.value.code == line
     assert log.read_text().rstrip().endswith(f"ERROR {line}") and "Traceback" not in log.read_text()
+
+
+def test_an_error_column_that_turned_to_text_is_reported_not_a_crash():
+    """The tolerance of ``C`` comes from ``C_err`` only where both builds hold numbers there; a ``C_err``
+    of text in the new build is a moved column (it raised ``could not convert string to float``)."""
+    then = pd.DataFrame({"C": [1.0, 2.0], "C_err": [1e-10, 1e-10]})
+    now = pd.DataFrame({"C": [1.0, 2.0], "C_err": ["n/a", "1e-10"]})
+    assert regression._moved_rows(now, then) == ["row 0: C_err 1e-10 -> 'n/a'", "row 1: C_err 1e-10 -> '1e-10'"]

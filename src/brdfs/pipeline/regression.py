@@ -19,8 +19,9 @@ runs it when ``results/`` exists): its published comparison against that baselin
 numbers against ``tests/data/results_baseline/`` (the CSVs of a build, gzipped; ``--write-results``,
 which ``make baseline`` runs after ``make all``). A number may move by 4 times its row's own error
 (column ``<x>_err``; ``luminance_err`` for a render's luminance), else by 1e-9 relative; an error
-estimate itself (``<x>_err``, ``<x>_rtol``) may move by 5 % of itself (:data:`ERROR_RTOL`); columns,
-texts and row counts may not change. A CSV older than the code it comes from (and than the last whole
+estimate itself (``<x>_err``, ``<x>_rtol``) may move by 5 % of itself (:data:`ERROR_RTOL`); a number
+whose error is not finite must stay the same, and one that becomes ±inf has moved; columns, texts and row
+counts may not change. A CSV older than the code it comes from (and than the last whole
 ``make all``, :data:`brdfs.pipeline.io.BUILD_COMPLETE`) is stale, reported as such and not compared.
 """
 
@@ -207,13 +208,14 @@ def _moved_rows(now: pd.DataFrame, then: pd.DataFrame) -> list[str]:
         if a.dtype.kind in "fiu" and b.dtype.kind in "fiu":
             x, y = a.to_numpy(float), b.to_numpy(float)
             err = f"{column}_err"
-            if err in now.columns and then[err].dtype.kind in "fiu":
-                tol = RESULT_ERR_FACTOR * np.fmax(then[err].to_numpy(float), now[err].to_numpy(float))
-            elif ERROR_COLUMN.search(str(column)):
-                tol = ERROR_RTOL * np.fmax(np.abs(x), np.abs(y))
-            else:
-                tol = RESULT_RTOL * np.fmax(np.abs(x), np.abs(y))
-            with np.errstate(invalid="ignore"):     # a number that became ±inf (or whose error did) moved
+            with np.errstate(over="ignore", invalid="ignore"):
+                if err in now.columns and then[err].dtype.kind in "fiu" and now[err].dtype.kind in "fiu":
+                    tol = RESULT_ERR_FACTOR * np.fmax(then[err].to_numpy(float), now[err].to_numpy(float))
+                elif ERROR_COLUMN.search(str(column)):
+                    tol = ERROR_RTOL * np.fmax(np.abs(x), np.abs(y))
+                else:
+                    tol = RESULT_RTOL * np.fmax(np.abs(x), np.abs(y))
+                # a number that became ±inf moved, and so did one whose error is not finite (unless equal)
                 same = (x == y) | (np.isnan(x) & np.isnan(y)) | (np.isfinite(tol) & (np.abs(y - x) <= tol))
         else:
             same = ((a.isna() & b.isna()) | (a.astype(object) == b.astype(object))).to_numpy(bool)
