@@ -157,8 +157,8 @@ def _source(name: str) -> Path | None:
     """The source file of the brdfs module ``name`` (None where it is not a module, e.g. a function)."""
     parts = name.split(".")[1:]
     base = _PACKAGE.joinpath(*parts)
-    for candidate in (base.with_suffix(".py"), base / "__init__.py"):
-        if parts and candidate.is_file() or not parts and candidate.name == "__init__.py" and candidate.is_file():
+    for candidate in (base.with_suffix(".py") if parts else None, base / "__init__.py"):
+        if candidate is not None and candidate.is_file():
             return candidate
     return None
 

@@ -260,15 +260,13 @@ def _still_open(total, movable, budget):
 def _decide(lo, hi, vals, err, fixed, stalls, ints, floats):
     """The top of the numpy driver's loop: stop (met, nothing to refine, too many intervals) or
     choose the intervals to split and their pieces, which become the pending ones."""
-    empty_f, empty_i = np.zeros(0), np.zeros(0, np.int64)
-    groups = np.zeros((2, 2), np.int64)
     high, low, extra, absval, total = _sums(vals, err)
     budget = _budget(_larger(floats[_RTOL] * abs(high), floats[_ATOL]), extra + 50 * _EPS * absval)
     n = err.size
     if not total > budget:                     # met (or NaN)
         ints[_EXHAUSTED] = 0
         _finish(low, extra, absval, total, ints, floats)
-        return (lo, hi, vals, err, fixed, stalls, empty_f, empty_f, empty_i, groups, np.zeros(n, np.bool_), ints, floats)
+        return _stopped(lo, hi, vals, err, fixed, stalls, ints, floats)
     if ints[_FIXED_READY] == 0:
         fixed = _unrefinable(lo, hi, err, vals[2])
         stalls = np.zeros(n, np.int64)
@@ -290,10 +288,10 @@ def _decide(lo, hi, vals, err, fixed, stalls, ints, floats):
     if not open_:
         ints[_EXHAUSTED] = 0
         _finish(low, extra, absval, total, ints, floats)
-        return (lo, hi, vals, err, fixed, stalls, empty_f, empty_f, empty_i, groups, np.zeros(n, np.bool_), ints, floats)
+        return _stopped(lo, hi, vals, err, fixed, stalls, ints, floats)
     if n > MAX_INTERVALS:
         _finish(low, extra, absval, total, ints, floats)
-        return (lo, hi, vals, err, fixed, stalls, empty_f, empty_f, empty_i, groups, np.zeros(n, np.bool_), ints, floats)
+        return _stopped(lo, hi, vals, err, fixed, stalls, ints, floats)
     split = np.empty(n, np.bool_)
     for i in range(n):
         split[i] = cand[i] and err[i] >= worst / 8
@@ -306,6 +304,14 @@ def _decide(lo, hi, vals, err, fixed, stalls, ints, floats):
     g_idx, groups = _split_groups(idx, stalls, lo, hi, fill)
     p_lo, p_hi = _children(lo, hi, g_idx, groups)
     return (lo, hi, vals, err, fixed, stalls, p_lo, p_hi, g_idx, groups, split, ints, floats)
+
+
+@numba.njit(cache=True)
+def _stopped(lo, hi, vals, err, fixed, stalls, ints, floats):
+    """The state of a finished run (:func:`_finish` called): its intervals, nothing pending."""
+    empty_f, empty_i = np.zeros(0), np.zeros(0, np.int64)
+    return (lo, hi, vals, err, fixed, stalls, empty_f, empty_f, empty_i, np.zeros((2, 2), np.int64),
+            np.zeros(err.size, np.bool_), ints, floats)
 
 
 @numba.njit(cache=True)

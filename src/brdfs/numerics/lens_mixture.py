@@ -21,7 +21,6 @@ from brdfs.physics.patch_geometry import (CLOSED_FORM_RTOL, ROUGH_RTOL, _cos_inc
                                           lens_kink_levels)
 
 
-
 def own_albedo_estimate(model, theta, rtol, atol):
     """``model.albedo_estimate(theta, rtol, atol)``; a single angle of a model whose own route is the lens
     mixture's (:class:`LensMixtureAlbedo`, not overridden) by :func:`compiled_lens_albedo` where the compiled

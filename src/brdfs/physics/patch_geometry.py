@@ -648,10 +648,11 @@ def lens_mixture_albedo(mixture, theta_deg, rtol=1e-10, atol=1e-14, single_grade
 
 
 def _mixture_integral(profile, C, per_element, d, rtol, atol):
-    """:func:`_weighted_mixture_integral` of a profile's weight p(R) (eq. 4.41) and Dirac part (eq. 4.24)."""
-    return _weighted_mixture_integral(lambda R: weight(profile, R, C), diffuse_weight(profile, C), per_element,
-                                      d, rtol, atol, profile.breakpoints, covered=covered_weight(profile, C),
-                                      steep_layer=profile.steep_layer)
+    """:func:`_weighted_mixture_integral` of a profile's weight p(R) (eq. 4.41) and Dirac part (eq. 4.24):
+    its :func:`profile_mixture`."""
+    mixture = profile_mixture(profile, C)
+    return _weighted_mixture_integral(mixture.weight, mixture.p_diffuse, per_element, d, rtol, atol, mixture.points,
+                                      covered=mixture.covered, steep_layer=mixture.steep_layer)
 
 
 def covered_weight(profile, C):

@@ -242,6 +242,7 @@ def _python_number(value):
         return int(value)
     return float(value)
 
+
 @dataclass(frozen=True)
 class BRDF:
     """Base class: subclasses implement ``_eval(L, V, nl, nv)`` and ``lobe``.
